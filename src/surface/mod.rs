@@ -1,5 +1,6 @@
 //! Stage 1: surfaces — height maps, readers, statistics, synthetic generation, summits.
 
 mod height_map;
+pub mod io;
 
 pub use height_map::{HeightMap, HeightMapError};

@@ -1,0 +1,50 @@
+//! Reader errors: a [`ParseError`] says what is wrong with the bytes, a [`ReadError`] adds the file.
+
+use std::path::PathBuf;
+
+/// What is wrong with the content of a topography file.
+#[derive(Debug, thiserror::Error)]
+pub enum ParseError {
+    /// The file ends before `what` could be read.
+    #[error("file is truncated: {what}")]
+    Truncated { what: String },
+    /// The content contradicts the format (bad header value, wrong size, bad number, …).
+    #[error("{what}")]
+    Malformed { what: String },
+    /// A valid file that uses a feature this reader does not implement.
+    #[error("unsupported: {what}")]
+    Unsupported { what: String },
+}
+
+impl ParseError {
+    pub(crate) fn truncated(what: impl Into<String>) -> Self {
+        Self::Truncated { what: what.into() }
+    }
+    pub(crate) fn malformed(what: impl Into<String>) -> Self {
+        Self::Malformed { what: what.into() }
+    }
+    pub(crate) fn unsupported(what: impl Into<String>) -> Self {
+        Self::Unsupported { what: what.into() }
+    }
+}
+
+/// A topography file could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum ReadError {
+    #[error("cannot read {}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error(
+        "{}: unknown topography format (checked magic bytes and extension); supported: x3p, sdf, sur, plu, dat (MetroPro), opd, di, gsf, gwy, al3d, zon, txt/csv/asc, npy",
+        path.display()
+    )]
+    UnknownFormat { path: PathBuf },
+    #[error("{} ({format}): {source}", path.display())]
+    Parse {
+        path: PathBuf,
+        format: &'static str,
+        source: ParseError,
+    },
+}

@@ -1,0 +1,76 @@
+//! Topography file readers: our own parsers, one file per format.
+//!
+//! Every reader turns bytes into a [`Topography`] in SI units (metres), with missing points as
+//! `NaN` (never zero). [`read_topography`] detects the format from magic bytes, then from the
+//! file extension, and wraps every failure in a [`ReadError`] that names the file.
+
+mod error;
+mod topography;
+
+pub use error::{ParseError, ReadError};
+pub use topography::{LineScan, Topography, TopographyData};
+
+use std::path::Path;
+
+/// A supported file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Format {}
+
+impl Format {
+    /// Every supported format, in detection order.
+    pub const ALL: &'static [Format] = &[];
+
+    /// Short lowercase name ("x3p", "sdf", …).
+    pub fn name(self) -> &'static str {
+        match self {}
+    }
+
+    /// `true` when the first bytes of a file identify this format.
+    fn matches_magic(self, _head: &[u8]) -> bool {
+        match self {}
+    }
+
+    /// `true` when the (lowercase) file extension belongs to this format.
+    fn matches_extension(self, _ext: &str) -> bool {
+        match self {}
+    }
+
+    /// Parses the whole file content.
+    fn parse(self, _bytes: &[u8]) -> Result<Topography, ParseError> {
+        match self {}
+    }
+}
+
+/// Detects the format of `bytes` (magic bytes first, then the extension of `path`).
+pub fn detect_format(path: &Path, bytes: &[u8]) -> Option<Format> {
+    let head = &bytes[..bytes.len().min(4096)];
+    if let Some(f) = Format::ALL.iter().copied().find(|f| f.matches_magic(head)) {
+        return Some(f);
+    }
+    let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+    Format::ALL
+        .iter()
+        .copied()
+        .find(|f| f.matches_extension(&ext))
+}
+
+/// Reads a topography file from disk in any supported format.
+pub fn read_topography(path: &Path) -> Result<Topography, ReadError> {
+    let bytes = std::fs::read(path).map_err(|source| ReadError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse_topography(path, &bytes)
+}
+
+/// Parses file content already in memory; `path` is used for format detection and errors only.
+pub fn parse_topography(path: &Path, bytes: &[u8]) -> Result<Topography, ReadError> {
+    let format = detect_format(path, bytes).ok_or_else(|| ReadError::UnknownFormat {
+        path: path.to_path_buf(),
+    })?;
+    format.parse(bytes).map_err(|source| ReadError::Parse {
+        path: path.to_path_buf(),
+        format: format.name(),
+        source,
+    })
+}
