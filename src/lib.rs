@@ -5,8 +5,17 @@
 //! * [`contact`] — elastic–perfectly-plastic FFT boundary-element contact;
 //! * [`friction`] — Greenwood–Williamson / Kogut–Etsion static friction models.
 //!
+//! Study engine (knows nothing of tribology beyond the node-kind trait): [`engine`].
+//! Glue between the two: [`nodes`]. Quantities with units at the boundary: [`units`].
+//!
 //! See `ARCHITECTURE.md` for the code map and invariants.
 
 pub mod contact;
+pub mod engine;
 pub mod friction;
+pub mod nodes;
 pub mod surface;
+pub mod units;
+
+/// The tool version recorded in cache manifests and Parquet metadata.
+pub const TOOL_VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -1,0 +1,187 @@
+//! Command-line arguments and dispatch.
+
+mod progress;
+mod run;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::{Parser, Subcommand};
+
+use asperity::engine::cache::Cache;
+use asperity::engine::plan::Plan;
+use asperity::engine::study::Study;
+use asperity::nodes::TribologyNode;
+
+/// Reproducible rough-surface contact and static-friction studies.
+#[derive(Debug, Parser)]
+#[command(name = "asperity", version, about, long_about = None)]
+pub struct Cli {
+    /// More log output (-v: info, -vv: debug); RUST_LOG overrides.
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    pub verbose: u8,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run a study: compute what is not cached, write Parquet tables.
+    Run(run::RunArgs),
+    /// Show what a run would do: each node instance, cached or to compute.
+    Plan {
+        /// The study file (YAML).
+        study: PathBuf,
+        #[command(flatten)]
+        cache: CacheArg,
+        /// Print the node DAG as Graphviz DOT instead.
+        #[arg(long, conflicts_with = "mermaid")]
+        dot: bool,
+        /// Print the node DAG as a Mermaid flowchart instead.
+        #[arg(long)]
+        mermaid: bool,
+    },
+    /// Check a study file without running it.
+    Validate {
+        /// The study file (YAML).
+        study: PathBuf,
+    },
+    /// Print the JSON Schema of study files (for editors with the YAML language server).
+    Schema,
+}
+
+/// Where the cache lives.
+#[derive(Debug, clap::Args)]
+struct CacheArg {
+    /// Cache directory [default: $ASPERITY_CACHE or ./cache].
+    #[arg(long, value_name = "DIR")]
+    cache: Option<PathBuf>,
+}
+
+impl CacheArg {
+    fn open(&self) -> Result<Cache> {
+        let dir = self
+            .cache
+            .clone()
+            .or_else(|| std::env::var_os("ASPERITY_CACHE").map(PathBuf::from))
+            .unwrap_or_else(|| PathBuf::from("cache"));
+        Cache::open(&dir).with_context(|| format!("cannot open the cache at {}", dir.display()))
+    }
+}
+
+/// Sets up tracing logs on stderr: warnings by default, more with -v; RUST_LOG overrides.
+pub fn init_tracing(verbose: u8) {
+    let default = match verbose {
+        0 => "warn",
+        1 => "asperity=info,warn",
+        _ => "asperity=debug,info",
+    };
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new(default));
+    tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr)
+        .with_target(false)
+        .init();
+}
+
+/// Runs the command.
+pub fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Command::Run(args) => run::run(args),
+        Command::Plan {
+            study,
+            cache,
+            dot,
+            mermaid,
+        } => plan(&study, &cache, dot, mermaid),
+        Command::Validate { study } => validate(&study),
+        Command::Schema => {
+            println!("{}", asperity::nodes::study_schema_json());
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+fn load(study: &std::path::Path) -> Result<(Study<TribologyNode>, Plan)> {
+    let study = Study::<TribologyNode>::load(study)?;
+    let plan = Plan::build(&study)?;
+    Ok((study, plan))
+}
+
+fn warn_unused(plan: &Plan) {
+    for p in &plan.unused_parameters {
+        eprintln!("warning: parameter '{p}' is not used by any node");
+    }
+}
+
+fn validate(path: &std::path::Path) -> Result<ExitCode> {
+    let (study, plan) = load(path)?;
+    warn_unused(&plan);
+    println!(
+        "{}: ok — study '{}', {} scenario(s), {} node(s), {} unique node instance(s)",
+        path.display(),
+        study.name(),
+        plan.scenarios.rows.len(),
+        plan.node_names.len(),
+        plan.nodes.len()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+fn plan(path: &std::path::Path, cache: &CacheArg, dot: bool, mermaid: bool) -> Result<ExitCode> {
+    let (study, plan) = load(path)?;
+    let cache = cache.open()?;
+    let cached: Vec<bool> = plan
+        .nodes
+        .iter()
+        .map(|n| cache.contains(n.task.kind(), &n.key))
+        .collect();
+    if dot {
+        print!("{}", plan.to_dot(|i| cached[i]));
+        return Ok(ExitCode::SUCCESS);
+    }
+    if mermaid {
+        print!("{}", plan.to_mermaid(|i| cached[i]));
+        return Ok(ExitCode::SUCCESS);
+    }
+    warn_unused(&plan);
+    let needed = plan.needed_for(&study.outputs);
+    println!(
+        "study '{}': {} scenario(s), {} unique node instance(s), outputs: {}",
+        study.name(),
+        plan.scenarios.rows.len(),
+        plan.nodes.len(),
+        study.outputs.join(", ")
+    );
+    println!("{:<8} {:<12} {:<10} {:<8} nodes", "status", "key", "kind", "version");
+    let mut to_compute = 0;
+    for &i in &needed {
+        let n = &plan.nodes[i];
+        let status = if cached[i] { "cached" } else { "compute" };
+        to_compute += usize::from(!cached[i]);
+        println!(
+            "{status:<8} {:<12} {:<10} {:<8} {}",
+            n.key.short(),
+            n.task.kind(),
+            n.task.version(),
+            n.names.join(", ")
+        );
+    }
+    println!(
+        "total: {} needed, {} cached, {} to compute{}",
+        needed.len(),
+        needed.len() - to_compute,
+        to_compute,
+        if needed.len() < plan.nodes.len() {
+            format!(
+                " ({} not needed by the requested outputs)",
+                plan.nodes.len() - needed.len()
+            )
+        } else {
+            String::new()
+        }
+    );
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,115 @@
+//! `asperity run`: plan, execute with a progress bar, write tables, summarise.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+
+use asperity::engine::execute::{execute, ExecuteOptions, NodeStatus};
+use asperity::engine::output::{write_tables, OutputMetadata};
+
+use super::progress::BarProgress;
+use super::CacheArg;
+
+/// Arguments of `asperity run`.
+#[derive(Debug, clap::Args)]
+pub struct RunArgs {
+    /// The study file (YAML).
+    study: PathBuf,
+    /// Output folder for the Parquet tables [default: results/<study>].
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    #[command(flatten)]
+    cache: CacheArg,
+    /// Worker threads [default: all cores].
+    #[arg(long, short = 'j', value_name = "N")]
+    jobs: Option<usize>,
+    /// Memory budget for nodes running at once, in MiB [default: 60 % of available memory].
+    #[arg(long, value_name = "MIB")]
+    memory_mib: Option<u64>,
+    /// No progress bar.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+pub fn run(args: RunArgs) -> Result<ExitCode> {
+    if let Some(jobs) = args.jobs {
+        anyhow::ensure!(jobs >= 1, "--jobs must be at least 1");
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(jobs)
+            .build_global()
+            .context("cannot start the worker threads")?;
+    }
+    let (study, plan) = super::load(&args.study)?;
+    super::warn_unused(&plan);
+    let cache = args.cache.open()?;
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("results").join(study.name()));
+    let options = ExecuteOptions {
+        tables: study.outputs.clone(),
+        memory_budget: args
+            .memory_mib
+            .map(|m| m.saturating_mul(1 << 20))
+            .unwrap_or_else(default_memory_budget),
+        tool_version: asperity::TOOL_VERSION.to_string(),
+    };
+    let progress = BarProgress::new(args.quiet);
+    let report = execute(&plan, &cache, &options, &progress)?;
+    progress.finish();
+    let meta = OutputMetadata {
+        study: study.name().to_string(),
+        study_file_hash: study.file_hash.clone(),
+        tool_version: asperity::TOOL_VERSION.to_string(),
+    };
+    let files = write_tables(&out, &plan, &report, &study.outputs, &meta)?;
+    for (i, o) in report.outcomes.iter().enumerate() {
+        if let Some(o) = o {
+            if let NodeStatus::Failed(m) = &o.status {
+                eprintln!(
+                    "failed: {} node '{}' ({}): {m}",
+                    plan.nodes[i].task.kind(),
+                    plan.nodes[i].names.join(", "),
+                    plan.nodes[i].key.short()
+                );
+            }
+        }
+    }
+    println!(
+        "{}: {} computed, {} reused from cache, {} failed, {} skipped{} in {:.2} s",
+        study.name(),
+        report.computed,
+        report.cached,
+        report.failed,
+        report.skipped,
+        if report.discarded > 0 {
+            format!(" ({} corrupt cache entries recomputed)", report.discarded)
+        } else {
+            String::new()
+        },
+        report.wall_seconds
+    );
+    println!("tables in {}:", out.display());
+    for f in files {
+        println!("  {}", f.display());
+    }
+    Ok(if report.all_ok() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(2)
+    })
+}
+
+/// 60 % of MemAvailable from /proc/meminfo, or 4 GiB when it cannot be read.
+fn default_memory_budget() -> u64 {
+    std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("MemAvailable:"))
+                .and_then(|l| l.split_whitespace().nth(1))
+                .and_then(|kb| kb.parse::<u64>().ok())
+        })
+        .map_or(4 << 30, |kb| kb * 1024 / 10 * 6)
+}

@@ -1,0 +1,16 @@
+//! The study engine: YAML study → scenarios → DAG of node instances → content-hashed cache →
+//! parallel execution → Parquet tables.
+//!
+//! The engine knows nothing of tribology: node kinds plug in through [`node::NodeSpec`] and
+//! [`node::NodeTask`]. It never prints; progress goes through [`execute::Progress`].
+
+pub mod artifact;
+pub mod cache;
+pub mod execute;
+pub mod hash;
+pub mod node;
+pub mod npy;
+pub mod output;
+pub mod plan;
+pub mod study;
+pub mod value;

@@ -1,0 +1,227 @@
+//! Study files: the YAML format, its parsing with locations, and its static checks (names,
+//! references, cycles, outputs). Node bodies are typed by the application's [`NodeSpec`].
+
+mod error;
+mod located;
+mod param;
+mod parameters;
+mod raw;
+
+pub use error::StudyError;
+pub use located::{Located, SourceLocation, SpannedName};
+pub use param::{did_you_mean, FromParamValue, Param, ResolveContext, SpecError};
+pub use parameters::{Axis, LatinHypercube, ParameterError, ParameterSpace, Scenarios};
+pub use raw::RawValue;
+
+use std::path::{Path, PathBuf};
+
+use indexmap::IndexMap;
+use petgraph::graph::DiGraph;
+use serde::Deserialize;
+
+use crate::engine::node::NodeSpec;
+
+/// Name of the scenarios table, always available in `outputs`.
+pub const SCENARIOS_TABLE: &str = "scenarios";
+
+/// A study file as written.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(title = "asperity study", bound = "N: schemars::JsonSchema")]
+pub struct StudyFile<N> {
+    /// Study name: letters, digits, '-', '_' and '.'; results go to `results/<study>/`.
+    pub study: Located<String>,
+    /// Free text describing the study.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Parameter axes and how they combine into scenarios. Omitted: one scenario.
+    #[serde(default)]
+    pub parameters: ParameterSpace,
+    /// Named nodes: `name: {<kind>: {...}}`. Upstream nodes are referenced by name; parameters as
+    /// `${name}`.
+    pub nodes: IndexMap<String, Located<N>>,
+    /// Tables to write (default: all). Only the nodes these tables need are computed.
+    #[serde(default)]
+    pub outputs: Option<Located<Vec<Located<String>>>>,
+}
+
+/// A parsed and statically checked study.
+#[derive(Debug)]
+pub struct Study<N> {
+    pub path: PathBuf,
+    pub source: String,
+    /// blake3 hex digest of the study file's bytes.
+    pub file_hash: String,
+    pub file: StudyFile<N>,
+    /// Node names in a topological order (upstream first).
+    pub order: Vec<String>,
+    /// Tables requested by `outputs` (all when omitted).
+    pub outputs: Vec<String>,
+}
+
+impl<N: NodeSpec> Study<N> {
+    /// Reads, parses and checks a study file.
+    pub fn load(path: &Path) -> Result<Self, StudyError> {
+        let source = std::fs::read_to_string(path).map_err(|e| StudyError {
+            path: path.to_path_buf(),
+            location: SourceLocation::default(),
+            context: String::new(),
+            message: format!("cannot read the study file: {e}"),
+            snippet: None,
+        })?;
+        Self::from_source(path, source)
+    }
+
+    /// Parses and checks study text; `path` names it in errors and anchors relative paths.
+    pub fn from_source(path: &Path, source: String) -> Result<Self, StudyError> {
+        let file: StudyFile<N> = serde_saphyr::from_str(&source)
+            .map_err(|e| StudyError::from_yaml(path, &source, &e))?;
+        let err = |location, context: String, message: String| {
+            StudyError::at(path, &source, location, context, message)
+        };
+        let name = &file.study.value;
+        if name.is_empty()
+            || !name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+            || name.starts_with('.')
+        {
+            return Err(err(
+                file.study.location,
+                String::from("study"),
+                format!("'{name}' is not a valid study name: use letters, digits, '-', '_' and '.' (it names the results folder)"),
+            ));
+        }
+        if file.nodes.is_empty() {
+            return Err(err(
+                SourceLocation::default(),
+                String::from("nodes"),
+                String::from("a study needs at least one node"),
+            ));
+        }
+        let order = check_graph(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?;
+        let outputs = check_outputs(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?;
+        Ok(Self {
+            file_hash: blake3::hash(source.as_bytes()).to_hex().to_string(),
+            path: path.to_path_buf(),
+            source,
+            file,
+            order,
+            outputs,
+        })
+    }
+
+    /// Study name.
+    pub fn name(&self) -> &str {
+        &self.file.study.value
+    }
+
+    /// The folder relative paths in the study are resolved against.
+    pub fn dir(&self) -> &Path {
+        self.path.parent().unwrap_or_else(|| Path::new("."))
+    }
+
+    /// An error at a location of this study.
+    pub fn error(
+        &self,
+        location: SourceLocation,
+        context: impl Into<String>,
+        message: impl Into<String>,
+    ) -> StudyError {
+        StudyError::at(&self.path, &self.source, location, context, message)
+    }
+}
+
+type CheckError = (SourceLocation, String, String);
+
+fn check_graph<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckError> {
+    let names: Vec<&str> = file.nodes.keys().map(String::as_str).collect();
+    let mut graph = DiGraph::<&str, ()>::new();
+    let indices: Vec<_> = names.iter().map(|n| graph.add_node(n)).collect();
+    for (i, (name, node)) in file.nodes.iter().enumerate() {
+        if !valid_node_name(name) {
+            return Err((
+                node.location,
+                format!("nodes.{name}"),
+                String::from("node names start with a letter and contain only letters, digits, '_' and '-'"),
+            ));
+        }
+        for upstream in node.value.upstream() {
+            let target = &upstream.node.value;
+            let Some(j) = names.iter().position(|n| n == target) else {
+                return Err((
+                    upstream.node.location,
+                    format!("nodes.{name}.{}", node.value.kind()),
+                    format!(
+                        "{} refers to node '{target}', which does not exist{}; nodes: {}",
+                        upstream.role,
+                        did_you_mean(target, names.iter().copied()),
+                        names.join(", ")
+                    ),
+                ));
+            };
+            if j == i {
+                return Err((
+                    upstream.node.location,
+                    format!("nodes.{name}"),
+                    String::from("a node cannot use itself as an upstream node"),
+                ));
+            }
+            graph.add_edge(indices[j], indices[i], ());
+        }
+    }
+    match petgraph::algo::toposort(&graph, None) {
+        Ok(order) => Ok(order.into_iter().map(|i| graph[i].to_string()).collect()),
+        Err(cycle) => {
+            let name = graph[cycle.node_id()];
+            let location = file.nodes.get(name).map(|n| n.location).unwrap_or_default();
+            Err((
+                location,
+                format!("nodes.{name}"),
+                String::from(
+                    "the nodes form a cycle through this node; upstream references must form a DAG",
+                ),
+            ))
+        }
+    }
+}
+
+fn valid_node_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic())
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+}
+
+fn check_outputs<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckError> {
+    let mut known: Vec<&str> = vec![SCENARIOS_TABLE];
+    known.extend(N::all_tables());
+    let Some(outputs) = &file.outputs else {
+        return Ok(known.iter().map(|s| s.to_string()).collect());
+    };
+    let mut result = Vec::new();
+    for table in &outputs.value {
+        if !known.contains(&table.value.as_str()) {
+            return Err((
+                table.location,
+                String::from("outputs"),
+                format!(
+                    "unknown table '{}'{}; tables: {}",
+                    table.value,
+                    did_you_mean(&table.value, known.iter().copied()),
+                    known.join(", ")
+                ),
+            ));
+        }
+        if !result.contains(&table.value) {
+            result.push(table.value.clone());
+        }
+    }
+    if result.is_empty() {
+        return Err((
+            outputs.location,
+            String::from("outputs"),
+            format!("lists no table; omit it to write all ({})", known.join(", ")),
+        ));
+    }
+    Ok(result)
+}

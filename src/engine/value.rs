@@ -1,0 +1,182 @@
+//! Values that flow through the engine: study parameter values, resolved node parameters and
+//! metrics. They carry their physical dimension so tables can name units in column names.
+
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
+
+use crate::units::{format_si, Dimension, DimensionedValue};
+
+/// A parameter value as written in a study (after unit parsing).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ParamValue {
+    Int(i64),
+    Number(f64),
+    Quantity(DimensionedValue),
+    Text(String),
+    Bool(bool),
+    List(Vec<ParamValue>),
+}
+
+impl ParamValue {
+    /// Interprets a string: a quantity with units ("1.19 um") or plain text.
+    pub fn from_text(text: &str) -> Self {
+        match crate::units::parse_quantity(text) {
+            Ok(v) if v.dimension != Dimension::Dimensionless => ParamValue::Quantity(v),
+            Ok(v) => ParamValue::Number(v.si),
+            Err(_) => ParamValue::Text(text.to_string()),
+        }
+    }
+
+    /// The numeric SI value and dimension, if this is a number or quantity.
+    pub fn as_dimensioned(&self) -> Option<DimensionedValue> {
+        match self {
+            ParamValue::Int(i) => Some(DimensionedValue {
+                si: *i as f64,
+                dimension: Dimension::Dimensionless,
+            }),
+            ParamValue::Number(x) => Some(DimensionedValue {
+                si: *x,
+                dimension: Dimension::Dimensionless,
+            }),
+            ParamValue::Quantity(q) => Some(*q),
+            _ => None,
+        }
+    }
+
+    /// Short description of the value's type for messages.
+    pub fn type_name(&self) -> &'static str {
+        match self {
+            ParamValue::Int(_) => "integer",
+            ParamValue::Number(_) => "number",
+            ParamValue::Quantity(q) => q.dimension.name(),
+            ParamValue::Text(_) => "text",
+            ParamValue::Bool(_) => "boolean",
+            ParamValue::List(_) => "list",
+        }
+    }
+
+    /// The value as a table cell.
+    pub fn to_value(&self) -> Value {
+        match self {
+            ParamValue::Int(i) => Value::Int(*i),
+            ParamValue::Number(x) => Value::Float(*x),
+            ParamValue::Quantity(q) => Value::Float(q.si),
+            ParamValue::Text(s) => Value::Text(s.clone()),
+            ParamValue::Bool(b) => Value::Bool(*b),
+            ParamValue::List(_) => Value::Text(self.to_string()),
+        }
+    }
+
+    /// The dimension of the value (dimensionless for non-quantities).
+    pub fn dimension(&self) -> Dimension {
+        match self {
+            ParamValue::Quantity(q) => q.dimension,
+            _ => Dimension::Dimensionless,
+        }
+    }
+}
+
+impl fmt::Display for ParamValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ParamValue::Int(i) => write!(f, "{i}"),
+            ParamValue::Number(x) => write!(f, "{x}"),
+            ParamValue::Quantity(q) => f.write_str(&format_si(q.si, q.dimension)),
+            ParamValue::Text(s) => write!(f, "'{s}'"),
+            ParamValue::Bool(b) => write!(f, "{b}"),
+            ParamValue::List(items) => {
+                f.write_str("[")?;
+                for (i, item) in items.iter().enumerate() {
+                    if i > 0 {
+                        f.write_str(", ")?;
+                    }
+                    write!(f, "{item}")?;
+                }
+                f.write_str("]")
+            }
+        }
+    }
+}
+
+/// A table cell / key value. Floats are SI.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", content = "value", rename_all = "lowercase")]
+pub enum Value {
+    Float(f64),
+    Int(i64),
+    Bool(bool),
+    Text(String),
+}
+
+impl fmt::Display for Value {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Value::Float(x) => write!(f, "{x}"),
+            Value::Int(i) => write!(f, "{i}"),
+            Value::Bool(b) => write!(f, "{b}"),
+            Value::Text(s) => f.write_str(s),
+        }
+    }
+}
+
+/// A named, dimensioned value: one resolved parameter or one metric of a node.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Field {
+    /// Name without unit ("sq").
+    pub name: String,
+    pub value: Value,
+    /// Physical dimension; the SI unit is appended to the column name.
+    pub dimension: Dimension,
+}
+
+impl Field {
+    /// A floating-point field in SI units.
+    pub fn float(name: impl Into<String>, value: f64, dimension: Dimension) -> Self {
+        Self {
+            name: name.into(),
+            value: Value::Float(value),
+            dimension,
+        }
+    }
+
+    /// A dimensionless integer field.
+    pub fn int(name: impl Into<String>, value: i64) -> Self {
+        Self {
+            name: name.into(),
+            value: Value::Int(value),
+            dimension: Dimension::Dimensionless,
+        }
+    }
+
+    /// A text field.
+    pub fn text(name: impl Into<String>, value: impl Into<String>) -> Self {
+        Self {
+            name: name.into(),
+            value: Value::Text(value.into()),
+            dimension: Dimension::Dimensionless,
+        }
+    }
+
+    /// A boolean field.
+    pub fn bool(name: impl Into<String>, value: bool) -> Self {
+        Self {
+            name: name.into(),
+            value: Value::Bool(value),
+            dimension: Dimension::Dimensionless,
+        }
+    }
+
+    /// The table column name: the name plus `_<SI unit>` (`sq_m`, `load_Pa`, `gamma_N/m`).
+    pub fn column_name(&self) -> String {
+        column_name(&self.name, self.dimension)
+    }
+}
+
+/// Column name convention: `<name>_<SI symbol>`, or `<name>` when dimensionless.
+pub fn column_name(name: &str, dimension: Dimension) -> String {
+    match dimension.si_symbol() {
+        "" => name.to_string(),
+        unit => format!("{name}_{unit}"),
+    }
+}

@@ -1,0 +1,62 @@
+//! The tribology node kinds: the glue between the study engine and the numerics.
+//!
+//! Each kind has a spec (what a study file says, with `${param}` references), a task (resolved SI
+//! parameters, a version, a compute function) and a table. This is the only module that knows
+//! both the engine and the numerics.
+
+mod surface;
+
+use std::sync::Arc;
+
+use serde::Deserialize;
+
+use crate::engine::node::{NodeSpec, NodeTask, UpstreamRef};
+use crate::engine::study::{ResolveContext, SpecError};
+
+pub use surface::{SurfaceSpec, SurfaceTask, SURFACE_KIND_VERSION};
+
+/// A node of a study: `name: {<kind>: {...}}`.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum TribologyNode {
+    /// Stage 1: a synthetic or measured rough surface.
+    Surface(SurfaceSpec),
+}
+
+impl NodeSpec for TribologyNode {
+    fn all_tables() -> &'static [&'static str] {
+        &[surface::TABLE]
+    }
+
+    fn kind(&self) -> &'static str {
+        match self {
+            TribologyNode::Surface(_) => surface::KIND,
+        }
+    }
+
+    fn table(&self) -> &'static str {
+        match self {
+            TribologyNode::Surface(_) => surface::TABLE,
+        }
+    }
+
+    fn upstream(&self) -> Vec<UpstreamRef<'_>> {
+        match self {
+            TribologyNode::Surface(_) => Vec::new(),
+        }
+    }
+
+    fn instantiate(&self, ctx: &ResolveContext<'_>) -> Result<Arc<dyn NodeTask>, SpecError> {
+        match self {
+            TribologyNode::Surface(spec) => Ok(Arc::new(spec.instantiate(ctx)?)),
+        }
+    }
+}
+
+/// The JSON Schema of study files, pretty-printed (committed as `schemas/study.schema.json`).
+pub fn study_schema_json() -> String {
+    let schema = schemars::schema_for!(crate::engine::study::StudyFile<TribologyNode>);
+    let mut text = serde_json::to_string_pretty(&schema).unwrap_or_default();
+    text.push('\n');
+    text
+}

@@ -1,0 +1,428 @@
+//! Physical quantities at the boundary: "1.19 um", "20 MPa", "0.5 N/m", "210 GPa" → SI numbers.
+//!
+//! Everything inside asperity is SI. Study files may write a quantity either as a plain number
+//! (taken as SI) or as a string `"<number> <unit>"`; the unit's dimension is checked against what
+//! the field expects, so a pressure where a length is expected is an error, not a silent number.
+
+use std::fmt;
+use std::marker::PhantomData;
+
+/// The physical dimension of a quantity.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum Dimension {
+    Dimensionless,
+    Length,
+    Area,
+    Pressure,
+    Force,
+    SurfaceEnergy,
+    Angle,
+}
+
+impl Dimension {
+    /// Lower-case name used in messages ("a length").
+    pub fn name(self) -> &'static str {
+        match self {
+            Dimension::Dimensionless => "dimensionless number",
+            Dimension::Length => "length",
+            Dimension::Area => "area",
+            Dimension::Pressure => "pressure",
+            Dimension::Force => "force",
+            Dimension::SurfaceEnergy => "surface energy",
+            Dimension::Angle => "angle",
+        }
+    }
+
+    /// The SI unit symbol written in column names ("m", "Pa", …); empty when dimensionless.
+    pub fn si_symbol(self) -> &'static str {
+        match self {
+            Dimension::Dimensionless => "",
+            Dimension::Length => "m",
+            Dimension::Area => "m^2",
+            Dimension::Pressure => "Pa",
+            Dimension::Force => "N",
+            Dimension::SurfaceEnergy => "N/m",
+            Dimension::Angle => "rad",
+        }
+    }
+
+    /// An example value for messages.
+    pub fn example(self) -> &'static str {
+        match self {
+            Dimension::Dimensionless => "0.8",
+            Dimension::Length => "1.19 um",
+            Dimension::Area => "1 mm^2",
+            Dimension::Pressure => "20 MPa",
+            Dimension::Force => "10 N",
+            Dimension::SurfaceEnergy => "0.5 N/m",
+            Dimension::Angle => "30 deg",
+        }
+    }
+
+    /// Units accepted for this dimension, for messages.
+    pub fn accepted_units(self) -> String {
+        UNITS
+            .iter()
+            .filter(|u| u.dimension == self)
+            .map(|u| u.symbol)
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+struct Unit {
+    symbol: &'static str,
+    dimension: Dimension,
+    to_si: f64,
+}
+
+const fn unit(symbol: &'static str, dimension: Dimension, to_si: f64) -> Unit {
+    Unit {
+        symbol,
+        dimension,
+        to_si,
+    }
+}
+
+const DEG: f64 = std::f64::consts::PI / 180.0;
+
+/// Recognised unit symbols and their factor to SI. `u`, `µ` (micro sign) and `μ` (Greek mu) are
+/// all accepted for micro.
+const UNITS: &[Unit] = &[
+    unit("m", Dimension::Length, 1.0),
+    unit("cm", Dimension::Length, 1e-2),
+    unit("mm", Dimension::Length, 1e-3),
+    unit("um", Dimension::Length, 1e-6),
+    unit("µm", Dimension::Length, 1e-6),
+    unit("μm", Dimension::Length, 1e-6),
+    unit("nm", Dimension::Length, 1e-9),
+    unit("pm", Dimension::Length, 1e-12),
+    unit("m^2", Dimension::Area, 1.0),
+    unit("m2", Dimension::Area, 1.0),
+    unit("mm^2", Dimension::Area, 1e-6),
+    unit("mm2", Dimension::Area, 1e-6),
+    unit("um^2", Dimension::Area, 1e-12),
+    unit("um2", Dimension::Area, 1e-12),
+    unit("µm^2", Dimension::Area, 1e-12),
+    unit("Pa", Dimension::Pressure, 1.0),
+    unit("kPa", Dimension::Pressure, 1e3),
+    unit("MPa", Dimension::Pressure, 1e6),
+    unit("GPa", Dimension::Pressure, 1e9),
+    unit("N/mm^2", Dimension::Pressure, 1e6),
+    unit("N/mm2", Dimension::Pressure, 1e6),
+    unit("N/m^2", Dimension::Pressure, 1.0),
+    unit("N", Dimension::Force, 1.0),
+    unit("kN", Dimension::Force, 1e3),
+    unit("mN", Dimension::Force, 1e-3),
+    unit("uN", Dimension::Force, 1e-6),
+    unit("µN", Dimension::Force, 1e-6),
+    unit("N/m", Dimension::SurfaceEnergy, 1.0),
+    unit("mN/m", Dimension::SurfaceEnergy, 1e-3),
+    unit("J/m^2", Dimension::SurfaceEnergy, 1.0),
+    unit("J/m2", Dimension::SurfaceEnergy, 1.0),
+    unit("mJ/m^2", Dimension::SurfaceEnergy, 1e-3),
+    unit("mJ/m2", Dimension::SurfaceEnergy, 1e-3),
+    unit("rad", Dimension::Angle, 1.0),
+    unit("deg", Dimension::Angle, DEG),
+    unit("°", Dimension::Angle, DEG),
+];
+
+/// A value in SI units with its dimension.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DimensionedValue {
+    pub si: f64,
+    pub dimension: Dimension,
+}
+
+/// Why a quantity string could not be read.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum UnitError {
+    #[error("'{text}' is not a quantity: expected '<number> <unit>', e.g. '1.19 um'")]
+    NotAQuantity { text: String },
+    #[error("unknown unit '{unit}' in '{text}'{hint}")]
+    UnknownUnit {
+        text: String,
+        unit: String,
+        hint: String,
+    },
+    #[error("'{text}' is not finite")]
+    NotFinite { text: String },
+    #[error(
+        "expected a {expected} such as '{example}' (units: {units}), got '{text}', which is a {found}",
+        expected = expected.name(), example = expected.example(),
+        units = expected.accepted_units(), found = found.name()
+    )]
+    WrongDimension {
+        text: String,
+        expected: Dimension,
+        found: Dimension,
+    },
+}
+
+/// Parses `"<number> [unit]"`. A bare number is dimensionless here; callers that accept plain SI
+/// numbers for a dimensioned field use [`parse_quantity_as`].
+pub fn parse_quantity(text: &str) -> Result<DimensionedValue, UnitError> {
+    let trimmed = text.trim();
+    let split = number_prefix_len(trimmed);
+    if split == 0 {
+        return Err(UnitError::NotAQuantity {
+            text: text.to_string(),
+        });
+    }
+    let (num, unit_text) = trimmed.split_at(split);
+    let value: f64 = num.parse().map_err(|_| UnitError::NotAQuantity {
+        text: text.to_string(),
+    })?;
+    if !value.is_finite() {
+        return Err(UnitError::NotFinite {
+            text: text.to_string(),
+        });
+    }
+    let unit_text = unit_text.trim();
+    if unit_text.is_empty() {
+        return Ok(DimensionedValue {
+            si: value,
+            dimension: Dimension::Dimensionless,
+        });
+    }
+    let unit = UNITS
+        .iter()
+        .find(|u| u.symbol == unit_text)
+        .ok_or_else(|| UnitError::UnknownUnit {
+            text: text.to_string(),
+            unit: unit_text.to_string(),
+            hint: unit_hint(unit_text),
+        })?;
+    Ok(DimensionedValue {
+        si: value * unit.to_si,
+        dimension: unit.dimension,
+    })
+}
+
+/// Parses a quantity that must have dimension `expected`; a bare number is taken as SI.
+pub fn parse_quantity_as(text: &str, expected: Dimension) -> Result<f64, UnitError> {
+    let v = parse_quantity(text)?;
+    if v.dimension == expected || v.dimension == Dimension::Dimensionless {
+        Ok(v.si)
+    } else {
+        Err(UnitError::WrongDimension {
+            text: text.to_string(),
+            expected,
+            found: v.dimension,
+        })
+    }
+}
+
+/// Formats an SI value with its unit for messages and metadata ("1.19e-6 m").
+pub fn format_si(value: f64, dimension: Dimension) -> String {
+    match dimension.si_symbol() {
+        "" => format!("{value}"),
+        s => format!("{value} {s}"),
+    }
+}
+
+fn number_prefix_len(s: &str) -> usize {
+    let bytes = s.as_bytes();
+    let mut end = 0;
+    let mut i = 0;
+    let mut seen_digit = false;
+    if i < bytes.len() && (bytes[i] == b'+' || bytes[i] == b'-') {
+        i += 1;
+    }
+    while i < bytes.len() && (bytes[i].is_ascii_digit() || bytes[i] == b'.') {
+        seen_digit |= bytes[i].is_ascii_digit();
+        i += 1;
+        end = i;
+    }
+    if !seen_digit {
+        return 0;
+    }
+    if i < bytes.len() && (bytes[i] == b'e' || bytes[i] == b'E') {
+        let mut j = i + 1;
+        if j < bytes.len() && (bytes[j] == b'+' || bytes[j] == b'-') {
+            j += 1;
+        }
+        let digits_start = j;
+        while j < bytes.len() && bytes[j].is_ascii_digit() {
+            j += 1;
+        }
+        if j > digits_start {
+            end = j;
+        }
+    }
+    end
+}
+
+fn unit_hint(unit: &str) -> String {
+    let lower = unit.to_ascii_lowercase();
+    match UNITS.iter().find(|u| u.symbol.to_ascii_lowercase() == lower) {
+        Some(u) => format!(" (did you mean '{}'? units are case-sensitive)", u.symbol),
+        None => String::from(" (known units: m, mm, um, nm, Pa, MPa, GPa, N, N/m, deg, …)"),
+    }
+}
+
+/// A marker for a dimension known at compile time, used by [`Quantity`].
+pub trait DimensionMarker: Send + Sync + 'static {
+    const DIMENSION: Dimension;
+}
+
+macro_rules! dimension_marker {
+    ($name:ident, $dim:expr) => {
+        #[doc = concat!("Marker type for the dimension `", stringify!($dim), "`.")]
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub struct $name;
+        impl DimensionMarker for $name {
+            const DIMENSION: Dimension = $dim;
+        }
+    };
+}
+
+dimension_marker!(Length, Dimension::Length);
+dimension_marker!(Area, Dimension::Area);
+dimension_marker!(Pressure, Dimension::Pressure);
+dimension_marker!(Force, Dimension::Force);
+dimension_marker!(SurfaceEnergy, Dimension::SurfaceEnergy);
+dimension_marker!(Angle, Dimension::Angle);
+
+/// An SI value of the dimension `D`, parsed from a plain number (SI) or a string with units.
+pub struct Quantity<D> {
+    si: f64,
+    _dimension: PhantomData<D>,
+}
+
+impl<D: DimensionMarker> Quantity<D> {
+    /// A quantity from an SI value.
+    pub fn from_si(si: f64) -> Self {
+        Self {
+            si,
+            _dimension: PhantomData,
+        }
+    }
+
+    /// The value in SI units.
+    pub fn si(&self) -> f64 {
+        self.si
+    }
+}
+
+impl<D> Clone for Quantity<D> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<D> Copy for Quantity<D> {}
+
+impl<D> PartialEq for Quantity<D> {
+    fn eq(&self, other: &Self) -> bool {
+        self.si == other.si
+    }
+}
+
+impl<D: DimensionMarker> fmt::Debug for Quantity<D> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&format_si(self.si, D::DIMENSION))
+    }
+}
+
+impl<'de, D: DimensionMarker> serde::Deserialize<'de> for Quantity<D> {
+    fn deserialize<De: serde::Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
+        struct QuantityVisitor<D>(PhantomData<D>);
+        impl<D: DimensionMarker> serde::de::Visitor<'_> for QuantityVisitor<D> {
+            type Value = Quantity<D>;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(
+                    f,
+                    "a {} as a number in {} or a string such as '{}'",
+                    D::DIMENSION.name(),
+                    D::DIMENSION.si_symbol(),
+                    D::DIMENSION.example()
+                )
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Self::Value, E> {
+                if v.is_finite() {
+                    Ok(Quantity::from_si(v))
+                } else {
+                    Err(E::custom(format!("{v} is not a finite {}", D::DIMENSION.name())))
+                }
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Self::Value, E> {
+                Ok(Quantity::from_si(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Self::Value, E> {
+                Ok(Quantity::from_si(v as f64))
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Self::Value, E> {
+                parse_quantity_as(v, D::DIMENSION)
+                    .map(Quantity::from_si)
+                    .map_err(E::custom)
+            }
+        }
+        deserializer.deserialize_any(QuantityVisitor(PhantomData))
+    }
+}
+
+impl<D: DimensionMarker> schemars::JsonSchema for Quantity<D> {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        format!("{:?}Quantity", D::DIMENSION).into()
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let description = format!(
+            "A {} as a plain number in SI ({}) or a string with units such as '{}' (units: {}).",
+            D::DIMENSION.name(),
+            D::DIMENSION.si_symbol(),
+            D::DIMENSION.example(),
+            D::DIMENSION.accepted_units()
+        );
+        schemars::json_schema!({
+            "description": description,
+            "anyOf": [
+                {"type": "number"},
+                {"type": "string", "pattern": r"^\s*[-+]?[0-9.]+([eE][-+]?[0-9]+)?\s*\S*\s*$"}
+            ]
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_units_to_si() {
+        let v = parse_quantity("1.19 um").unwrap();
+        assert_eq!(v.dimension, Dimension::Length);
+        assert!((v.si - 1.19e-6).abs() < 1e-21);
+        assert_eq!(parse_quantity("20MPa").unwrap().si, 20e6);
+        assert_eq!(parse_quantity("0.5 N/m").unwrap().dimension, Dimension::SurfaceEnergy);
+        assert_eq!(parse_quantity("210 GPa").unwrap().si, 210e9);
+        assert_eq!(parse_quantity("1e-3 m").unwrap().si, 1e-3);
+        assert_eq!(parse_quantity("-2.5e2").unwrap().si, -250.0);
+        assert_eq!(parse_quantity("3 µm").unwrap().si, 3e-6);
+    }
+
+    #[test]
+    fn rejects_wrong_dimension_and_unknown_units() {
+        let err = parse_quantity_as("20 MPa", Dimension::Length).unwrap_err();
+        assert!(err.to_string().contains("expected a length"), "{err}");
+        assert!(err.to_string().contains("which is a pressure"), "{err}");
+        let err = parse_quantity("3 mpa").unwrap_err();
+        assert!(err.to_string().contains("did you mean 'MPa'"), "{err}");
+        assert!(matches!(
+            parse_quantity("abc"),
+            Err(UnitError::NotAQuantity { .. })
+        ));
+        assert!(matches!(
+            parse_quantity("1e400 m"),
+            Err(UnitError::NotFinite { .. })
+        ));
+    }
+
+    #[test]
+    fn bare_numbers_are_si() {
+        assert_eq!(parse_quantity_as("2e-6", Dimension::Length).unwrap(), 2e-6);
+    }
+}
