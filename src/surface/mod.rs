@@ -4,3 +4,5 @@ mod height_map;
 pub mod io;
 
 pub use height_map::{HeightMap, HeightMapError};
+pub mod spectral;
+pub mod synthetic;
