@@ -1,0 +1,170 @@
+//! Hybrid parameters of ISO 25178-2: root-mean-square gradient `Sdq` and developed interfacial area
+//! ratio `Sdr`, from finite differences of the height map.
+//!
+//! Continuous definitions (ISO 25178-2:2012, §4.3.1 and §4.3.2), over the definition area `A`:
+//!
+//! * `Sdq = sqrt( (1/A) ∬ [ (∂z/∂x)² + (∂z/∂y)² ] dx dy )`
+//! * `Sdr = (1/A) ∬ [ sqrt(1 + (∂z/∂x)² + (∂z/∂y)²) − 1 ] dx dy`, reported here in **percent**.
+//!
+//! Discretisations offered ([`DifferenceScheme`]):
+//!
+//! * [`DifferenceScheme::Central`] (the ISO-style choice): at point `(ix, iy)`
+//!   `∂z/∂x ≈ (z[ix+1] − z[ix−1]) / (2 dx)`, `∂z/∂y ≈ (z[iy+1] − z[iy−1]) / (2 dy)`. With
+//!   [`Boundary::Open`] only interior points (all four axial neighbours inside the grid) contribute;
+//!   with [`Boundary::Periodic`] neighbours wrap around.
+//! * [`DifferenceScheme::Forward`] (SurfaceTopography's `rms_gradient`):
+//!   `∂z/∂x ≈ (z[ix+1] − z[ix]) / dx`, `∂z/∂y ≈ (z[iy+1] − z[iy]) / dy`, both evaluated at the
+//!   same point `(ix, iy)`. With [`Boundary::Open`] this is the cropped `(nx−1)×(ny−1)` grid
+//!   `ix < nx−1, iy < ny−1`, which reproduces the reference values in the project's
+//!   `topography/SOURCES.md`; with [`Boundary::Periodic`] the differences wrap around.
+//!
+//! Missing points: a point contributes only if it is valid **and** every neighbour its differences use
+//! is valid; the mean is taken over the contributing points (`point_count`). `Sdr` uses the same
+//! per-point gradients, i.e. the local surface element `sqrt(1 + |∇z|²) dx dy`.
+
+use super::HeightMap;
+use ndarray::Array2;
+
+/// How neighbours beyond the edge of the grid are treated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Boundary {
+    /// The grid ends at its edge: a stencil that needs a point outside the grid is not evaluated.
+    #[default]
+    Open,
+    /// The surface repeats with period `(nx·dx, ny·dy)`: neighbours wrap around.
+    Periodic,
+}
+
+/// Finite-difference scheme for the slopes (see the module documentation for the formulas).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DifferenceScheme {
+    /// Central differences, second-order accurate (ISO-style).
+    Central,
+    /// Forward differences, first-order accurate (SurfaceTopography `rms_gradient`).
+    Forward,
+}
+
+/// `Sdq` and `Sdr` of one height map for one scheme and boundary treatment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GradientStatistics {
+    /// Difference scheme used.
+    pub scheme: DifferenceScheme,
+    /// Boundary treatment used.
+    pub boundary: Boundary,
+    /// Root-mean-square gradient `Sdq` (dimensionless, m/m).
+    pub sdq: f64,
+    /// Developed interfacial area ratio `Sdr` in percent.
+    pub sdr_percent: f64,
+    /// Number of grid points whose gradient entered the means.
+    pub point_count: usize,
+}
+
+/// Why gradient statistics could not be computed.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum GradientError {
+    #[error("no grid point has all the valid neighbours the {scheme:?} difference scheme needs")]
+    NoGradientPoints { scheme: DifferenceScheme },
+}
+
+/// Index of the neighbour `i + offset` on an axis of `n` points, or `None` outside an open grid.
+pub(crate) fn neighbour_index(
+    i: usize,
+    offset: isize,
+    n: usize,
+    boundary: Boundary,
+) -> Option<usize> {
+    let j = i as isize + offset;
+    if (0..n as isize).contains(&j) {
+        Some(j as usize)
+    } else {
+        match boundary {
+            Boundary::Open => None,
+            Boundary::Periodic => Some(j.rem_euclid(n as isize) as usize),
+        }
+    }
+}
+
+/// Height at `(ix + ox, iy + oy)` if that point exists (under `boundary`) and is valid.
+pub(crate) fn valid_height_at(
+    z: &Array2<f64>,
+    ix: usize,
+    iy: usize,
+    ox: isize,
+    oy: isize,
+    boundary: Boundary,
+) -> Option<f64> {
+    let (ny, nx) = z.dim();
+    let jx = neighbour_index(ix, ox, nx, boundary)?;
+    let jy = neighbour_index(iy, oy, ny, boundary)?;
+    let h = z[[jy, jx]];
+    (!h.is_nan()).then_some(h)
+}
+
+/// Slopes `(∂z/∂x, ∂z/∂y)` at `(ix, iy)` for `scheme`, or `None` if the point or a needed neighbour is
+/// missing or outside an open grid.
+pub(crate) fn gradient_at(
+    z: &Array2<f64>,
+    ix: usize,
+    iy: usize,
+    dx: f64,
+    dy: f64,
+    scheme: DifferenceScheme,
+    boundary: Boundary,
+) -> Option<(f64, f64)> {
+    let centre = valid_height_at(z, ix, iy, 0, 0, boundary)?;
+    match scheme {
+        DifferenceScheme::Central => {
+            let xp = valid_height_at(z, ix, iy, 1, 0, boundary)?;
+            let xm = valid_height_at(z, ix, iy, -1, 0, boundary)?;
+            let yp = valid_height_at(z, ix, iy, 0, 1, boundary)?;
+            let ym = valid_height_at(z, ix, iy, 0, -1, boundary)?;
+            Some(((xp - xm) / (2.0 * dx), (yp - ym) / (2.0 * dy)))
+        }
+        DifferenceScheme::Forward => {
+            let xp = valid_height_at(z, ix, iy, 1, 0, boundary)?;
+            let yp = valid_height_at(z, ix, iy, 0, 1, boundary)?;
+            Some(((xp - centre) / dx, (yp - centre) / dy))
+        }
+    }
+}
+
+/// `Sdq` and `Sdr` (percent) of `map` with the given scheme and boundary treatment.
+///
+/// Sums are accumulated per row and then over rows (two-level summation, deterministic).
+/// `sqrt(1 + g²) − 1` is evaluated as `g² / (sqrt(1 + g²) + 1)` to avoid cancellation at small slopes.
+pub fn gradient_statistics(
+    map: &HeightMap,
+    scheme: DifferenceScheme,
+    boundary: Boundary,
+) -> Result<GradientStatistics, GradientError> {
+    let z = map.heights();
+    let (dx, dy) = (map.dx(), map.dy());
+    let mut count = 0usize;
+    let mut sum_g2 = 0.0;
+    let mut sum_area = 0.0;
+    for iy in 0..map.ny() {
+        let mut row_g2 = 0.0;
+        let mut row_area = 0.0;
+        for ix in 0..map.nx() {
+            if let Some((gx, gy)) = gradient_at(z, ix, iy, dx, dy, scheme, boundary) {
+                let g2 = gx * gx + gy * gy;
+                row_g2 += g2;
+                row_area += g2 / ((1.0 + g2).sqrt() + 1.0);
+                count += 1;
+            }
+        }
+        sum_g2 += row_g2;
+        sum_area += row_area;
+    }
+    if count == 0 {
+        return Err(GradientError::NoGradientPoints { scheme });
+    }
+    let n = count as f64;
+    Ok(GradientStatistics {
+        scheme,
+        boundary,
+        sdq: (sum_g2 / n).sqrt(),
+        sdr_percent: 100.0 * sum_area / n,
+        point_count: count,
+    })
+}

@@ -1,0 +1,332 @@
+//! Summits (asperity peaks) of a height map: 8-neighbour local maxima with their height, slope and
+//! curvature, for the deterministic per-asperity friction stage (friction_models.md §10).
+//!
+//! **Definition.** Points are ordered by height, ties broken by raster index (`iy·nx + ix`, the earlier
+//! point counts as higher). A summit is a valid point that is higher in this order than each of its 8
+//! neighbours, all of which must exist and be valid: summits next to a missing point are skipped, and
+//! with [`Boundary::Open`] points on the grid border are not candidates, while [`Boundary::Periodic`]
+//! wraps the neighbourhood around. The order makes the result deterministic: of two equal neighbouring
+//! heights only one can be a summit (a flat top yields at most one summit per raster-first point).
+//!
+//! **Per summit** (heights relative to the mean of the valid heights — the mean plane; remove form first
+//! if a levelled reference is wanted), with central differences and `dx`, `dy` separately:
+//! `z_x = (z_{x+1} − z_{x−1})/(2dx)`, `z_xx = (z_{x+1} − 2z + z_{x−1})/dx²`, likewise in y, and
+//! `z_xy = (z_{x+1,y+1} − z_{x+1,y−1} − z_{x−1,y+1} + z_{x−1,y−1})/(4 dx dy)`:
+//! slope `|∇z| = sqrt(z_x² + z_y²)`; radius of curvature `R = 1/(−½ ∇²z) = −2/(z_xx + z_yy)`
+//! (always finite and > 0 at a strict local maximum, since `z_xx, z_yy < 0` there); principal
+//! curvatures `κ1 ≥ κ2`, the eigenvalues of `−H` (`H` the Hessian, so a convex cap has `κ > 0`), with
+//! `R = 2/(κ1 + κ2)`.
+//!
+//! **Prominence** (optional, computed when [`SummitOptions::min_prominence`] is set): the topographic
+//! prominence over the 8-connected graph of valid points — the height of the summit above the highest
+//! saddle ("col") through which a higher summit can be reached. The highest summit of a connected
+//! region gets its height above the region's lowest point. Computed exactly by a union–find sweep over
+//! the points in descending order, `O(N log N)`.
+//!
+//! **Summary**: count; areal density `η = count / (candidate_count · dx · dy)`, where the candidates are
+//! the points that could be summits (valid, inside the border rule, with 8 valid neighbours); mean
+//! radius; mean and standard deviation (population) of the summit heights.
+
+use super::amplitude::valid_mean_min_max;
+use super::gradient::{neighbour_index, valid_height_at};
+use super::{Boundary, HeightMap};
+use std::cmp::Ordering;
+use std::collections::HashMap;
+
+/// Options of [`find_summits`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SummitOptions {
+    /// Border treatment (see the module documentation).
+    pub boundary: Boundary,
+    /// Keep only summits at least this high above the mean plane (m).
+    pub min_height: Option<f64>,
+    /// Keep only summits with at least this topographic prominence (m).
+    pub min_prominence: Option<f64>,
+}
+
+/// One summit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Summit {
+    /// Column index.
+    pub ix: usize,
+    /// Row index.
+    pub iy: usize,
+    /// Position `ix·dx` (m).
+    pub x: f64,
+    /// Position `iy·dy` (m).
+    pub y: f64,
+    /// Height above the mean plane (m).
+    pub height: f64,
+    /// Local slope `|∇z|` from central differences (m/m).
+    pub slope: f64,
+    /// Radius of curvature `R = −2/∇²z` (m).
+    pub radius: f64,
+    /// Principal curvatures `[κ1, κ2]`, `κ1 ≥ κ2`, of the cap (1/m; positive = convex).
+    pub principal_curvatures: [f64; 2],
+    /// Topographic prominence (m), when it was requested through `min_prominence`.
+    pub prominence: Option<f64>,
+}
+
+/// Summary of the summits of a surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SummitStatistics {
+    /// Number of summits kept.
+    pub count: usize,
+    /// Number of points that could be summits (valid, within the border rule, 8 valid neighbours).
+    pub candidate_count: usize,
+    /// Areal density `η` (1/m²); `0` if there are no candidates.
+    pub density: f64,
+    /// Mean radius of curvature (m), `None` without summits.
+    pub mean_radius: Option<f64>,
+    /// Mean summit height above the mean plane (m), `None` without summits.
+    pub mean_height: Option<f64>,
+    /// Standard deviation of summit heights `σ_s` (m, population), `None` without summits.
+    pub height_std: Option<f64>,
+    /// The mean plane: mean of the valid heights (m).
+    pub mean_plane: f64,
+}
+
+/// Summits and their summary.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Summits {
+    /// Summits in raster order (by `iy`, then `ix`).
+    pub summits: Vec<Summit>,
+    /// Summary statistics.
+    pub statistics: SummitStatistics,
+}
+
+/// Why summits could not be identified.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SummitError {
+    #[error("the height map has no valid point")]
+    NoValidPoints,
+    #[error("threshold {name} must be finite, got {value}")]
+    BadThreshold { name: &'static str, value: f64 },
+}
+
+/// Offsets of the 8 neighbours.
+const NEIGHBOURS: [(isize, isize); 8] = [
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+    (-1, 0),
+    (1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+];
+
+/// Finds the summits of `map` (see the module documentation for every definition).
+pub fn find_summits(map: &HeightMap, options: SummitOptions) -> Result<Summits, SummitError> {
+    for (name, value) in [
+        ("min_height", options.min_height),
+        ("min_prominence", options.min_prominence),
+    ] {
+        if let Some(v) = value.filter(|v| !v.is_finite()) {
+            return Err(SummitError::BadThreshold { name, value: v });
+        }
+    }
+    let (_, mean, _, _) = valid_mean_min_max(map).ok_or(SummitError::NoValidPoints)?;
+    let z = map.heights();
+    let (nx, ny, dx, dy) = (map.nx(), map.ny(), map.dx(), map.dy());
+    let boundary = options.boundary;
+    let prominences = options
+        .min_prominence
+        .map(|_| topographic_prominences(map, boundary));
+
+    let mut summits = Vec::new();
+    let mut candidate_count = 0;
+    for iy in 0..ny {
+        for ix in 0..nx {
+            let Some(centre) = valid_height_at(z, ix, iy, 0, 0, boundary) else {
+                continue;
+            };
+            let mut around = [0.0; 8];
+            let mut complete = true;
+            for (slot, &(ox, oy)) in around.iter_mut().zip(&NEIGHBOURS) {
+                match valid_height_at(z, ix, iy, ox, oy, boundary) {
+                    Some(h) => *slot = h,
+                    None => complete = false,
+                }
+            }
+            if !complete {
+                continue;
+            }
+            candidate_count += 1;
+            let p = iy * nx + ix;
+            let is_max = NEIGHBOURS.iter().zip(&around).all(|(&(ox, oy), &h)| {
+                let q = neighbour_raster(ix, iy, ox, oy, nx, ny, boundary);
+                ranks_above(centre, p, h, q)
+            });
+            if !is_max {
+                continue;
+            }
+            let height = centre - mean;
+            if options.min_height.is_some_and(|t| height < t) {
+                continue;
+            }
+            let prominence = prominences.as_ref().and_then(|m| m.get(&p).copied());
+            if options
+                .min_prominence
+                .is_some_and(|t| prominence.is_none_or(|v| v < t))
+            {
+                continue;
+            }
+            // around: 0 (−1,−1) 1 (0,−1) 2 (1,−1) 3 (−1,0) 4 (1,0) 5 (−1,1) 6 (0,1) 7 (1,1)
+            let zx = (around[4] - around[3]) / (2.0 * dx);
+            let zy = (around[6] - around[1]) / (2.0 * dy);
+            let zxx = (around[4] - 2.0 * centre + around[3]) / (dx * dx);
+            let zyy = (around[6] - 2.0 * centre + around[1]) / (dy * dy);
+            let zxy = (around[7] - around[2] - around[5] + around[0]) / (4.0 * dx * dy);
+            let half_sum = -(zxx + zyy) / 2.0;
+            let half_diff = (((zxx - zyy) / 2.0).powi(2) + zxy * zxy).sqrt();
+            summits.push(Summit {
+                ix,
+                iy,
+                x: ix as f64 * dx,
+                y: iy as f64 * dy,
+                height,
+                slope: (zx * zx + zy * zy).sqrt(),
+                radius: 1.0 / half_sum,
+                principal_curvatures: [half_sum + half_diff, half_sum - half_diff],
+                prominence,
+            });
+        }
+    }
+    let statistics = summarise(&summits, candidate_count, dx * dy, mean);
+    Ok(Summits {
+        summits,
+        statistics,
+    })
+}
+
+/// `true` if the point (height `a`, raster index `p`) ranks above (height `b`, index `q`).
+fn ranks_above(a: f64, p: usize, b: f64, q: usize) -> bool {
+    a > b || (a == b && p < q)
+}
+
+/// Raster index of the neighbour `(ix + ox, iy + oy)`; only called for neighbours known to exist.
+fn neighbour_raster(
+    ix: usize,
+    iy: usize,
+    ox: isize,
+    oy: isize,
+    nx: usize,
+    ny: usize,
+    boundary: Boundary,
+) -> usize {
+    let jx = neighbour_index(ix, ox, nx, boundary).unwrap_or(ix);
+    let jy = neighbour_index(iy, oy, ny, boundary).unwrap_or(iy);
+    jy * nx + jx
+}
+
+fn summarise(
+    summits: &[Summit],
+    candidates: usize,
+    pixel_area: f64,
+    mean: f64,
+) -> SummitStatistics {
+    let count = summits.len();
+    let n = count as f64;
+    let (mean_radius, mean_height, height_std) = if count == 0 {
+        (None, None, None)
+    } else {
+        let mean_h = summits.iter().map(|s| s.height).sum::<f64>() / n;
+        let var = summits
+            .iter()
+            .map(|s| (s.height - mean_h).powi(2))
+            .sum::<f64>()
+            / n;
+        (
+            Some(summits.iter().map(|s| s.radius).sum::<f64>() / n),
+            Some(mean_h),
+            Some(var.sqrt()),
+        )
+    };
+    SummitStatistics {
+        count,
+        candidate_count: candidates,
+        density: if candidates == 0 {
+            0.0
+        } else {
+            n / (candidates as f64 * pixel_area)
+        },
+        mean_radius,
+        mean_height,
+        height_std,
+        mean_plane: mean,
+    }
+}
+
+/// Topographic prominence of every peak (point with no higher 8-neighbour in the ranking order) of the
+/// valid-point graph, keyed by raster index. Union–find sweep in descending order: a point whose ranked-
+/// higher neighbours belong to several components is the col of all but the highest of them, whose
+/// peaks get prominence `peak − col`; the last surviving peak of each region gets `peak − region min`.
+fn topographic_prominences(map: &HeightMap, boundary: Boundary) -> HashMap<usize, f64> {
+    let (nx, ny) = (map.nx(), map.ny());
+    let z: Vec<f64> = map.heights().iter().copied().collect();
+    let mut order: Vec<usize> = (0..z.len()).filter(|&p| !z[p].is_nan()).collect();
+    order.sort_unstable_by(|&p, &q| match z[q].total_cmp(&z[p]) {
+        Ordering::Equal => p.cmp(&q),
+        other => other,
+    });
+    const UNSEEN: usize = usize::MAX;
+    let mut parent = vec![UNSEEN; z.len()];
+    let mut peak = vec![UNSEEN; z.len()];
+    let mut lowest = vec![0.0; z.len()];
+    let mut prominence = HashMap::new();
+    let mut roots = Vec::with_capacity(8);
+    for &p in &order {
+        let (ix, iy) = (p % nx, p / nx);
+        roots.clear();
+        for &(ox, oy) in &NEIGHBOURS {
+            let (Some(jx), Some(jy)) = (
+                neighbour_index(ix, ox, nx, boundary),
+                neighbour_index(iy, oy, ny, boundary),
+            ) else {
+                continue;
+            };
+            let q = jy * nx + jx;
+            if parent[q] != UNSEEN {
+                let r = find_root(&mut parent, q);
+                if !roots.contains(&r) {
+                    roots.push(r);
+                }
+            }
+        }
+        // The component with the highest peak (earliest in `order`) absorbs the others.
+        let Some(&winner) = roots.iter().min_by(|&&a, &&b| {
+            let (pa, pb) = (peak[a], peak[b]);
+            match z[pb].total_cmp(&z[pa]) {
+                Ordering::Equal => pa.cmp(&pb),
+                other => other,
+            }
+        }) else {
+            parent[p] = p;
+            peak[p] = p;
+            lowest[p] = z[p];
+            continue;
+        };
+        for &r in roots.iter().filter(|&&r| r != winner) {
+            prominence.insert(peak[r], z[peak[r]] - z[p]);
+            parent[r] = winner;
+        }
+        parent[p] = winner;
+        lowest[winner] = z[p];
+    }
+    for &p in &order {
+        if parent[p] == p {
+            prominence.insert(peak[p], z[peak[p]] - lowest[p]);
+        }
+    }
+    prominence
+}
+
+/// Root of `p` with path halving.
+fn find_root(parent: &mut [usize], mut p: usize) -> usize {
+    while parent[p] != p {
+        parent[p] = parent[parent[p]];
+        p = parent[p];
+    }
+    p
+}

@@ -1,0 +1,347 @@
+//! Synthetic periodic self-affine Gaussian random surfaces by spectral (Fourier) synthesis.
+//!
+//! # Power spectral density convention
+//! For a periodic surface of size `Lx × Ly` on `nx × ny` points (`dx = Lx/nx`, `A = Lx·Ly`,
+//! `N = nx·ny`) with discrete Fourier transform `Z(q) = Σ_r z(r) e^{−i q·r}`, the 2-D PSD is
+//! `C(q) = A |Z(q)|² / N²` (m⁴), so that `Sq² = (1/A) Σ_q C(q) = ∫ C(q) d²q / (2π)²`
+//! (Jacobs, Junge & Pastewka, *Surf. Topogr.: Metrol. Prop.* 5 (2017) 013001).
+//!
+//! # Model
+//! Wavevectors are rotated into the texture frame `(u, v)`, `u` at `angle_deg` from `x`:
+//! `q_u = qx cos θ + qy sin θ`, `q_v = −qx sin θ + qy cos θ`. With roll-off wavelengths
+//! `λ_u = correlation_length` and `λ_v = λ_u / aspect_ratio`, the dimensionless wavenumber is
+//! `κ = √[(q_u λ_u / 2π)² + (q_v λ_v / 2π)²]` and
+//!
+//! ```text
+//! C(q) = C0                      for κ < 1          (roll-off plateau)
+//! C(q) = C0 · κ^−(2+2H)          for κ ≥ 1          (self-affine, Hurst exponent H)
+//! C(q) = 0                       for |q| > 2π/λ_s   (optional short-wavelength cutoff)
+//! C(0) = 0                                          (zero mean)
+//! ```
+//!
+//! Isotropic surfaces (`anisotropy: None`) have `κ = |q|/q_r`, `q_r = 2π/λ_r`. An anisotropic
+//! surface is the isotropic one stretched in the spectral domain: along `u` it is correlated over
+//! `λ_u`, across it over `λ_v` (grinding marks along `u` have `aspect_ratio > 1`). `C0` follows
+//! from the Sq normalisation, which is applied to the realised surface so its Sq is exact.
+//!
+//! # Synthesis
+//! Each Fourier mode of the real-FFT half spectrum (`kx ≥ 0`) is a complex Gaussian with
+//! `E|Z|² ∝ C(q)` (Box–Muller normal deviates). The modes that must be their own conjugate
+//! (`kx ∈ {0, nx/2}` with `ky ∈ {0, ny/2}`) are real with the same variance; the remaining
+//! `kx = 0` and `kx = nx/2` modes are set as conjugate pairs `Z(−ky) = Z(ky)*`, so the inverse
+//! transform is exactly real (Hermitian symmetry). At the Nyquist row/column the aliased
+//! wavevectors `±q_N` are one mode; its density is the mean of both. The surface is the inverse
+//! FFT, shifted to zero mean and scaled to the target Sq. This is the random-amplitude
+//! variant of the Fourier-filtering method (e.g. Persson et al., *J. Phys.: Condens. Matter* 17
+//! (2005) R1), so heights are Gaussian and periodic in both directions.
+//!
+//! # Determinism
+//! Random numbers come from ChaCha8 (`rand_chacha`, value-stable across platforms and versions
+//! of the same major release), seeded with the little-endian `seed` in the first 8 key bytes;
+//! spectrum row `j` uses ChaCha stream `j`, so the result does not depend on the thread count.
+//! The random stream is bit-identical everywhere; the heights are bit-identical for the same
+//! build and platform, and across platforms equal up to floating-point round-off of the
+//! platform's `ln`/`sin`/`cos` and FFT SIMD kernels (relative ~1e-15).
+
+use std::f64::consts::{FRAC_1_SQRT_2, PI};
+
+use ndarray::Array2;
+use rand_chacha::ChaCha8Rng;
+use rand_core::{Rng, SeedableRng};
+use rayon::prelude::*;
+use realfft::num_complex::Complex64;
+
+use super::spectral::fft2::{inverse_real_2d, FftFailure};
+use super::{HeightMap, HeightMapError};
+
+/// Largest grid accepted (`nx·ny`), 16384² points: ~2 GiB of heights plus spectra.
+pub const MAX_SYNTHETIC_POINTS: usize = 1 << 28;
+
+/// Directional texture: the correlation (roll-off) length along the lay direction `u` is the
+/// spec's `correlation_length`, across it (`v`) it is `correlation_length / aspect_ratio`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Anisotropy {
+    /// `λ_u / λ_v` (dimensionless, finite, > 0; > 1 means longer correlation along `u`).
+    pub aspect_ratio: f64,
+    /// Angle of the lay direction `u` from the x axis, counter-clockwise, degrees (finite).
+    pub angle_deg: f64,
+}
+
+/// Parameters of a synthetic surface; see the module documentation for the model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SyntheticSurfaceSpec {
+    /// Points along x (≥ 2).
+    pub nx: usize,
+    /// Points along y (≥ 2).
+    pub ny: usize,
+    /// Periodic size along x, m (`dx = lx / nx`).
+    pub lx: f64,
+    /// Periodic size along y, m (`dy = ly / ny`).
+    pub ly: f64,
+    /// Target root-mean-square height Sq, m (> 0); exact after normalisation.
+    pub sq: f64,
+    /// Hurst exponent H in (0, 1]; the PSD decays as `q^−(2+2H)` above the roll-off.
+    pub hurst: f64,
+    /// Roll-off wavelength `λ_r`, m (> 0): the PSD is flat for `q < 2π/λ_r`. With anisotropy it
+    /// is the roll-off wavelength along the lay direction `u`.
+    pub correlation_length: f64,
+    /// Optional short-wavelength cutoff `λ_s`, m: no power at `|q| > 2π/λ_s`.
+    /// Range: `min(dx, dy) ≤ λ_s < min(lx, ly)`.
+    pub short_wavelength_cutoff: Option<f64>,
+    /// `None` for an isotropic surface.
+    pub anisotropy: Option<Anisotropy>,
+    /// Seed of the random stream.
+    pub seed: u64,
+}
+
+/// A synthetic-surface parameter is out of range, or the synthesis failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SyntheticError {
+    #[error("synthetic surface: `{name}` = {value} is out of range, expected {expected} ({unit})")]
+    InvalidParameter {
+        name: &'static str,
+        value: String,
+        expected: String,
+        unit: &'static str,
+    },
+    #[error("synthetic surface: grid {nx} × {ny} exceeds the limit of {max} points")]
+    TooLarge { nx: usize, ny: usize, max: usize },
+    #[error("synthetic surface: no Fourier mode has power (cutoff removes the whole spectrum)")]
+    NoSpectralContent,
+    #[error("synthetic surface: {0}")]
+    Fft(#[from] FftFailure),
+    #[error("synthetic surface: {0}")]
+    HeightMap(#[from] HeightMapError),
+}
+
+fn invalid(
+    name: &'static str,
+    value: impl ToString,
+    expected: String,
+    unit: &'static str,
+) -> SyntheticError {
+    SyntheticError::InvalidParameter {
+        name,
+        value: value.to_string(),
+        expected,
+        unit,
+    }
+}
+
+fn positive_finite(
+    name: &'static str,
+    value: f64,
+    unit: &'static str,
+) -> Result<(), SyntheticError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(name, value, "a finite value > 0".into(), unit))
+    }
+}
+
+impl SyntheticSurfaceSpec {
+    /// Checks every parameter; the error names the parameter, its value, range and unit.
+    pub fn validate(&self) -> Result<(), SyntheticError> {
+        if self.nx < 2 {
+            return Err(invalid("nx", self.nx, "an integer ≥ 2".into(), "points"));
+        }
+        if self.ny < 2 {
+            return Err(invalid("ny", self.ny, "an integer ≥ 2".into(), "points"));
+        }
+        match self.nx.checked_mul(self.ny) {
+            Some(n) if n <= MAX_SYNTHETIC_POINTS => {}
+            _ => {
+                return Err(SyntheticError::TooLarge {
+                    nx: self.nx,
+                    ny: self.ny,
+                    max: MAX_SYNTHETIC_POINTS,
+                })
+            }
+        }
+        positive_finite("lx", self.lx, "m")?;
+        positive_finite("ly", self.ly, "m")?;
+        positive_finite("sq", self.sq, "m")?;
+        if !(self.hurst > 0.0 && self.hurst <= 1.0) {
+            return Err(invalid(
+                "hurst",
+                self.hurst,
+                "0 < H ≤ 1".into(),
+                "dimensionless",
+            ));
+        }
+        positive_finite("correlation_length", self.correlation_length, "m")?;
+        if let Some(cutoff) = self.short_wavelength_cutoff {
+            let (dx, dy) = (self.lx / self.nx as f64, self.ly / self.ny as f64);
+            let (lo, hi) = (dx.min(dy), self.lx.min(self.ly));
+            if !(cutoff.is_finite() && cutoff >= lo && cutoff < hi) {
+                return Err(invalid(
+                    "short_wavelength_cutoff",
+                    cutoff,
+                    format!("min(dx, dy) = {lo} ≤ λ_s < min(lx, ly) = {hi}"),
+                    "m",
+                ));
+            }
+        }
+        if let Some(a) = self.anisotropy {
+            positive_finite("anisotropy.aspect_ratio", a.aspect_ratio, "dimensionless")?;
+            if !a.angle_deg.is_finite() {
+                return Err(invalid(
+                    "anisotropy.angle_deg",
+                    a.angle_deg,
+                    "a finite angle".into(),
+                    "degrees",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Pixel spacings `(dx, dy) = (lx/nx, ly/ny)` in metres.
+    pub fn spacing(&self) -> (f64, f64) {
+        (self.lx / self.nx as f64, self.ly / self.ny as f64)
+    }
+
+    /// Roll-off wavelengths `(λ_u, λ_v)` in metres along and across the lay direction.
+    pub fn correlation_lengths(&self) -> (f64, f64) {
+        let ratio = self.anisotropy.map_or(1.0, |a| a.aspect_ratio);
+        (self.correlation_length, self.correlation_length / ratio)
+    }
+
+    /// Unnormalised model PSD `C(q)/C0` at wavevector `(qx, qy)` in rad/m (see module docs).
+    pub fn psd_shape(&self, qx: f64, qy: f64) -> f64 {
+        let q2 = qx * qx + qy * qy;
+        if q2 == 0.0 {
+            return 0.0;
+        }
+        if let Some(cutoff) = self.short_wavelength_cutoff {
+            let qs = 2.0 * PI / cutoff;
+            if q2 > qs * qs {
+                return 0.0;
+            }
+        }
+        let (lu, lv) = self.correlation_lengths();
+        let (s, c) = self
+            .anisotropy
+            .map_or(0.0, |a| a.angle_deg.to_radians())
+            .sin_cos();
+        let ku = (qx * c + qy * s) * lu / (2.0 * PI);
+        let kv = (-qx * s + qy * c) * lv / (2.0 * PI);
+        let kappa2 = ku * ku + kv * kv;
+        if kappa2 < 1.0 {
+            1.0
+        } else {
+            kappa2.powf(-(1.0 + self.hurst))
+        }
+    }
+
+    /// Model PSD shape of half-spectrum mode `(i, j)` (`kx = i ≥ 0`, row `j` as in the FFT).
+    /// On the Nyquist row the aliased `±qy` are one mode: mean of both.
+    fn mode_shape(&self, i: usize, j: usize) -> f64 {
+        let qx = 2.0 * PI * i as f64 / self.lx;
+        let ky = if 2 * j <= self.ny {
+            j as f64
+        } else {
+            j as f64 - self.ny as f64
+        };
+        let qy = 2.0 * PI * ky / self.ly;
+        if 2 * j == self.ny {
+            0.5 * (self.psd_shape(qx, qy) + self.psd_shape(qx, -qy))
+        } else {
+            self.psd_shape(qx, qy)
+        }
+    }
+}
+
+/// Generates the surface described by `spec` (heights in metres, zero mean, Sq = `spec.sq`).
+pub fn generate_synthetic_surface(
+    spec: &SyntheticSurfaceSpec,
+) -> Result<HeightMap, SyntheticError> {
+    spec.validate()?;
+    let (nx, ny) = (spec.nx, spec.ny);
+    let nxh = nx / 2 + 1;
+    let mut key = [0u8; 32];
+    key[..8].copy_from_slice(&spec.seed.to_le_bytes());
+    let base = ChaCha8Rng::from_seed(key);
+
+    let mut modes = vec![Complex64::new(0.0, 0.0); ny * nxh];
+    modes.par_chunks_mut(nxh).enumerate().for_each(|(j, row)| {
+        let mut rng = base.clone();
+        rng.set_stream(j as u64);
+        for (i, mode) in row.iter_mut().enumerate() {
+            let (g1, g2) = standard_normal_pair(&mut rng);
+            let amplitude = spec.mode_shape(i, j).sqrt();
+            *mode = if self_conjugate(i, j, nx, ny) {
+                Complex64::new(amplitude * g1, 0.0)
+            } else {
+                Complex64::new(amplitude * g1, amplitude * g2) * FRAC_1_SQRT_2
+            };
+        }
+    });
+    let mut half =
+        Array2::from_shape_vec((ny, nxh), modes).map_err(|e| FftFailure(e.to_string()))?;
+    enforce_hermitian_columns(&mut half, nx);
+
+    let mut z = inverse_real_2d(&half, nx)?;
+    let n = (nx * ny) as f64;
+    let mean = z.sum() / n;
+    z.mapv_inplace(|v| v - mean);
+    let rms = (z.iter().map(|v| v * v).sum::<f64>() / n).sqrt();
+    if !(rms > 0.0 && rms.is_finite()) {
+        return Err(SyntheticError::NoSpectralContent);
+    }
+    let scale = spec.sq / rms;
+    z.mapv_inplace(|v| v * scale);
+    let (dx, dy) = spec.spacing();
+    Ok(HeightMap::new(z, dx, dy)?)
+}
+
+/// Ensemble autocorrelation of the model, `R(τ)/R(0)` on the periodic lag grid `[[jy, ix]]`
+/// (`τx = ix·dx` for `ix ≤ nx/2`, `(ix − nx)·dx` above; likewise y): the inverse FFT of the model
+/// PSD on the spec's grid (Wiener–Khinchin), including the grid's finite size and resolution.
+/// Every realisation's autocorrelation scatters around it.
+pub fn model_autocorrelation(spec: &SyntheticSurfaceSpec) -> Result<Array2<f64>, SyntheticError> {
+    spec.validate()?;
+    let (nx, ny) = (spec.nx, spec.ny);
+    let half = Array2::from_shape_fn((ny, nx / 2 + 1), |(j, i)| {
+        Complex64::new(spec.mode_shape(i, j), 0.0)
+    });
+    let acf = inverse_real_2d(&half, nx)?;
+    let zero_lag = acf.first().copied().unwrap_or(0.0);
+    if !(zero_lag > 0.0 && zero_lag.is_finite()) {
+        return Err(SyntheticError::NoSpectralContent);
+    }
+    Ok(acf / zero_lag)
+}
+
+/// `true` for the modes equal to their own conjugate: `kx ∈ {0, nx/2}` and `ky ∈ {0, ny/2}`.
+fn self_conjugate(i: usize, j: usize, nx: usize, ny: usize) -> bool {
+    (i == 0 || 2 * i == nx) && (j == 0 || 2 * j == ny)
+}
+
+/// On the `kx = 0` and (even `nx`) `kx = nx/2` columns, sets `Z(−ky) = Z(ky)*` for `0 < ky < ny/2`.
+fn enforce_hermitian_columns(half: &mut Array2<Complex64>, nx: usize) {
+    let ny = half.nrows();
+    let mut columns = vec![0];
+    if nx.is_multiple_of(2) {
+        columns.push(nx / 2);
+    }
+    for i in columns {
+        for j in 1..ny {
+            let partner = ny - j;
+            if j < partner {
+                half[[partner, i]] = half[[j, i]].conj();
+            }
+        }
+    }
+}
+
+/// Two independent standard normal deviates (Box–Muller) from two 53-bit uniforms.
+fn standard_normal_pair(rng: &mut ChaCha8Rng) -> (f64, f64) {
+    const SCALE: f64 = 1.0 / (1u64 << 53) as f64;
+    let u1 = ((rng.next_u64() >> 11) + 1) as f64 * SCALE; // (0, 1]: ln is finite
+    let u2 = (rng.next_u64() >> 11) as f64 * SCALE; // [0, 1)
+    let radius = (-2.0 * u1.ln()).sqrt();
+    let (s, c) = (2.0 * PI * u2).sin_cos();
+    (radius * c, radius * s)
+}
