@@ -1,18 +1,20 @@
 //! The `surface` node kind: a synthetic self-affine surface (or, later, a measured file) and its
 //! statistics. Table `surfaces`; array `heights` (m, `[[iy, ix]]`) for downstream nodes.
 
-use ndarray::Ix2;
 use serde::Deserialize;
 
 use crate::engine::artifact::Artifact;
 use crate::engine::node::{NodeError, NodeTask};
 use crate::engine::study::{Param, ResolveContext, SpecError};
 use crate::engine::value::Field;
-use crate::surface::HeightMap;
+use crate::surface::synthetic::{generate_synthetic_surface, Anisotropy, SyntheticSurfaceSpec};
+use crate::surface::{amplitude_statistics, Boundary, HeightMap};
 use crate::units::{Angle, Dimension, Length, Quantity};
 
 pub(crate) const KIND: &str = "surface";
 pub(crate) const TABLE: &str = "surfaces";
+/// Name of the height array (m, `[[iy, ix]]`) in the artifact.
+pub(crate) const HEIGHTS: &str = "heights";
 
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
 /// computed statistics change, so stale cache entries are never reused.
@@ -65,20 +67,12 @@ pub struct AnisotropySpec {
     pub angle: Option<Param<Quantity<Angle>>>,
 }
 
-fn positive<T: Copy + Into<f64>>(unit: &'static str) -> impl Fn(&T) -> Result<(), String> {
-    move |v: &T| {
-        let x: f64 = (*v).into();
-        if x > 0.0 && x.is_finite() {
-            Ok(())
-        } else {
-            Err(format!("is out of range: must be > 0 {unit}"))
-        }
-    }
-}
-
-impl From<Quantity<Length>> for f64 {
-    fn from(q: Quantity<Length>) -> f64 {
-        q.si()
+/// Range check: a length > 0.
+fn positive_length(v: &Quantity<Length>) -> Result<(), String> {
+    if v.si() > 0.0 {
+        Ok(())
+    } else {
+        Err(String::from("is out of range: must be > 0 m"))
     }
 }
 
@@ -99,12 +93,12 @@ impl SyntheticSpec {
                 Err(format!("is out of range: grid sides must be between 2 and {MAX_GRID_SIDE}"))
             }
         };
-        let nx = ctx.resolve_checked(&self.grid[0], "grid[0]", grid_check)?;
-        let ny = ctx.resolve_checked(&self.grid[1], "grid[1]", grid_check)?;
-        let lx = ctx.resolve_checked(&self.size[0], "size[0]", positive("m"))?.si();
-        let ly = ctx.resolve_checked(&self.size[1], "size[1]", positive("m"))?.si();
-        let sq = ctx.resolve_checked(&self.sq, "sq", positive("m"))?.si();
-        let hurst = ctx.resolve_checked(&self.hurst, "hurst", |h: &f64| {
+        let nx = ctx.resolve_checked(&self.grid[0], "synthetic.grid[0]", grid_check)?;
+        let ny = ctx.resolve_checked(&self.grid[1], "synthetic.grid[1]", grid_check)?;
+        let lx = ctx.resolve_checked(&self.size[0], "synthetic.size[0]", positive_length)?.si();
+        let ly = ctx.resolve_checked(&self.size[1], "synthetic.size[1]", positive_length)?.si();
+        let sq = ctx.resolve_checked(&self.sq, "synthetic.sq", positive_length)?.si();
+        let hurst = ctx.resolve_checked(&self.hurst, "synthetic.hurst", |h: &f64| {
             if *h > 0.0 && *h <= 1.0 {
                 Ok(())
             } else {
@@ -112,7 +106,7 @@ impl SyntheticSpec {
             }
         })?;
         let correlation_length = ctx
-            .resolve_checked(&self.correlation_length, "correlation_length", positive("m"))?
+            .resolve_checked(&self.correlation_length, "synthetic.correlation_length", positive_length)?
             .si();
         let mut params = vec![
             Field::int("nx", nx as i64),
@@ -120,22 +114,22 @@ impl SyntheticSpec {
             Field::float("lx", lx, Dimension::Length),
             Field::float("ly", ly, Dimension::Length),
             Field::float("sq_target", sq, Dimension::Length),
-            Field::float("hurst", hurst, Dimension::Dimensionless),
-            Field::float("correlation_length", correlation_length, Dimension::Length),
+            Field::float("synthetic.hurst", hurst, Dimension::Dimensionless),
+            Field::float("synthetic.correlation_length", correlation_length, Dimension::Length),
         ];
         let cutoff = match &self.short_wavelength_cutoff {
             Some(p) => {
                 let c = ctx
-                    .resolve_checked(p, "short_wavelength_cutoff", positive("m"))?
+                    .resolve_checked(p, "synthetic.short_wavelength_cutoff", positive_length)?
                     .si();
-                params.push(Field::float("short_wavelength_cutoff", c, Dimension::Length));
+                params.push(Field::float("synthetic.short_wavelength_cutoff", c, Dimension::Length));
                 Some(c)
             }
             None => None,
         };
         let anisotropy = match &self.anisotropy {
             Some(a) => {
-                let ratio = ctx.resolve_checked(&a.ratio, "anisotropy.ratio", |r: &f64| {
+                let ratio = ctx.resolve_checked(&a.ratio, "synthetic.anisotropy.ratio", |r: &f64| {
                     if *r >= 1.0 && r.is_finite() {
                         Ok(())
                     } else {
@@ -143,7 +137,7 @@ impl SyntheticSpec {
                     }
                 })?;
                 let angle = match &a.angle {
-                    Some(p) => ctx.resolve(p, "anisotropy.angle")?.si(),
+                    Some(p) => ctx.resolve(p, "synthetic.anisotropy.angle")?.si(),
                     None => 0.0,
                 };
                 params.push(Field::float("anisotropy_ratio", ratio, Dimension::Dimensionless));
@@ -152,12 +146,12 @@ impl SyntheticSpec {
             }
             None => None,
         };
-        let seed = ctx.resolve(&self.seed, "seed")?;
-        params.push(Field::int("seed", seed as i64));
+        let seed = ctx.resolve(&self.seed, "synthetic.seed")?;
+        params.push(Field::int("synthetic.seed", seed as i64));
         params.push(Field::text("source", "synthetic"));
         Ok(SurfaceTask {
             params,
-            source: SurfaceSource::Synthetic {
+            source: SurfaceSource::Synthetic(SyntheticSurfaceSpec {
                 nx,
                 ny,
                 lx,
@@ -165,10 +159,13 @@ impl SyntheticSpec {
                 sq,
                 hurst,
                 correlation_length,
-                cutoff,
-                anisotropy,
+                short_wavelength_cutoff: cutoff,
+                anisotropy: anisotropy.map(|(aspect_ratio, angle)| Anisotropy {
+                    aspect_ratio,
+                    angle_deg: angle.to_degrees(),
+                }),
                 seed,
-            },
+            }),
         })
     }
 }
@@ -182,26 +179,50 @@ pub struct SurfaceTask {
 
 #[derive(Debug, Clone)]
 enum SurfaceSource {
-    Synthetic {
-        nx: usize,
-        ny: usize,
-        lx: f64,
-        ly: f64,
-        sq: f64,
-        hurst: f64,
-        correlation_length: f64,
-        cutoff: Option<f64>,
-        anisotropy: Option<(f64, f64)>,
-        seed: u64,
-    },
+    Synthetic(SyntheticSurfaceSpec),
 }
 
 impl SurfaceTask {
-    fn heights(&self) -> Result<HeightMap, NodeError> {
+    /// Generates or reads the heights, and says whether the map is periodic.
+    fn heights(&self) -> Result<(HeightMap, Boundary), NodeError> {
         match &self.source {
-            SurfaceSource::Synthetic { .. } => Err(NodeError::new("synthetic surfaces are not wired yet")),
+            SurfaceSource::Synthetic(spec) => generate_synthetic_surface(spec)
+                .map(|m| (m, Boundary::Periodic))
+                .map_err(|e| NodeError::new(format!("synthetic surface: {e}"))),
         }
     }
+}
+
+/// The `surfaces` table metrics of a height map (ISO 25178-2 amplitude and hybrid parameters).
+fn surface_metrics(map: &HeightMap, boundary: Boundary) -> Result<Vec<Field>, NodeError> {
+    let a = amplitude_statistics(map, boundary)
+        .map_err(|e| NodeError::new(format!("statistics: {e}")))?;
+    let len = |name: &str, v: f64| Field::float(name, v, Dimension::Length);
+    let mut metrics = vec![
+        Field::int("grid_nx", map.nx() as i64),
+        Field::int("grid_ny", map.ny() as i64),
+        len("dx", map.dx()),
+        len("dy", map.dy()),
+        Field::int("missing_points", a.missing_count as i64),
+        len("synthetic.sq", a.sq),
+        len("sa", a.sa),
+        len("sp", a.sp),
+        len("sv", a.sv),
+        len("sz", a.sz),
+    ];
+    // Undefined statistics (a flat map has no skewness) are left out: the cell is null.
+    let optional = [
+        ("ssk", a.ssk),
+        ("sku", a.sku),
+        ("sdq", a.sdq),
+        ("sdr_percent", a.sdr_percent),
+    ];
+    metrics.extend(
+        optional
+            .into_iter()
+            .filter_map(|(name, v)| v.map(|v| Field::float(name, v, Dimension::Dimensionless))),
+    );
+    Ok(metrics)
 }
 
 impl NodeTask for SurfaceTask {
@@ -224,20 +245,18 @@ impl NodeTask for SurfaceTask {
     fn memory_estimate(&self) -> u64 {
         match &self.source {
             // heights + complex half spectrum + statistics work arrays ≈ 6 f64 per point.
-            SurfaceSource::Synthetic { nx, ny, .. } => (*nx as u64) * (*ny as u64) * 8 * 6,
+            SurfaceSource::Synthetic(s) => (s.nx as u64) * (s.ny as u64) * 8 * 6,
         }
     }
 
     fn compute(&self, _inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
-        let map = self.heights()?;
-        let mut artifact = Artifact::default();
-        artifact.metrics.push(Field::float("dx", map.dx(), Dimension::Length));
-        artifact.metrics.push(Field::float("dy", map.dy(), Dimension::Length));
-        artifact.arrays.insert(
-            String::from("heights"),
-            map.into_heights().into_dimensionality::<ndarray::IxDyn>().map_err(|e| NodeError::new(e.to_string()))?,
-        );
-        let _ = Ix2(0, 0);
-        Ok(artifact)
+        let (map, boundary) = self.heights()?;
+        let metrics = surface_metrics(&map, boundary)?;
+        let heights = map.into_heights().into_dyn();
+        Ok(Artifact {
+            metrics,
+            arrays: [(String::from(HEIGHTS), heights)].into_iter().collect(),
+            tables: Default::default(),
+        })
     }
 }

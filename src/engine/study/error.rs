@@ -75,6 +75,10 @@ impl StudyError {
                 did_you_mean(variant, expected.iter().copied()),
                 expected.join(", ")
             ),
+            serde_saphyr::Error::DuplicateMappingKey { key, .. } => format!(
+                "duplicate key{}: each key may appear only once in a mapping",
+                key.as_ref().map(|k| format!(" '{k}'")).unwrap_or_default()
+            ),
             other => strip_location_suffix(&other.to_string()),
         };
         Self::at(path, source, location, "", message)
