@@ -258,7 +258,10 @@ fn number_prefix_len(s: &str) -> usize {
 
 fn unit_hint(unit: &str) -> String {
     let lower = unit.to_ascii_lowercase();
-    match UNITS.iter().find(|u| u.symbol.to_ascii_lowercase() == lower) {
+    match UNITS
+        .iter()
+        .find(|u| u.symbol.to_ascii_lowercase() == lower)
+    {
         Some(u) => format!(" (did you mean '{}'? units are case-sensitive)", u.symbol),
         None => String::from(" (known units: m, mm, um, nm, Pa, MPa, GPa, N, N/m, deg, …)"),
     }
@@ -345,7 +348,10 @@ impl<'de, D: DimensionMarker> serde::Deserialize<'de> for Quantity<D> {
                 if v.is_finite() {
                     Ok(Quantity::from_si(v))
                 } else {
-                    Err(E::custom(format!("{v} is not a finite {}", D::DIMENSION.name())))
+                    Err(E::custom(format!(
+                        "{v} is not a finite {}",
+                        D::DIMENSION.name()
+                    )))
                 }
             }
             fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Self::Value, E> {
@@ -397,7 +403,10 @@ mod tests {
         assert_eq!(v.dimension, Dimension::Length);
         assert!((v.si - 1.19e-6).abs() < 1e-21);
         assert_eq!(parse_quantity("20MPa").unwrap().si, 20e6);
-        assert_eq!(parse_quantity("0.5 N/m").unwrap().dimension, Dimension::SurfaceEnergy);
+        assert_eq!(
+            parse_quantity("0.5 N/m").unwrap().dimension,
+            Dimension::SurfaceEnergy
+        );
         assert_eq!(parse_quantity("210 GPa").unwrap().si, 210e9);
         assert_eq!(parse_quantity("1e-3 m").unwrap().si, 1e-3);
         assert_eq!(parse_quantity("-2.5e2").unwrap().si, -250.0);

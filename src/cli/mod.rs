@@ -155,7 +155,10 @@ fn plan(path: &std::path::Path, cache: &CacheArg, dot: bool, mermaid: bool) -> R
         plan.nodes.len(),
         study.outputs.join(", ")
     );
-    println!("{:<8} {:<12} {:<10} {:<8} nodes", "status", "key", "kind", "version");
+    println!(
+        "{:<8} {:<12} {:<10} {:<8} nodes",
+        "status", "key", "kind", "version"
+    );
     let mut to_compute = 0;
     for &i in &needed {
         let n = &plan.nodes[i];

@@ -43,7 +43,8 @@ impl Progress for BarProgress {
             status = ?status,
             "node finished"
         );
-        self.bar.set_message(format!("{} {}", node.task.kind(), node.names.join(",")));
+        self.bar
+            .set_message(format!("{} {}", node.task.kind(), node.names.join(",")));
         self.bar.inc(1);
     }
 

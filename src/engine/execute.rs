@@ -157,7 +157,11 @@ pub fn execute(
     let mut outcomes: Vec<Option<NodeOutcome>> = vec![None; n];
     let mut report = RunReport::default();
     for lvl in 0..=max_level {
-        let batch: Vec<usize> = needed.iter().copied().filter(|&i| level[i] == lvl).collect();
+        let batch: Vec<usize> = needed
+            .iter()
+            .copied()
+            .filter(|&i| level[i] == lvl)
+            .collect();
         let results: Vec<(usize, NodeOutcome, Option<Arc<Artifact>>, bool)> = batch
             .par_iter()
             .map(|&i| {
@@ -254,7 +258,9 @@ impl RunContext<'_> {
                 }
                 discarded = true;
             }
-            Err(e) => self.progress.warn(&format!("cache read failed: {e}; recomputing")),
+            Err(e) => self
+                .progress
+                .warn(&format!("cache read failed: {e}; recomputing")),
         }
         let (outcome, artifact) = self.compute(node);
         (outcome, artifact, discarded)
@@ -323,8 +329,9 @@ impl RunContext<'_> {
                         .map_or(0, |d| d.as_secs()),
                 };
                 if let Err(e) = self.cache.store(manifest, &artifact) {
-                    self.progress
-                        .warn(&format!("result not cached ({e}); it is still used in this run"));
+                    self.progress.warn(&format!(
+                        "result not cached ({e}); it is still used in this run"
+                    ));
                 }
                 let outcome = NodeOutcome {
                     status: NodeStatus::Computed,

@@ -54,7 +54,12 @@ impl fmt::Display for NodeKey {
 }
 
 /// Computes a node key.
-pub fn node_key(kind: &str, version: u32, params: &[Field], upstream: &[(&str, NodeKey)]) -> NodeKey {
+pub fn node_key(
+    kind: &str,
+    version: u32,
+    params: &[Field],
+    upstream: &[(&str, NodeKey)],
+) -> NodeKey {
     let mut h = blake3::Hasher::new();
     h.update(b"asperity-node-key");
     h.update(&KEY_SCHEMA_VERSION.to_le_bytes());
@@ -125,9 +130,20 @@ mod tests {
         let base = node_key("k", 1, &p, &[]);
         assert_ne!(base, node_key("k", 2, &p, &[]));
         assert_ne!(base, node_key("j", 1, &p, &[]));
-        assert_ne!(base, node_key("k", 1, &[Field::float("sq", 1.1e-6, Dimension::Length)], &[]));
+        assert_ne!(
+            base,
+            node_key(
+                "k",
+                1,
+                &[Field::float("sq", 1.1e-6, Dimension::Length)],
+                &[]
+            )
+        );
         assert_ne!(base, node_key("k", 1, &p, &[("u", NodeKey([0; 32]))]));
-        assert_eq!(base, node_key("k", 1, &[Field::float("sq", 1e-6, Dimension::Length)], &[]));
+        assert_eq!(
+            base,
+            node_key("k", 1, &[Field::float("sq", 1e-6, Dimension::Length)], &[])
+        );
     }
 
     #[test]

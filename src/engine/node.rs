@@ -9,7 +9,7 @@ use std::sync::Arc;
 use serde::de::DeserializeOwned;
 
 use crate::engine::artifact::Artifact;
-use crate::engine::study::{ResolveContext, SpecError, SpannedName};
+use crate::engine::study::{ResolveContext, SpannedName, SpecError};
 use crate::engine::value::Field;
 
 /// A reference from a node spec to an upstream node, under a role name ("lower", "surface").

@@ -112,12 +112,19 @@ fn scenarios_table(plan: &Plan, report: &RunReport) -> RowTable {
         )];
         for (name, value) in plan.scenarios.names.iter().zip(row) {
             let dim = value.dimension();
-            cells.push((column_name(name, dim), dim, Some(scenario_value(plan, name, value))));
+            cells.push((
+                column_name(name, dim),
+                dim,
+                Some(scenario_value(plan, name, value)),
+            ));
         }
         let mut status = "ok";
         for (n, name) in plan.node_names.iter().enumerate() {
             let instance = plan.scenario_nodes[s][n];
-            cells.push(text(&format!("{name}_key"), plan.nodes[instance].key.to_hex()));
+            cells.push(text(
+                &format!("{name}_key"),
+                plan.nodes[instance].key.to_hex(),
+            ));
             match report.outcomes.get(instance).and_then(Option::as_ref) {
                 Some(o) if o.status.label() != "ok" => status = "failed",
                 None if status == "ok" => status = "not_computed",

@@ -81,8 +81,10 @@ impl Plan {
                         })?;
                     upstream.push((r.role, u));
                 }
-                let upstream_tasks: Vec<Arc<dyn NodeTask>> =
-                    upstream.iter().map(|(_, u)| nodes[*u].task.clone()).collect();
+                let upstream_tasks: Vec<Arc<dyn NodeTask>> = upstream
+                    .iter()
+                    .map(|(_, u)| nodes[*u].task.clone())
+                    .collect();
                 let ctx = ResolveContext {
                     names: &scenarios.names,
                     values: row,
@@ -163,7 +165,11 @@ impl Plan {
     pub fn to_dot(&self, cached: impl Fn(usize) -> bool) -> String {
         let mut out = String::from("digraph study {\n  rankdir=LR;\n  node [shape=box];\n");
         for (i, n) in self.nodes.iter().enumerate() {
-            let style = if cached(i) { ", style=filled, fillcolor=\"#d9f2d9\"" } else { "" };
+            let style = if cached(i) {
+                ", style=filled, fillcolor=\"#d9f2d9\""
+            } else {
+                ""
+            };
             let _ = writeln!(
                 out,
                 "  n{i} [label=\"{}\\n{} {}\"{style}];",

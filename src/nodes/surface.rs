@@ -90,23 +90,37 @@ impl SyntheticSpec {
             if (2..=MAX_GRID_SIDE).contains(n) {
                 Ok(())
             } else {
-                Err(format!("is out of range: grid sides must be between 2 and {MAX_GRID_SIDE}"))
+                Err(format!(
+                    "is out of range: grid sides must be between 2 and {MAX_GRID_SIDE}"
+                ))
             }
         };
         let nx = ctx.resolve_checked(&self.grid[0], "synthetic.grid[0]", grid_check)?;
         let ny = ctx.resolve_checked(&self.grid[1], "synthetic.grid[1]", grid_check)?;
-        let lx = ctx.resolve_checked(&self.size[0], "synthetic.size[0]", positive_length)?.si();
-        let ly = ctx.resolve_checked(&self.size[1], "synthetic.size[1]", positive_length)?.si();
-        let sq = ctx.resolve_checked(&self.sq, "synthetic.sq", positive_length)?.si();
+        let lx = ctx
+            .resolve_checked(&self.size[0], "synthetic.size[0]", positive_length)?
+            .si();
+        let ly = ctx
+            .resolve_checked(&self.size[1], "synthetic.size[1]", positive_length)?
+            .si();
+        let sq = ctx
+            .resolve_checked(&self.sq, "synthetic.sq", positive_length)?
+            .si();
         let hurst = ctx.resolve_checked(&self.hurst, "synthetic.hurst", |h: &f64| {
             if *h > 0.0 && *h <= 1.0 {
                 Ok(())
             } else {
-                Err(String::from("is out of range: the Hurst exponent must be in (0, 1]"))
+                Err(String::from(
+                    "is out of range: the Hurst exponent must be in (0, 1]",
+                ))
             }
         })?;
         let correlation_length = ctx
-            .resolve_checked(&self.correlation_length, "synthetic.correlation_length", positive_length)?
+            .resolve_checked(
+                &self.correlation_length,
+                "synthetic.correlation_length",
+                positive_length,
+            )?
             .si();
         let mut params = vec![
             Field::int("nx", nx as i64),
@@ -114,15 +128,19 @@ impl SyntheticSpec {
             Field::float("lx", lx, Dimension::Length),
             Field::float("ly", ly, Dimension::Length),
             Field::float("sq_target", sq, Dimension::Length),
-            Field::float("synthetic.hurst", hurst, Dimension::Dimensionless),
-            Field::float("synthetic.correlation_length", correlation_length, Dimension::Length),
+            Field::float("hurst", hurst, Dimension::Dimensionless),
+            Field::float("correlation_length", correlation_length, Dimension::Length),
         ];
         let cutoff = match &self.short_wavelength_cutoff {
             Some(p) => {
                 let c = ctx
                     .resolve_checked(p, "synthetic.short_wavelength_cutoff", positive_length)?
                     .si();
-                params.push(Field::float("synthetic.short_wavelength_cutoff", c, Dimension::Length));
+                params.push(Field::float(
+                    "short_wavelength_cutoff",
+                    c,
+                    Dimension::Length,
+                ));
                 Some(c)
             }
             None => None,
@@ -140,14 +158,18 @@ impl SyntheticSpec {
                     Some(p) => ctx.resolve(p, "synthetic.anisotropy.angle")?.si(),
                     None => 0.0,
                 };
-                params.push(Field::float("anisotropy_ratio", ratio, Dimension::Dimensionless));
+                params.push(Field::float(
+                    "anisotropy_ratio",
+                    ratio,
+                    Dimension::Dimensionless,
+                ));
                 params.push(Field::float("anisotropy_angle", angle, Dimension::Angle));
                 Some((ratio, angle))
             }
             None => None,
         };
         let seed = ctx.resolve(&self.seed, "synthetic.seed")?;
-        params.push(Field::int("synthetic.seed", seed as i64));
+        params.push(Field::int("seed", seed as i64));
         params.push(Field::text("source", "synthetic"));
         Ok(SurfaceTask {
             params,
@@ -204,7 +226,7 @@ fn surface_metrics(map: &HeightMap, boundary: Boundary) -> Result<Vec<Field>, No
         len("dx", map.dx()),
         len("dy", map.dy()),
         Field::int("missing_points", a.missing_count as i64),
-        len("synthetic.sq", a.sq),
+        len("sq", a.sq),
         len("sa", a.sa),
         len("sp", a.sp),
         len("sv", a.sv),

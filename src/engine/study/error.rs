@@ -58,7 +58,10 @@ impl StudyError {
 
     /// Converts a YAML/serde error, adding "did you mean" to unknown fields and variants.
     pub(crate) fn from_yaml(path: &Path, source: &str, error: &serde_saphyr::Error) -> Self {
-        let location = error.location().map(SourceLocation::from).unwrap_or_default();
+        let location = error
+            .location()
+            .map(SourceLocation::from)
+            .unwrap_or_default();
         let inner = error.without_snippet();
         let message = match inner {
             serde_saphyr::Error::SerdeUnknownField {
@@ -97,10 +100,14 @@ fn snippet(source: &str, location: SourceLocation) -> Option<String> {
     if !location.is_known() {
         return None;
     }
-    let line = source.lines().nth(usize::try_from(location.line).ok()? - 1)?;
+    let line = source
+        .lines()
+        .nth(usize::try_from(location.line).ok()? - 1)?;
     let number = location.line.to_string();
     let pad = " ".repeat(number.len());
-    let caret_col = usize::try_from(location.column).unwrap_or(1).saturating_sub(1);
+    let caret_col = usize::try_from(location.column)
+        .unwrap_or(1)
+        .saturating_sub(1);
     let caret: String = line
         .chars()
         .take(caret_col)

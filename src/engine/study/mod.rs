@@ -143,7 +143,9 @@ fn check_graph<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckErr
             return Err((
                 node.location,
                 format!("nodes.{name}"),
-                String::from("node names start with a letter and contain only letters, digits, '_' and '-'"),
+                String::from(
+                    "node names start with a letter and contain only letters, digits, '_' and '-'",
+                ),
             ));
         }
         for upstream in node.value.upstream() {
@@ -220,7 +222,10 @@ fn check_outputs<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckE
         return Err((
             outputs.location,
             String::from("outputs"),
-            format!("lists no table; omit it to write all ({})", known.join(", ")),
+            format!(
+                "lists no table; omit it to write all ({})",
+                known.join(", ")
+            ),
         ));
     }
     Ok(result)

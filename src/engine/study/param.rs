@@ -134,7 +134,10 @@ impl FromParamValue for String {
     fn from_param(value: &ParamValue) -> Result<Self, String> {
         match value {
             ParamValue::Text(s) => Ok(s.clone()),
-            other => Err(format!("expected text, got {other} ({})", other.type_name())),
+            other => Err(format!(
+                "expected text, got {other} ({})",
+                other.type_name()
+            )),
         }
     }
 }
@@ -200,7 +203,11 @@ pub struct ResolveContext<'a> {
 
 impl ResolveContext<'_> {
     /// Resolves a field to its value for this scenario.
-    pub fn resolve<T: FromParamValue>(&self, param: &Param<T>, field: &str) -> Result<T, SpecError> {
+    pub fn resolve<T: FromParamValue>(
+        &self,
+        param: &Param<T>,
+        field: &str,
+    ) -> Result<T, SpecError> {
         self.resolve_checked(param, field, |_| Ok(()))
     }
 
@@ -300,7 +307,10 @@ mod tests {
     #[test]
     fn suggests_close_names() {
         let c = ["hurst", "sq", "correlation_length"];
-        assert_eq!(did_you_mean("hurts", c.into_iter()), " (did you mean 'hurst'?)");
+        assert_eq!(
+            did_you_mean("hurts", c.into_iter()),
+            " (did you mean 'hurst'?)"
+        );
         assert_eq!(did_you_mean("zzzzzz", c.into_iter()), "");
         assert_eq!(
             did_you_mean("corelation_length", c.into_iter()),

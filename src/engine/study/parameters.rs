@@ -249,7 +249,9 @@ fn is_identifier(name: &str) -> bool {
 
 fn range(args: &[ParamValue]) -> Result<Vec<ParamValue>, String> {
     if !(2..=3).contains(&args.len()) {
-        return Err(String::from("range takes [first, last] or [first, last, step]"));
+        return Err(String::from(
+            "range takes [first, last] or [first, last, step]",
+        ));
     }
     if let (ParamValue::Int(a), ParamValue::Int(b)) = (&args[0], &args[1]) {
         let step = match args.get(2) {
@@ -262,7 +264,9 @@ fn range(args: &[ParamValue]) -> Result<Vec<ParamValue>, String> {
         }
         let count = (b - a) / step + 1;
         if count as usize > MAX_SCENARIOS {
-            return Err(format!("range has {count} values, more than {MAX_SCENARIOS}"));
+            return Err(format!(
+                "range has {count} values, more than {MAX_SCENARIOS}"
+            ));
         }
         return Ok((0..count).map(|i| ParamValue::Int(a + i * step)).collect());
     }
@@ -272,14 +276,20 @@ fn range(args: &[ParamValue]) -> Result<Vec<ParamValue>, String> {
             let (s, _, _) = endpoints(s, &args[1])?;
             s
         }
-        None => return Err(String::from("a non-integer range needs a step: [first, last, step]")),
+        None => {
+            return Err(String::from(
+                "a non-integer range needs a step: [first, last, step]",
+            ))
+        }
     };
     if !(step > 0.0) || last < first {
         return Err(String::from("range needs last ≥ first and step > 0"));
     }
     let count = ((last - first) / step * (1.0 + 1e-12)).floor() as usize + 1;
     if count > MAX_SCENARIOS {
-        return Err(format!("range has {count} values, more than {MAX_SCENARIOS}"));
+        return Err(format!(
+            "range has {count} values, more than {MAX_SCENARIOS}"
+        ));
     }
     Ok((0..count)
         .map(|i| quantity(first + i as f64 * step, dim))
@@ -293,7 +303,11 @@ fn spaced(args: &[ParamValue], geometric: bool) -> Result<Vec<ParamValue>, Strin
     };
     let count = match n {
         ParamValue::Int(n) if *n >= 1 && (*n as usize) <= MAX_SCENARIOS => *n as usize,
-        other => return Err(format!("{form} count must be a whole number ≥ 1, got {other}")),
+        other => {
+            return Err(format!(
+                "{form} count must be a whole number ≥ 1, got {other}"
+            ))
+        }
     };
     let (first, last, dim) = endpoints(a, b)?;
     if geometric && !(first > 0.0 && last > 0.0) {
@@ -328,7 +342,9 @@ fn endpoints(a: &ParamValue, b: &ParamValue) -> Result<(f64, f64, Dimension), St
             x.dimension.name(),
             y.dimension.name()
         )),
-        _ => Err(format!("end values must be numbers or quantities, got {a} and {b}")),
+        _ => Err(format!(
+            "end values must be numbers or quantities, got {a} and {b}"
+        )),
     }
 }
 
@@ -376,11 +392,7 @@ fn latin_hypercube(lhs: &Located<LatinHypercube>) -> Result<Group, ParameterErro
         let (low, high, dim) =
             endpoints(&bounds[0], &bounds[1]).map_err(|m| err(name, axis.location, m))?;
         if !(high > low) {
-            return Err(err(
-                name,
-                axis.location,
-                String::from("needs high > low"),
-            ));
+            return Err(err(name, axis.location, String::from("needs high > low")));
         }
         // Fisher–Yates permutation of the strata, then a uniform point inside each stratum.
         let mut strata: Vec<usize> = (0..n).collect();
