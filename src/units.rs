@@ -73,61 +73,74 @@ impl Dimension {
     }
 }
 
+/// A unit: SI value = number × 10^pow10 × factor. Decimal prefixes are applied to the decimal
+/// exponent before the text is converted to binary, so "1.19 um", "1190 nm" and "1.19e-6" give
+/// bit-identical SI values (and therefore identical node keys).
 struct Unit {
     symbol: &'static str,
     dimension: Dimension,
-    to_si: f64,
+    pow10: i32,
+    factor: f64,
 }
 
-const fn unit(symbol: &'static str, dimension: Dimension, to_si: f64) -> Unit {
+const fn unit(symbol: &'static str, dimension: Dimension, pow10: i32) -> Unit {
     Unit {
         symbol,
         dimension,
-        to_si,
+        pow10,
+        factor: 1.0,
     }
 }
 
-const DEG: f64 = std::f64::consts::PI / 180.0;
+const DEG: Unit = Unit {
+    symbol: "deg",
+    dimension: Dimension::Angle,
+    pow10: 0,
+    factor: std::f64::consts::PI / 180.0,
+};
+const DEG_SIGN: Unit = Unit {
+    symbol: "°", ..DEG
+};
 
 /// Recognised unit symbols and their factor to SI. `u`, `µ` (micro sign) and `μ` (Greek mu) are
 /// all accepted for micro.
 const UNITS: &[Unit] = &[
-    unit("m", Dimension::Length, 1.0),
-    unit("cm", Dimension::Length, 1e-2),
-    unit("mm", Dimension::Length, 1e-3),
-    unit("um", Dimension::Length, 1e-6),
-    unit("µm", Dimension::Length, 1e-6),
-    unit("μm", Dimension::Length, 1e-6),
-    unit("nm", Dimension::Length, 1e-9),
-    unit("pm", Dimension::Length, 1e-12),
-    unit("m^2", Dimension::Area, 1.0),
-    unit("m2", Dimension::Area, 1.0),
-    unit("mm^2", Dimension::Area, 1e-6),
-    unit("mm2", Dimension::Area, 1e-6),
-    unit("um^2", Dimension::Area, 1e-12),
-    unit("um2", Dimension::Area, 1e-12),
-    unit("µm^2", Dimension::Area, 1e-12),
-    unit("Pa", Dimension::Pressure, 1.0),
-    unit("kPa", Dimension::Pressure, 1e3),
-    unit("MPa", Dimension::Pressure, 1e6),
-    unit("GPa", Dimension::Pressure, 1e9),
-    unit("N/mm^2", Dimension::Pressure, 1e6),
-    unit("N/mm2", Dimension::Pressure, 1e6),
-    unit("N/m^2", Dimension::Pressure, 1.0),
-    unit("N", Dimension::Force, 1.0),
-    unit("kN", Dimension::Force, 1e3),
-    unit("mN", Dimension::Force, 1e-3),
-    unit("uN", Dimension::Force, 1e-6),
-    unit("µN", Dimension::Force, 1e-6),
-    unit("N/m", Dimension::SurfaceEnergy, 1.0),
-    unit("mN/m", Dimension::SurfaceEnergy, 1e-3),
-    unit("J/m^2", Dimension::SurfaceEnergy, 1.0),
-    unit("J/m2", Dimension::SurfaceEnergy, 1.0),
-    unit("mJ/m^2", Dimension::SurfaceEnergy, 1e-3),
-    unit("mJ/m2", Dimension::SurfaceEnergy, 1e-3),
-    unit("rad", Dimension::Angle, 1.0),
-    unit("deg", Dimension::Angle, DEG),
-    unit("°", Dimension::Angle, DEG),
+    unit("m", Dimension::Length, 0),
+    unit("cm", Dimension::Length, -2),
+    unit("mm", Dimension::Length, -3),
+    unit("um", Dimension::Length, -6),
+    unit("µm", Dimension::Length, -6),
+    unit("μm", Dimension::Length, -6),
+    unit("nm", Dimension::Length, -9),
+    unit("pm", Dimension::Length, -12),
+    unit("m^2", Dimension::Area, 0),
+    unit("m2", Dimension::Area, 0),
+    unit("mm^2", Dimension::Area, -6),
+    unit("mm2", Dimension::Area, -6),
+    unit("um^2", Dimension::Area, -12),
+    unit("um2", Dimension::Area, -12),
+    unit("µm^2", Dimension::Area, -12),
+    unit("Pa", Dimension::Pressure, 0),
+    unit("kPa", Dimension::Pressure, 3),
+    unit("MPa", Dimension::Pressure, 6),
+    unit("GPa", Dimension::Pressure, 9),
+    unit("N/mm^2", Dimension::Pressure, 6),
+    unit("N/mm2", Dimension::Pressure, 6),
+    unit("N/m^2", Dimension::Pressure, 0),
+    unit("N", Dimension::Force, 0),
+    unit("kN", Dimension::Force, 3),
+    unit("mN", Dimension::Force, -3),
+    unit("uN", Dimension::Force, -6),
+    unit("µN", Dimension::Force, -6),
+    unit("N/m", Dimension::SurfaceEnergy, 0),
+    unit("mN/m", Dimension::SurfaceEnergy, -3),
+    unit("J/m^2", Dimension::SurfaceEnergy, 0),
+    unit("J/m2", Dimension::SurfaceEnergy, 0),
+    unit("mJ/m^2", Dimension::SurfaceEnergy, -3),
+    unit("mJ/m2", Dimension::SurfaceEnergy, -3),
+    unit("rad", Dimension::Angle, 0),
+    DEG,
+    DEG_SIGN,
 ];
 
 /// A value in SI units with its dimension.
@@ -173,18 +186,22 @@ pub fn parse_quantity(text: &str) -> Result<DimensionedValue, UnitError> {
         });
     }
     let (num, unit_text) = trimmed.split_at(split);
-    let value: f64 = num.parse().map_err(|_| UnitError::NotAQuantity {
+    let not_a_quantity = || UnitError::NotAQuantity {
         text: text.to_string(),
-    })?;
-    if !value.is_finite() {
-        return Err(UnitError::NotFinite {
-            text: text.to_string(),
-        });
-    }
+    };
+    let finite = |v: f64| {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(UnitError::NotFinite {
+                text: text.to_string(),
+            })
+        }
+    };
     let unit_text = unit_text.trim();
     if unit_text.is_empty() {
         return Ok(DimensionedValue {
-            si: value,
+            si: finite(num.parse().map_err(|_| not_a_quantity())?)?,
             dimension: Dimension::Dimensionless,
         });
     }
@@ -196,8 +213,18 @@ pub fn parse_quantity(text: &str) -> Result<DimensionedValue, UnitError> {
             unit: unit_text.to_string(),
             hint: unit_hint(unit_text),
         })?;
+    let (mantissa, exponent) = match num.find(['e', 'E']) {
+        Some(i) => (
+            &num[..i],
+            num[i + 1..].parse::<i32>().map_err(|_| not_a_quantity())?,
+        ),
+        None => (num, 0),
+    };
+    let scaled: f64 = format!("{mantissa}e{}", exponent.saturating_add(unit.pow10))
+        .parse()
+        .map_err(|_| not_a_quantity())?;
     Ok(DimensionedValue {
-        si: value * unit.to_si,
+        si: finite(scaled * unit.factor)?,
         dimension: unit.dimension,
     })
 }
@@ -376,9 +403,14 @@ impl<D: DimensionMarker> schemars::JsonSchema for Quantity<D> {
     }
 
     fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let name = D::DIMENSION.name();
+        let article = if name.starts_with(['a', 'e', 'i', 'o', 'u']) {
+            "An"
+        } else {
+            "A"
+        };
         let description = format!(
-            "A {} as a plain number in SI ({}) or a string with units such as '{}' (units: {}).",
-            D::DIMENSION.name(),
+            "{article} {name} as a plain number in SI ({}) or a string with units such as '{}' (units: {}).",
             D::DIMENSION.si_symbol(),
             D::DIMENSION.example(),
             D::DIMENSION.accepted_units()
@@ -411,6 +443,18 @@ mod tests {
         assert_eq!(parse_quantity("1e-3 m").unwrap().si, 1e-3);
         assert_eq!(parse_quantity("-2.5e2").unwrap().si, -250.0);
         assert_eq!(parse_quantity("3 µm").unwrap().si, 3e-6);
+        assert_eq!(parse_quantity("1.2e3 nm").unwrap().si, 1.2e-6);
+        assert!((parse_quantity("90 deg").unwrap().si - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    }
+
+    #[test]
+    fn equal_values_in_different_units_are_bit_identical() {
+        let si = |t: &str| parse_quantity(t).unwrap().si.to_bits();
+        assert_eq!(si("1.19 um"), si("1190 nm"));
+        assert_eq!(si("1.19 um"), 1.19e-6f64.to_bits());
+        assert_eq!(si("0.5 mm"), si("500 um"));
+        assert_eq!(si("20 MPa"), si("0.02 GPa"));
+        assert_eq!(si("210 GPa"), 210e9f64.to_bits());
     }
 
     #[test]

@@ -98,7 +98,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         } => plan(&study, &cache, dot, mermaid),
         Command::Validate { study } => validate(&study),
         Command::Schema => {
-            println!("{}", asperity::nodes::study_schema_json());
+            print!("{}", asperity::nodes::study_schema_json());
             Ok(ExitCode::SUCCESS)
         }
     }
