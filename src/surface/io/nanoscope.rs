@@ -156,6 +156,12 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
         .checked_mul(ny)
         .and_then(|n| n.checked_mul(bpp))
         .ok_or_else(|| ParseError::malformed(format!("Nanoscope grid {nx} × {ny} overflows")))?;
+    let data_length = usize_field(image, "Data length", name)?;
+    if data_length < n_bytes {
+        return Err(ParseError::malformed(format!(
+            "Nanoscope channel `{name}`: Data length {data_length} B < {nx} × {ny} × {bpp} B"
+        )));
+    }
     let data = offset
         .checked_add(n_bytes)
         .and_then(|end| bytes.get(offset..end))

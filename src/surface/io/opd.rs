@@ -127,9 +127,15 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             "OPD height array with {elem}-byte elements (only float32 is supported)"
         )));
     }
-    let values = array.data.get(6..6 + nx * ny * 4).ok_or_else(|| {
-        ParseError::truncated(format!("OPD array `{}` of {nx} × {ny} float32", array.name))
-    })?;
+    // The block is at least 6 bytes long (its header was read above).
+    let values = &array.data[6..];
+    if values.len() != nx * ny * 4 {
+        return Err(ParseError::malformed(format!(
+            "OPD array `{}` block holds {} bytes, not {nx} × {ny} float32",
+            array.name,
+            values.len()
+        )));
+    }
 
     let wavelength_nm = scalar(&blocks, "Wavelength")?
         .ok_or_else(|| ParseError::malformed("OPD file has no Wavelength block"))?;
