@@ -416,3 +416,21 @@ fn unknown_content_is_unknown_format() {
         .unwrap_err();
     assert!(matches!(err, ReadError::UnknownFormat { .. }), "{err}");
 }
+
+#[test]
+fn metropro_invalid_phase_becomes_nan() {
+    let Some(dir) = data_dir() else { return };
+    let path = dir.join("metropro-dat/metropro-1.dat");
+    let mut bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
+    // Phase array after the 834-byte header and 640 × 480 × 2 B of intensity; the point
+    // (ix = 5, iy = 1) gets the smallest invalid code 2147483640, (ix = 6, iy = 1) the largest
+    // valid one (which must stay a number).
+    let at = |ix: usize, iy: usize| 834 + 614_400 + 4 * (iy * 640 + ix);
+    bytes[at(5, 1)..at(5, 1) + 4].copy_from_slice(&2_147_483_640i32.to_be_bytes());
+    bytes[at(6, 1)..at(6, 1) + 4].copy_from_slice(&2_147_483_639i32.to_be_bytes());
+    let t = parse_topography(&path, &bytes).unwrap_or_else(|e| panic!("{e}"));
+    let m = areal(&t);
+    assert!(m.heights()[[1, 5]].is_nan());
+    assert!(m.heights()[[1, 6]].is_finite());
+    assert_eq!(m.missing_count(), 1);
+}
