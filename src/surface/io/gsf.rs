@@ -6,7 +6,7 @@
 //! binary part starts at a multiple of 4 bytes, then `XRes · YRes` little-endian float32 values,
 //! row by row, x fastest. Non-finite values are missing points (`NaN`).
 //!
-//! Also hosts [`length_unit_factor`], the metre factor of a length unit string, shared by the
+//! Also hosts `length_unit_factor`, the metre factor of a length unit string, shared by the
 //! Gwyddion and Nanoscope readers.
 
 use std::collections::BTreeMap;

@@ -3,9 +3,9 @@
 //! There is no official documentation; the layout below was reverse engineered by the community
 //! (gabeguss/Keyence issue 2; SurfaceTopography's ZON reader) and checked on `test_1.zon`:
 //!
-//! * magic `KPK0` or `KPK1`, a little-endian `u32` thumbnail size, a BMP thumbnail, then a ZIP64
-//!   archive ([`archive`]; entries stored, i.e. method 0) whose members are named by UUIDs. In `KPK1` files
-//!   each member's content is itself a zstd frame.
+//! * magic `KPK0` or `KPK1`, a little-endian `u32` thumbnail size, a BMP thumbnail, then a
+//!   (ZIP64) archive (module `archive`; entries stored, i.e. method 0) whose members are named
+//!   by UUIDs. In `KPK1` files each member's content is itself a zstd frame.
 //! * `4cdb0c75-5706-48cc-a9a1-adf395d609ae`: height array; `686613b8-…`: XML calibration
 //!   with `<MeterPerPixel>` (lateral, square pixels) and `<MeterPerUnit>` (height per count);
 //!   `9e7ca6dd-…` (optional): per-pixel status bytes, where `status & 0x03 ≠ 0` marks a pixel
@@ -13,7 +13,8 @@
 //! * An array member is `width: i32 · height: i32 · element size: i32 · row bytes: i32`
 //!   (little-endian), then `height` rows of `row bytes`, x fastest; heights are `i32` counts.
 //!
-//! Heights in metres: `z = count · MeterPerUnit`.
+//! Heights in metres: `z = count · MeterPerUnit`. A `KPK1` member is decoded by streaming, so
+//! memory grows only with data actually produced, and at most 1 GiB per member.
 
 use std::collections::BTreeMap;
 use std::io::Read;
