@@ -434,3 +434,23 @@ fn metropro_invalid_phase_becomes_nan() {
     assert!(m.heights()[[1, 6]].is_finite());
     assert_eq!(m.missing_count(), 1);
 }
+
+#[test]
+fn metropro_inverted_flag_flips_heights() {
+    let Some(dir) = data_dir() else { return };
+    let path = dir.join("metropro-dat/metropro-1.dat");
+    let mut bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
+    let plain = parse_topography(&path, &bytes).unwrap_or_else(|e| panic!("{e}"));
+    // `data_inverted` (i16, big-endian) at byte 232 of the header.
+    bytes[232..234].copy_from_slice(&1i16.to_be_bytes());
+    let inverted = parse_topography(&path, &bytes).unwrap_or_else(|e| panic!("{e}"));
+    // Exact: the same product with the opposite sign.
+    assert_eq!(
+        areal(&inverted).heights(),
+        &areal(&plain).heights().mapv(|z| -z)
+    );
+    assert_eq!(
+        inverted.metadata.get("data_inverted").map(String::as_str),
+        Some("true")
+    );
+}

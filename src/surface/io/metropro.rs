@@ -10,7 +10,8 @@
 //! `z = phase · S · O · λ / R`, with `S` the interferometric scale factor (`intf_scale_factor`,
 //! 0.5 for a reflection interferometer), `O` the obliquity factor, `λ` the wavelength in metres
 //! (`wavelength_in`) and `R` the phase resolution (`phase_res` 0 → 4096, 1 → 32768,
-//! 2 → 131072). The lateral pixel size is `lateral_res` in metres (square pixels).
+//! 2 → 131072). When the header's `data_inverted` flag (i16 at byte 232) is set the sign of
+//! `z` is flipped. The lateral pixel size is `lateral_res` in metres (square pixels).
 
 use std::collections::BTreeMap;
 
@@ -124,10 +125,12 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             )))
         }
     };
-    let factor = scale_factor * obliquity * wavelength / phase_res;
-    if !(factor.is_finite() && factor > 0.0) {
+    let inverted = u16_field(bytes, 232, "data_inverted")? != 0;
+    let sign = if inverted { -1.0 } else { 1.0 };
+    let factor = sign * scale_factor * obliquity * wavelength / phase_res;
+    if !(factor.is_finite() && factor != 0.0) {
         return Err(ParseError::malformed(format!(
-            "MetroPro height factor S·O·λ/R = {scale_factor}·{obliquity}·{wavelength} m/{phase_res} is not positive"
+            "MetroPro height factor S·O·λ/R = {scale_factor}·{obliquity}·{wavelength} m/{phase_res} is not usable"
         )));
     }
     let phase_start = header_size
@@ -170,6 +173,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     metadata.insert("intf_scale_factor".into(), scale_factor.to_string());
     metadata.insert("phase_resolution".into(), phase_res.to_string());
     metadata.insert("lateral_resolution_m".into(), lateral_res.to_string());
+    metadata.insert("data_inverted".into(), inverted.to_string());
     metadata.retain(|_, v| !v.is_empty());
     Ok(Topography {
         data: TopographyData::Areal(map),
