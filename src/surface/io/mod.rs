@@ -4,8 +4,15 @@
 //! `NaN` (never zero). [`read_topography`] detects the format from magic bytes, then from the
 //! file extension, and wraps every failure in a [`ReadError`] that names the file.
 
+pub mod al3d;
 mod error;
+pub mod gsf;
+pub mod gwy;
+pub mod metropro;
+pub mod nanoscope;
+pub mod opd;
 mod topography;
+pub mod zon;
 
 pub use error::{ParseError, ReadError};
 pub use topography::{LineScan, Topography, TopographyData};
@@ -14,30 +21,85 @@ use std::path::Path;
 
 /// A supported file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Format {}
+pub enum Format {
+    /// Zygo MetroPro `.dat`.
+    MetroPro,
+    /// Wyko/Veeco Vision `.opd`.
+    Opd,
+    /// Bruker Nanoscope `.di` / `.spm`.
+    Nanoscope,
+    /// Gwyddion Simple Field `.gsf`.
+    Gsf,
+    /// Gwyddion native `.gwy`.
+    Gwy,
+    /// Alicona `.al3d`.
+    Al3d,
+    /// Keyence `.zon`.
+    Zon,
+}
 
 impl Format {
     /// Every supported format, in detection order.
-    pub const ALL: &'static [Format] = &[];
+    pub const ALL: &'static [Format] = &[
+        Format::MetroPro,
+        Format::Opd,
+        Format::Nanoscope,
+        Format::Gsf,
+        Format::Gwy,
+        Format::Al3d,
+        Format::Zon,
+    ];
 
     /// Short lowercase name ("x3p", "sdf", …).
     pub fn name(self) -> &'static str {
-        match self {}
+        match self {
+            Format::MetroPro => "metropro",
+            Format::Opd => "opd",
+            Format::Nanoscope => "nanoscope",
+            Format::Gsf => "gsf",
+            Format::Gwy => "gwy",
+            Format::Al3d => "al3d",
+            Format::Zon => "zon",
+        }
     }
 
     /// `true` when the first bytes of a file identify this format.
-    fn matches_magic(self, _head: &[u8]) -> bool {
-        match self {}
+    fn matches_magic(self, head: &[u8]) -> bool {
+        match self {
+            Format::MetroPro => metropro::matches_magic(head),
+            Format::Opd => opd::matches_magic(head),
+            Format::Nanoscope => nanoscope::matches_magic(head),
+            Format::Gsf => gsf::matches_magic(head),
+            Format::Gwy => gwy::matches_magic(head),
+            Format::Al3d => al3d::matches_magic(head),
+            Format::Zon => zon::matches_magic(head),
+        }
     }
 
     /// `true` when the (lowercase) file extension belongs to this format.
-    fn matches_extension(self, _ext: &str) -> bool {
-        match self {}
+    fn matches_extension(self, ext: &str) -> bool {
+        match self {
+            Format::MetroPro => ext == "dat",
+            Format::Opd => ext == "opd",
+            Format::Nanoscope => matches!(ext, "di" | "spm"),
+            Format::Gsf => ext == "gsf",
+            Format::Gwy => ext == "gwy",
+            Format::Al3d => ext == "al3d",
+            Format::Zon => ext == "zon",
+        }
     }
 
     /// Parses the whole file content.
-    fn parse(self, _bytes: &[u8]) -> Result<Topography, ParseError> {
-        match self {}
+    fn parse(self, bytes: &[u8]) -> Result<Topography, ParseError> {
+        match self {
+            Format::MetroPro => metropro::parse(bytes),
+            Format::Opd => opd::parse(bytes),
+            Format::Nanoscope => nanoscope::parse(bytes),
+            Format::Gsf => gsf::parse(bytes),
+            Format::Gwy => gwy::parse(bytes),
+            Format::Al3d => al3d::parse(bytes),
+            Format::Zon => zon::parse(bytes),
+        }
     }
 }
 
