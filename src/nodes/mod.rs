@@ -13,7 +13,9 @@ use serde::Deserialize;
 use crate::engine::node::{NodeSpec, NodeTask, UpstreamRef};
 use crate::engine::study::{ResolveContext, SpecError};
 
-pub use surface::{SurfaceSpec, SurfaceTask, SURFACE_KIND_VERSION};
+pub use surface::{
+    AnisotropySpec, FileSpec, SurfaceSpec, SurfaceTask, SyntheticSpec, SURFACE_KIND_VERSION,
+};
 
 /// A node of a study: `name: {<kind>: {...}}`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]

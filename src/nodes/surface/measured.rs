@@ -1,0 +1,214 @@
+//! `surface: {file: {...}}`: a measured topography and its preprocessing into the "S-F" (or
+//! "S-L") surface of ISO 25178.
+//!
+//! Steps, in this order, each optional: crop (pixel window) → decimate (keep every n-th point) →
+//! form removal (least-squares polynomial of the given degree; 1 = plane) → S-filter (Gaussian
+//! low-pass, removes wavelengths shorter than λs) → L-filter (Gaussian high-pass, removes
+//! wavelengths longer than λc) → filling of missing points (harmonic inpainting). The file enters
+//! the node key by its content hash, never by its path or modification time.
+
+use std::path::PathBuf;
+
+use serde::Deserialize;
+
+use crate::engine::node::NodeError;
+use crate::engine::study::{Param, ResolveContext, SpecError};
+use crate::engine::value::Field;
+use crate::surface::io::{read_topography, TopographyData};
+use crate::surface::{
+    crop, decimate, fill_missing, gaussian_high_pass, gaussian_low_pass, remove_polynomial_form,
+    FillOptions, HeightMap, MAX_FORM_DEGREE,
+};
+use crate::units::{Dimension, Length, Quantity};
+
+use super::synthetic::positive_length;
+use super::{SurfaceSource, SurfaceTask};
+
+/// `surface: {file: {...}}`.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FileSpec {
+    /// Topography file (x3p, sdf, sur, plu, dat, opd, di, gsf, gwy, al3d, zon, txt/csv, npy);
+    /// relative paths are relative to the study file.
+    pub path: Param<String>,
+    /// Pixel window `[ix0, iy0, nx, ny]`.
+    #[serde(default)]
+    pub crop: Option<[Param<usize>; 4]>,
+    /// Keep every `[sx, sy]`-th point (integer decimation, no smoothing: combine with `s_filter`).
+    #[serde(default)]
+    pub decimate: Option<[Param<usize>; 2]>,
+    /// Degree of the least-squares polynomial form removed (0: mean, 1: plane/tilt, 2: curvature).
+    #[serde(default)]
+    pub form_degree: Option<Param<usize>>,
+    /// S-filter nesting index λs (length): Gaussian low-pass removing short-scale noise.
+    #[serde(default)]
+    pub s_filter: Option<Param<Quantity<Length>>>,
+    /// L-filter nesting index λc (length): Gaussian high-pass removing waviness and form.
+    #[serde(default)]
+    pub l_filter: Option<Param<Quantity<Length>>>,
+    /// Fill missing points by harmonic inpainting (needed before contact). Default: false.
+    #[serde(default)]
+    pub fill_missing: Option<Param<bool>>,
+}
+
+/// A resolved measured surface.
+#[derive(Debug, Clone)]
+pub(crate) struct MeasuredSource {
+    path: PathBuf,
+    file_bytes: u64,
+    crop: Option<[usize; 4]>,
+    decimate: Option<[usize; 2]>,
+    form_degree: Option<usize>,
+    s_filter: Option<f64>,
+    l_filter: Option<f64>,
+    fill: bool,
+}
+
+impl FileSpec {
+    pub(super) fn instantiate(&self, ctx: &ResolveContext<'_>) -> Result<SurfaceTask, SpecError> {
+        let err = |field: &str, message: String| SpecError {
+            location: self.path.location(),
+            field: field.to_string(),
+            message,
+        };
+        let written: String = ctx.resolve(&self.path, "file.path")?;
+        let path = ctx.study_dir().join(&written);
+        let hash = ctx.file_content_hash(&path).map_err(|m| {
+            err(
+                "file.path",
+                format!("{m}; paths are relative to the study file"),
+            )
+        })?;
+        let file_bytes = std::fs::metadata(&path).map_or(0, |m| m.len());
+        let mut params = vec![
+            Field::text("source", "file"),
+            Field::text("file_blake3", hash),
+        ];
+        let crop = match &self.crop {
+            Some(c) => {
+                let mut v = [0usize; 4];
+                for (i, p) in c.iter().enumerate() {
+                    v[i] = ctx.resolve(p, &format!("file.crop[{i}]"))?;
+                }
+                for (name, x) in ["crop_ix0", "crop_iy0", "crop_nx", "crop_ny"].iter().zip(v) {
+                    params.push(Field::int(*name, x as i64));
+                }
+                Some(v)
+            }
+            None => None,
+        };
+        let decimate = match &self.decimate {
+            Some(d) => {
+                let step = |n: &usize| {
+                    if *n >= 1 {
+                        Ok(())
+                    } else {
+                        Err(String::from("is out of range: the step must be ≥ 1"))
+                    }
+                };
+                let sx = ctx.resolve_checked(&d[0], "file.decimate[0]", step)?;
+                let sy = ctx.resolve_checked(&d[1], "file.decimate[1]", step)?;
+                params.push(Field::int("decimate_x", sx as i64));
+                params.push(Field::int("decimate_y", sy as i64));
+                Some([sx, sy])
+            }
+            None => None,
+        };
+        let form_degree = match &self.form_degree {
+            Some(p) => {
+                let d = ctx.resolve_checked(p, "file.form_degree", |d: &usize| {
+                    if *d <= MAX_FORM_DEGREE {
+                        Ok(())
+                    } else {
+                        Err(format!("is out of range: at most {MAX_FORM_DEGREE}"))
+                    }
+                })?;
+                params.push(Field::int("form_degree", d as i64));
+                Some(d)
+            }
+            None => None,
+        };
+        let mut length = |p: &Option<Param<Quantity<Length>>>, field: &str, name: &str| {
+            p.as_ref()
+                .map(|p| {
+                    let v = ctx.resolve_checked(p, field, positive_length)?.si();
+                    params.push(Field::float(name, v, Dimension::Length));
+                    Ok(v)
+                })
+                .transpose()
+        };
+        let s_filter = length(&self.s_filter, "file.s_filter", "s_filter")?;
+        let l_filter = length(&self.l_filter, "file.l_filter", "l_filter")?;
+        if let (Some(s), Some(l)) = (s_filter, l_filter) {
+            if s >= l {
+                return Err(err(
+                    "file.s_filter",
+                    format!("λs = {s} m must be shorter than λc = {l} m"),
+                ));
+            }
+        }
+        let fill = match &self.fill_missing {
+            Some(p) => ctx.resolve(p, "file.fill_missing")?,
+            None => false,
+        };
+        params.push(Field::bool("fill_missing", fill));
+        Ok(SurfaceTask {
+            params,
+            source: SurfaceSource::Measured(MeasuredSource {
+                path,
+                file_bytes,
+                crop,
+                decimate,
+                form_degree,
+                s_filter,
+                l_filter,
+                fill,
+            }),
+        })
+    }
+}
+
+impl MeasuredSource {
+    /// Reads and preprocesses the surface.
+    pub(super) fn load(&self) -> Result<HeightMap, NodeError> {
+        let fail = |step: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{step}: {e}"));
+        let topography = read_topography(&self.path).map_err(|e| fail("reading", &e))?;
+        let mut map = match topography.data {
+            TopographyData::Areal(map) => map,
+            TopographyData::Line(_) => {
+                return Err(NodeError::new(format!(
+                    "{} is a line scan; a surface node needs an areal topography",
+                    self.path.display()
+                )))
+            }
+        };
+        if let Some([ix0, iy0, nx, ny]) = self.crop {
+            map = crop(&map, ix0, iy0, nx, ny).map_err(|e| fail("crop", &e))?;
+        }
+        if let Some([sx, sy]) = self.decimate {
+            map = decimate(&map, sx, sy).map_err(|e| fail("decimate", &e))?;
+        }
+        if let Some(degree) = self.form_degree {
+            map = remove_polynomial_form(&map, degree)
+                .map_err(|e| fail("form removal", &e))?
+                .surface;
+        }
+        if let Some(ls) = self.s_filter {
+            map = gaussian_low_pass(&map, ls).map_err(|e| fail("S-filter", &e))?;
+        }
+        if let Some(lc) = self.l_filter {
+            map = gaussian_high_pass(&map, lc).map_err(|e| fail("L-filter", &e))?;
+        }
+        if self.fill {
+            map = fill_missing(&map, FillOptions::default())
+                .map_err(|e| fail("filling missing points", &e))?
+                .surface;
+        }
+        Ok(map)
+    }
+
+    /// File size plus working arrays (≈ 8 f64 per point, 4 bytes per stored point assumed).
+    pub(super) fn memory_estimate(&self) -> u64 {
+        self.file_bytes.saturating_mul(16)
+    }
+}
