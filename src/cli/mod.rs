@@ -1,5 +1,6 @@
 //! Command-line arguments and dispatch.
 
+mod inspect;
 mod progress;
 mod run;
 
@@ -49,6 +50,8 @@ enum Command {
     },
     /// Print the JSON Schema of study files (for editors with the YAML language server).
     Schema,
+    /// Describe a topography file: format, grid, spacing, missing points, statistics.
+    Inspect(inspect::InspectArgs),
 }
 
 /// Where the cache lives.
@@ -97,6 +100,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             mermaid,
         } => plan(&study, &cache, dot, mermaid),
         Command::Validate { study } => validate(&study),
+        Command::Inspect(args) => inspect::inspect(args),
         Command::Schema => {
             print!("{}", asperity::nodes::study_schema_json());
             Ok(ExitCode::SUCCESS)

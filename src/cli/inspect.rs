@@ -1,0 +1,121 @@
+//! `asperity inspect FILE [--png OUT]`: what a topography file holds, its statistics, and
+//! optionally a height-map image.
+
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+
+use asperity::surface::io::{detect_format, parse_topography, LineScan, TopographyData};
+use asperity::surface::{amplitude_statistics, Boundary, HeightMap};
+
+/// Arguments of `asperity inspect`.
+#[derive(Debug, clap::Args)]
+pub struct InspectArgs {
+    /// The topography file.
+    file: PathBuf,
+    /// Write the height map as a PNG image (grey levels from the lowest to the highest point,
+    /// missing points in red).
+    #[arg(long, value_name = "OUT")]
+    png: Option<PathBuf>,
+}
+
+pub fn inspect(args: InspectArgs) -> Result<ExitCode> {
+    let bytes =
+        std::fs::read(&args.file).with_context(|| format!("cannot read {}", args.file.display()))?;
+    let format = detect_format(&args.file, &bytes).map(|f| f.name());
+    let topo = parse_topography(&args.file, &bytes)?;
+    println!("file:      {}", args.file.display());
+    println!("format:    {}", format.unwrap_or("?"));
+    if let Some(channel) = &topo.channel {
+        println!("channel:   {channel}");
+    }
+    match &topo.data {
+        TopographyData::Areal(map) => describe_map(map)?,
+        TopographyData::Line(line) => describe_line(line),
+    }
+    for (k, v) in &topo.metadata {
+        println!("  {k}: {v}");
+    }
+    if let Some(out) = &args.png {
+        match &topo.data {
+            TopographyData::Areal(map) => {
+                write_png(map, out)?;
+                println!("image:     {}", out.display());
+            }
+            TopographyData::Line(_) => anyhow::bail!("--png needs an areal topography, not a line scan"),
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn describe_map(map: &HeightMap) -> Result<()> {
+    let (lx, ly) = map.size();
+    println!("kind:      areal map");
+    println!("grid:      {} × {} points (nx × ny)", map.nx(), map.ny());
+    println!("spacing:   dx = {:.6e} m, dy = {:.6e} m", map.dx(), map.dy());
+    println!("size:      {lx:.6e} m × {ly:.6e} m");
+    println!("units:     heights and lengths in metres (converted from the file's units)");
+    let a = amplitude_statistics(map, Boundary::Open)?;
+    println!(
+        "missing:   {} of {} points ({:.3} %)",
+        a.missing_count,
+        a.missing_count + a.valid_count,
+        100.0 * a.missing_count as f64 / (a.missing_count + a.valid_count) as f64
+    );
+    println!("statistics over valid points, mean removed, no levelling (ISO 25178-2):");
+    println!("  Sq  = {:.9e} m", a.sq);
+    println!("  Sa  = {:.9e} m", a.sa);
+    println!("  Sp  = {:.9e} m", a.sp);
+    println!("  Sv  = {:.9e} m", a.sv);
+    println!("  Sz  = {:.9e} m", a.sz);
+    let opt = |v: Option<f64>| v.map_or(String::from("undefined"), |v| format!("{v:.7}"));
+    println!("  Ssk = {}", opt(a.ssk));
+    println!("  Sku = {}", opt(a.sku));
+    println!("  Sdq = {} (central differences)", opt(a.sdq));
+    println!(
+        "  Sdr = {} %",
+        a.sdr_percent.map_or(String::from("undefined"), |v| format!("{v:.5}"))
+    );
+    Ok(())
+}
+
+fn describe_line(line: &LineScan) {
+    let valid: Vec<f64> = line.z.iter().copied().filter(|z| !z.is_nan()).collect();
+    println!("kind:      line scan (profile)");
+    println!("points:    {} ({} missing)", line.z.len(), line.z.len() - valid.len());
+    if let (Some(first), Some(last)) = (line.x.first(), line.x.last()) {
+        println!("length:    {:.6e} m", last - first);
+    }
+    if !valid.is_empty() {
+        let mean = valid.iter().sum::<f64>() / valid.len() as f64;
+        let rq = (valid.iter().map(|z| (z - mean).powi(2)).sum::<f64>() / valid.len() as f64).sqrt();
+        println!("Rq (point average, no levelling) = {rq:.9e} m");
+    }
+}
+
+fn write_png(map: &HeightMap, out: &Path) -> Result<()> {
+    let z = map.heights();
+    let (lo, hi) = z
+        .iter()
+        .filter(|v| !v.is_nan())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    let span = if hi > lo { hi - lo } else { 1.0 };
+    let mut rgb = Vec::with_capacity(map.nx() * map.ny() * 3);
+    for v in z.iter() {
+        if v.is_nan() {
+            rgb.extend_from_slice(&[200, 0, 0]);
+        } else {
+            let g = (((v - lo) / span) * 255.0).round().clamp(0.0, 255.0) as u8;
+            rgb.extend_from_slice(&[g, g, g]);
+        }
+    }
+    let file = std::fs::File::create(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let mut encoder = png::Encoder::new(BufWriter::new(file), map.nx() as u32, map.ny() as u32);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header()?;
+    writer.write_image_data(&rgb)?;
+    Ok(())
+}
