@@ -4,8 +4,18 @@
 //! `NaN` (never zero). [`read_topography`] detects the format from magic bytes, then from the
 //! file extension, and wraps every failure in a [`ReadError`] that names the file.
 
+mod byte_cursor;
 mod error;
+mod npy;
+mod plu;
+mod sdf;
+mod sur;
+mod text;
+mod text_header;
+mod text_units;
 mod topography;
+mod x3p;
+mod x3p_xml;
 
 pub use error::{ParseError, ReadError};
 pub use topography::{LineScan, Topography, TopographyData};
@@ -14,30 +24,78 @@ use std::path::Path;
 
 /// A supported file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Format {}
+pub enum Format {
+    /// ISO 25178-72 X3P (zip with `main.xml`).
+    X3p,
+    /// ISO 25178-71 SDF, ASCII (`aISO-1.0`, `aISO-2.0`) or binary (`bISO-1.0`).
+    Sdf,
+    /// Digital Surf `.sur`.
+    Sur,
+    /// NumPy `.npy` array of heights in metres (see [`npy`](self) docs for spacing).
+    Npy,
+    /// Sensofar `.plu`.
+    Plu,
+    /// Text/CSV: matrix grid, x y z triples, or a 1-D line scan.
+    Text,
+}
 
 impl Format {
     /// Every supported format, in detection order.
-    pub const ALL: &'static [Format] = &[];
+    pub const ALL: &'static [Format] = &[
+        Format::X3p,
+        Format::Sdf,
+        Format::Sur,
+        Format::Npy,
+        Format::Plu,
+        Format::Text,
+    ];
 
     /// Short lowercase name ("x3p", "sdf", …).
     pub fn name(self) -> &'static str {
-        match self {}
+        match self {
+            Format::X3p => "x3p",
+            Format::Sdf => "sdf",
+            Format::Sur => "sur",
+            Format::Npy => "npy",
+            Format::Plu => "plu",
+            Format::Text => "text",
+        }
     }
 
     /// `true` when the first bytes of a file identify this format.
-    fn matches_magic(self, _head: &[u8]) -> bool {
-        match self {}
+    fn matches_magic(self, head: &[u8]) -> bool {
+        match self {
+            Format::X3p => x3p::matches_magic(head),
+            Format::Sdf => sdf::matches_magic(head),
+            Format::Sur => sur::matches_magic(head),
+            Format::Npy => npy::matches_magic(head),
+            Format::Plu => false,
+            Format::Text => false,
+        }
     }
 
     /// `true` when the (lowercase) file extension belongs to this format.
-    fn matches_extension(self, _ext: &str) -> bool {
-        match self {}
+    fn matches_extension(self, ext: &str) -> bool {
+        match self {
+            Format::X3p => ext == "x3p",
+            Format::Sdf => ext == "sdf",
+            Format::Sur => ext == "sur",
+            Format::Npy => ext == "npy",
+            Format::Plu => ext == "plu",
+            Format::Text => text::EXTENSIONS.contains(&ext),
+        }
     }
 
     /// Parses the whole file content.
-    fn parse(self, _bytes: &[u8]) -> Result<Topography, ParseError> {
-        match self {}
+    fn parse(self, bytes: &[u8]) -> Result<Topography, ParseError> {
+        match self {
+            Format::X3p => x3p::parse(bytes),
+            Format::Sdf => sdf::parse(bytes),
+            Format::Sur => sur::parse(bytes),
+            Format::Npy => npy::parse(bytes),
+            Format::Plu => plu::parse(bytes),
+            Format::Text => text::parse(bytes),
+        }
     }
 }
 
