@@ -8,13 +8,19 @@ use asperity::surface::io::{read_topography, Topography, TopographyData};
 use asperity::surface::HeightMap;
 
 /// The shared measured-topography folder: `$ASPERITY_TEST_DATA`, else
-/// `CARGO_MANIFEST_DIR/../shared/data/topography`. `None` (with a printed note) when absent;
-/// a panic when absent under CI, where the data must be present.
+/// `CARGO_MANIFEST_DIR/../shared/data/topography` (the main checkout), else
+/// `CARGO_MANIFEST_DIR/../../shared/data/topography` (a worktree one level deeper).
+/// `None` (with a printed note) when absent; a panic when absent under CI (env `CI` set),
+/// where the data must be present.
 pub fn data_dir() -> Option<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let candidates = std::env::var_os("ASPERITY_TEST_DATA")
         .map(PathBuf::from)
         .into_iter()
-        .chain([Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/topography")]);
+        .chain([
+            root.join("../shared/data/topography"),
+            root.join("../../shared/data/topography"),
+        ]);
     for dir in candidates {
         if dir.join("SOURCES.md").is_file() {
             return Some(dir);
