@@ -25,17 +25,24 @@ use std::path::Path;
 /// A supported file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Format {
-    /// ISO 25178-72 X3P (zip with `main.xml`).
+    /// ISO 25178-72 X3P: zip with `main.xml` and `bindata/`; int16/int32/float32/float64 heights,
+    /// validity bit mask, inline `DataList`; lateral offsets go to the metadata.
     X3p,
-    /// ISO 25178-71 SDF, ASCII (`aISO-1.0`, `aISO-2.0`) or binary (`bISO-1.0`).
+    /// ISO 25178-71 SDF: ASCII `aISO-1.0`/`aISO-2.0` (`BAD` = missing) or binary `bISO-1.0`.
     Sdf,
-    /// Digital Surf `.sur`.
+    /// Digital Surf `.sur` (uncompressed, int16/int32; non-measured points → NaN).
     Sur,
-    /// NumPy `.npy` array of heights in metres (see [`npy`](self) docs for spacing).
+    /// NumPy `.npy` (f4/f8/i1/i2/i4/u1/u2/u4, either byte order): heights in metres, `NaN` =
+    /// missing. A plain `.npy` has no spacing: it is read as **1 pixel = 1 m** and the metadata
+    /// key `spacing_assumed` is `"true"`; the caller must apply the real pixel size.
     Npy,
-    /// Sensofar `.plu`.
+    /// Sensofar `.plu` (float32 µm heights; 1 000 001 µm = not measured).
     Plu,
-    /// Text/CSV: matrix grid, x y z triples, or a 1-D line scan.
+    /// Text/CSV: a matrix grid (header styles `h= w=` / `pixel size=` /
+    /// `height conversion factor (-> m)=`, or Gwyddion `# Width:` / `# Value units:`), x y z
+    /// triples, or a 2-column line scan (returned as [`TopographyData::Line`]). Without a
+    /// spacing or height unit in the file, 1 m is assumed and the metadata keys
+    /// `spacing_assumed` / `height_unit_assumed` are `"true"`.
     Text,
 }
 

@@ -191,12 +191,18 @@ fn parse_ascii(bytes: &[u8]) -> Result<Topography, ParseError> {
     header.check()?;
     header.sample_type()?;
     // Each value takes at least two bytes ("0 "), so a header claiming more cannot be right.
-    let n = check_block_size(
-        header.num_points,
-        header.num_profiles,
-        bytes.len() / 2 + 1,
-        "sdf: NumPoints × NumProfiles",
-    )?;
+    let n = header
+        .num_points
+        .checked_mul(header.num_profiles)
+        .filter(|&n| n <= bytes.len() / 2 + 1)
+        .ok_or_else(|| {
+            ParseError::truncated(format!(
+                "sdf: header claims {} × {} values, a {} byte file cannot hold them",
+                header.num_points,
+                header.num_profiles,
+                bytes.len()
+            ))
+        })?;
     let mut values = Vec::with_capacity(n);
     let mut data_closed = false;
     for line in lines {

@@ -54,7 +54,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let max_len = bytes.len().saturating_mul(MAX_DEFLATE_RATIO);
     let main_xml = find_main_xml(&archive)?;
     let folder = main_xml.trim_end_matches("main.xml").to_string();
-    let xml = read_entry(&mut archive, &main_xml, max_len)?;
+    let xml = read_entry(&mut archive, &main_xml, EntrySize::AtMost(max_len))?;
     let doc = X3pDocument::parse(&xml)?;
 
     let feature = doc.get("Record1/FeatureType").unwrap_or("SUR").to_string();
@@ -87,15 +87,8 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
 
     let mut heights: Vec<f64> = if let Some(link) = doc.get("Record3/DataLink/PointDataLink") {
         let name = format!("{folder}{link}");
-        let raw = read_entry(&mut archive, &name, max_len)?;
         let expected = n * z_axis.sample.size();
-        if raw.len() != expected {
-            return Err(ParseError::malformed(format!(
-                "x3p: {name} holds {} bytes, but {nx} × {ny} {:?} values need {expected}",
-                raw.len(),
-                z_axis.sample
-            )));
-        }
+        let raw = read_entry(&mut archive, &name, EntrySize::Exactly(expected))?;
         let values = decode_samples(&raw, n, z_axis.sample, Endian::Little, "x3p point data")?;
         values.into_iter().map(|v| z_axis.to_metres(v)).collect()
     } else if let Some(list) = &doc.data_list {
@@ -116,7 +109,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
 
     if let Some(link) = doc.get("Record3/DataLink/ValidPointsLink") {
         let name = format!("{folder}{link}");
-        let mask = read_entry(&mut archive, &name, max_len)?;
+        let mask = read_entry(&mut archive, &name, EntrySize::AtMost(max_len))?;
         apply_validity_mask(&mut heights, &mask, &name)?;
     }
 
@@ -255,11 +248,24 @@ fn find_main_xml(archive: &ZipArchive<Cursor<&[u8]>>) -> Result<String, ParseErr
         .ok_or_else(|| ParseError::malformed("x3p: the archive has no main.xml"))
 }
 
-/// Decompresses one archive entry, refusing entries larger than `max_len`.
+/// The size an archive entry must have.
+#[derive(Debug, Clone, Copy)]
+enum EntrySize {
+    /// Exactly this many bytes (point data: matrix size × sample size).
+    Exactly(usize),
+    /// At most this many bytes (the deflate-ratio bound).
+    AtMost(usize),
+}
+
+/// Largest buffer reserved before decompressing; bigger entries grow as real data arrives,
+/// so a lying size field alone cannot trigger a huge allocation.
+const MAX_RESERVE: usize = 1 << 26;
+
+/// Decompresses one archive entry after checking its declared size.
 fn read_entry(
     archive: &mut ZipArchive<Cursor<&[u8]>>,
     name: &str,
-    max_len: usize,
+    size: EntrySize,
 ) -> Result<Vec<u8>, ParseError> {
     let index = archive
         .index_for_name(name)
@@ -268,14 +274,23 @@ fn read_entry(
         .by_index(index)
         .map_err(|e| ParseError::malformed(format!("x3p: cannot open {name}: {e}")))?;
     let claimed = usize::try_from(file.size()).unwrap_or(usize::MAX);
-    if claimed > max_len {
-        return Err(ParseError::malformed(format!(
-            "x3p: {name} claims {claimed} bytes uncompressed, impossible for this file size"
-        )));
-    }
-    let mut out = Vec::with_capacity(claimed);
+    let limit = match size {
+        EntrySize::Exactly(expected) if claimed != expected => {
+            return Err(ParseError::malformed(format!(
+                "x3p: {name} holds {claimed} bytes, the matrix size and data type need {expected}"
+            )))
+        }
+        EntrySize::Exactly(expected) => expected,
+        EntrySize::AtMost(max) if claimed > max => {
+            return Err(ParseError::malformed(format!(
+                "x3p: {name} claims {claimed} bytes uncompressed, impossible for this file size"
+            )))
+        }
+        EntrySize::AtMost(max) => max,
+    };
+    let mut out = Vec::with_capacity(claimed.min(MAX_RESERVE));
     (&mut file)
-        .take(max_len as u64 + 1)
+        .take(limit as u64 + 1)
         .read_to_end(&mut out)
         .map_err(|e| {
             ParseError::malformed(format!("x3p: cannot decompress {name} (corrupted?): {e}"))
