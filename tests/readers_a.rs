@@ -450,3 +450,54 @@ fn npy_round_trip_of_a_real_map() {
     assert_eq!(back.heights(), map.heights());
     assert_eq!((back.dx(), back.dy()), (1.0, 1.0));
 }
+
+/// A minimal X3P written in memory with `main_xml` and an optional binary point file.
+fn x3p_bytes(main_xml: &str, data: Option<&[u8]>) -> Vec<u8> {
+    use std::io::Write;
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let options = zip::write::SimpleFileOptions::default();
+    zip.start_file("main.xml", options).unwrap();
+    zip.write_all(main_xml.as_bytes()).unwrap();
+    if let Some(data) = data {
+        zip.start_file("bindata/data.bin", options).unwrap();
+        zip.write_all(data).unwrap();
+    }
+    zip.finish().unwrap().into_inner()
+}
+
+const PROFILE_XML: &str = "<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\">\
+    <Record1><Revision>ISO5436 - 2000</Revision><FeatureType>PRF</FeatureType><Axes>\
+    <CX><AxisType>I</AxisType><DataType>D</DataType><Increment>0.5e-6</Increment><Offset>0</Offset></CX>\
+    <CY><AxisType>I</AxisType><DataType>D</DataType><Increment>1</Increment><Offset>0</Offset></CY>\
+    <CZ><AxisType>A</AxisType><DataType>I</DataType><Increment>0.25e-6</Increment><Offset>-1e-6</Offset></CZ>\
+    </Axes></Record1><Record3><MatrixDimension><SizeX>3</SizeX><SizeY>1</SizeY><SizeZ>1</SizeZ>\
+    </MatrixDimension><DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink></Record3>\
+    </p:ISO5436_2>";
+
+#[test]
+fn x3p_profile_becomes_a_line_scan_and_bad_layouts_are_refused() {
+    let data: Vec<u8> = [4i16, 8, -4].iter().flat_map(|v| v.to_le_bytes()).collect();
+    let path = std::path::Path::new("profile.x3p");
+    let t = asperity::surface::io::parse_topography(path, &x3p_bytes(PROFILE_XML, Some(&data)))
+        .expect("profile must read");
+    let TopographyData::Line(line) = t.data else {
+        panic!("a PRF file is a line scan")
+    };
+    // z = raw · 0.25e-6 − 1e-6, x = i · 0.5e-6: raw and i are powers of two times small
+    // integers, so every product is exact and the comparison can be exact too.
+    assert_eq!(line.x, vec![0.0, 0.5e-6, 1.0e-6]);
+    assert_eq!(line.z, vec![0.0, 1e-6, -2e-6]);
+
+    // int16 data but 4 bytes too many: the size check names the entry.
+    let mut long = data.clone();
+    long.extend([0, 0, 0, 0]);
+    let err = asperity::surface::io::parse_topography(path, &x3p_bytes(PROFILE_XML, Some(&long)))
+        .unwrap_err();
+    assert!(err.to_string().contains("bindata/data.bin"), "{err}");
+
+    // Point clouds are refused as unsupported, not misread.
+    let cloud = PROFILE_XML.replace("<FeatureType>PRF", "<FeatureType>PCL");
+    let err =
+        asperity::surface::io::parse_topography(path, &x3p_bytes(&cloud, Some(&data))).unwrap_err();
+    assert!(err.to_string().contains("unsupported"), "{err}");
+}
