@@ -206,3 +206,19 @@ fn lying_headers_are_refused_cheaply() {
     let err = parse_topography(Path::new("lie.sur"), &sur).unwrap_err();
     assert!(err.to_string().contains("truncated"), "{err}");
 }
+
+/// npy has no real sample file: a 40 × 30 float64 map built here, cut at every length.
+#[test]
+fn truncated_npy_is_an_error_at_every_length() {
+    let dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (30, 40), }";
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend((dict.len() as u16).to_le_bytes());
+    bytes.extend(dict.as_bytes());
+    bytes.extend((0..1200).flat_map(|i| (f64::from(i) * 1e-9).to_le_bytes()));
+    let path = Path::new("map.npy");
+    assert!(parse_topography(path, &bytes).is_ok());
+    for cut in 0..bytes.len() {
+        let err = parse_topography(path, &bytes[..cut]).expect_err("a cut npy must fail");
+        assert!(err.to_string().contains("map.npy"), "{err}");
+    }
+}
