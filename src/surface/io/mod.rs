@@ -13,6 +13,16 @@ pub mod nanoscope;
 pub mod opd;
 mod topography;
 pub mod zon;
+mod byte_cursor;
+mod npy;
+mod plu;
+mod sdf;
+mod sur;
+mod text;
+mod text_header;
+mod text_units;
+mod x3p;
+mod x3p_xml;
 
 pub use error::{ParseError, ReadError};
 pub use topography::{LineScan, Topography, TopographyData};
@@ -36,6 +46,25 @@ pub enum Format {
     Al3d,
     /// Keyence `.zon`.
     Zon,
+    /// ISO 25178-72 X3P: zip with `main.xml` and `bindata/`; int16/int32/float32/float64 heights,
+    /// validity bit mask, inline `DataList`; lateral offsets go to the metadata.
+    X3p,
+    /// ISO 25178-71 SDF: ASCII `aISO-1.0`/`aISO-2.0` (`BAD` = missing) or binary `bISO-1.0`.
+    Sdf,
+    /// Digital Surf `.sur` (uncompressed, int16/int32; non-measured points → NaN).
+    Sur,
+    /// NumPy `.npy` (f4/f8/i1/i2/i4/u1/u2/u4, either byte order): heights in metres, `NaN` =
+    /// missing. A plain `.npy` has no spacing: it is read as **1 pixel = 1 m** and the metadata
+    /// key `spacing_assumed` is `"true"`; the caller must apply the real pixel size.
+    Npy,
+    /// Sensofar `.plu` (float32 µm heights; 1 000 001 µm = not measured).
+    Plu,
+    /// Text/CSV: a matrix grid (header styles `h= w=` / `pixel size=` /
+    /// `height conversion factor (-> m)=`, or Gwyddion `# Width:` / `# Value units:`), x y z
+    /// triples, or a 2-column line scan (returned as [`TopographyData::Line`]). Without a
+    /// spacing or height unit in the file, 1 m is assumed and the metadata keys
+    /// `spacing_assumed` / `height_unit_assumed` are `"true"`.
+    Text,
 }
 
 impl Format {
@@ -48,6 +77,12 @@ impl Format {
         Format::Gwy,
         Format::Al3d,
         Format::Zon,
+        Format::X3p,
+        Format::Sdf,
+        Format::Sur,
+        Format::Npy,
+        Format::Plu,
+        Format::Text,
     ];
 
     /// Short lowercase name ("x3p", "sdf", …).
@@ -60,6 +95,12 @@ impl Format {
             Format::Gwy => "gwy",
             Format::Al3d => "al3d",
             Format::Zon => "zon",
+            Format::X3p => "x3p",
+            Format::Sdf => "sdf",
+            Format::Sur => "sur",
+            Format::Npy => "npy",
+            Format::Plu => "plu",
+            Format::Text => "text",
         }
     }
 
@@ -73,6 +114,12 @@ impl Format {
             Format::Gwy => gwy::matches_magic(head),
             Format::Al3d => al3d::matches_magic(head),
             Format::Zon => zon::matches_magic(head),
+            Format::X3p => x3p::matches_magic(head),
+            Format::Sdf => sdf::matches_magic(head),
+            Format::Sur => sur::matches_magic(head),
+            Format::Npy => npy::matches_magic(head),
+            Format::Plu => false,
+            Format::Text => false,
         }
     }
 
@@ -86,6 +133,12 @@ impl Format {
             Format::Gwy => ext == "gwy",
             Format::Al3d => ext == "al3d",
             Format::Zon => ext == "zon",
+            Format::X3p => ext == "x3p",
+            Format::Sdf => ext == "sdf",
+            Format::Sur => ext == "sur",
+            Format::Npy => ext == "npy",
+            Format::Plu => ext == "plu",
+            Format::Text => text::EXTENSIONS.contains(&ext),
         }
     }
 
@@ -99,6 +152,12 @@ impl Format {
             Format::Gwy => gwy::parse(bytes),
             Format::Al3d => al3d::parse(bytes),
             Format::Zon => zon::parse(bytes),
+            Format::X3p => x3p::parse(bytes),
+            Format::Sdf => sdf::parse(bytes),
+            Format::Sur => sur::parse(bytes),
+            Format::Npy => npy::parse(bytes),
+            Format::Plu => plu::parse(bytes),
+            Format::Text => text::parse(bytes),
         }
     }
 }

@@ -1,0 +1,202 @@
+//! Digital Surf `.sur` reader (MountainsMap surface file, uncompressed, first object).
+//!
+//! Layout: a 512-byte little-endian header, then `comment_size` bytes of comment and
+//! `private_size` bytes of private zone, then `xres × yres` signed integers of `pointsize` bits
+//! (16 or 32), x fastest. Header fields used (byte offsets):
+//!
+//! | offset | field |
+//! |---|---|
+//! | 0 | signature `DIGITAL SURF` (`DSCOMPRESSED` = zlib-compressed variant, not read) |
+//! | 12 | format (0 = PC byte order) |
+//! | 86 | `special_points` (≠ 0: the file contains non-measured points) |
+//! | 98, 100, 104 | `pointsize`, `zmin`, `zmax` (raw integers) |
+//! | 108, 112, 116 | `xres`, `yres`, number of points |
+//! | 120, 124, 128 | `dx`, `dy`, `dz` (float32, in the step units below) |
+//! | 180, 196, 212 | step units of x, y, z (16 chars each, e.g. `µm`, `nm`) |
+//! | 276 … 284 | ratios between step and length units (informative only) |
+//! | 334, 336 | comment size, private-zone size |
+//! | 474 | `ZOffset` (float32, z length unit) |
+//!
+//! Spacing = dx · unit(dx) (m); height = raw · dz · unit(dz) (m). As in MountainsMap, the raw
+//! value `zmin − 2` marks a non-measured point when `special_points ≠ 0`; this reader treats
+//! any raw value below `zmin` as non-measured (`NaN`), since it contradicts the header's own
+//! minimum. `ZOffset` is reported in the metadata, not added to the heights.
+
+use std::collections::BTreeMap;
+
+use ndarray::Array2;
+
+use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
+use super::text_units::length_unit_to_metres;
+use super::{ParseError, Topography, TopographyData};
+use crate::surface::HeightMap;
+
+const HEADER_SIZE: usize = 512;
+
+/// `true` for a Digital Surf signature.
+pub(crate) fn matches_magic(head: &[u8]) -> bool {
+    head.starts_with(b"DIGITAL SURF") || head.starts_with(b"DSCOMPRESSED")
+}
+
+/// Parses a Digital Surf `.sur` file.
+pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+    let le = Endian::Little;
+    let mut c = ByteCursor::new(bytes);
+    let signature = c.text(12, "sur signature")?;
+    if signature == "DSCOMPRESSED" {
+        return Err(ParseError::unsupported(
+            "sur: compressed (DSCOMPRESSED) files",
+        ));
+    }
+    if signature != "DIGITAL SURF" {
+        return Err(ParseError::malformed(format!(
+            "sur: signature {signature:?} is not \"DIGITAL SURF\""
+        )));
+    }
+    if bytes.len() < HEADER_SIZE {
+        return Err(ParseError::truncated(format!(
+            "sur: header needs {HEADER_SIZE} bytes, file has {}",
+            bytes.len()
+        )));
+    }
+    let byte_order = c.u16(le, "sur format")?;
+    if byte_order != 0 {
+        return Err(ParseError::unsupported(format!(
+            "sur: format {byte_order} (only PC byte order 0 is read)"
+        )));
+    }
+    let mut meta = BTreeMap::new();
+    let n_objects = c.u16(le, "sur object count")?;
+    meta.insert("sur_objects".into(), n_objects.to_string());
+    meta.insert("sur_version".into(), c.u16(le, "sur version")?.to_string());
+    meta.insert(
+        "sur_studiable_type".into(),
+        c.u16(le, "sur type")?.to_string(),
+    );
+    meta.insert("object_name".into(), c.text(30, "sur object name")?);
+    meta.insert("operator".into(), c.text(30, "sur operator name")?);
+    c.seek(82, "sur acquisition type")?;
+    meta.insert(
+        "sur_acquisition".into(),
+        c.u16(le, "sur acquisition")?.to_string(),
+    );
+    c.seek(86, "sur special points")?;
+    let special_points = c.u16(le, "sur special points")?;
+    c.seek(98, "sur point size")?;
+    let point_size = c.u16(le, "sur point size")?;
+    let zmin = c.i32(le, "sur zmin")?;
+    let zmax = c.i32(le, "sur zmax")?;
+    let xres = positive(c.i32(le, "sur xres")?, "xres")?;
+    let yres = positive(c.i32(le, "sur yres")?, "yres")?;
+    let n_points = c.u32(le, "sur number of points")? as usize;
+    let dx = f64::from(c.f32(le, "sur dx")?);
+    let dy = f64::from(c.f32(le, "sur dy")?);
+    let dz = f64::from(c.f32(le, "sur dz")?);
+    c.seek(180, "sur units")?;
+    let x_unit = c.text(16, "sur x step unit")?;
+    let y_unit = c.text(16, "sur y step unit")?;
+    let z_unit = c.text(16, "sur z step unit")?;
+    c.seek(288, "sur flags")?;
+    meta.insert("sur_imprint".into(), c.u16(le, "sur imprint")?.to_string());
+    meta.insert(
+        "sur_inversion".into(),
+        c.u16(le, "sur inversion")?.to_string(),
+    );
+    meta.insert(
+        "sur_leveling".into(),
+        c.u16(le, "sur leveling")?.to_string(),
+    );
+    c.seek(306, "sur date")?;
+    let mut date = [0u16; 6];
+    for d in &mut date {
+        *d = c.u16(le, "sur date")?;
+    }
+    let [sec, min, hour, day, month, year] = date;
+    if year != 0 {
+        meta.insert(
+            "date".into(),
+            format!("{year:04}-{month:02}-{day:02}T{hour:02}:{min:02}:{sec:02}"),
+        );
+    }
+    c.seek(334, "sur zone sizes")?;
+    let comment_size = usize::from(c.u16(le, "sur comment size")?);
+    let private_size = usize::from(c.u16(le, "sur private size")?);
+    c.seek(474, "sur z offset")?;
+    meta.insert("z_offset".into(), c.f32(le, "sur z offset")?.to_string());
+
+    let sample = match point_size {
+        16 => SampleType::I16,
+        32 => SampleType::I32,
+        other => {
+            return Err(ParseError::malformed(format!(
+                "sur: point size {other} bits (expected 16 or 32)"
+            )))
+        }
+    };
+    let n = xres
+        .checked_mul(yres)
+        .ok_or_else(|| ParseError::malformed("sur: xres × yres overflows"))?;
+    if n_points != n {
+        return Err(ParseError::malformed(format!(
+            "sur: header says {n_points} points, but xres × yres = {xres} × {yres} = {n}"
+        )));
+    }
+    let dx_m = step_in_metres(dx, &x_unit, "x")?;
+    let dy_m = step_in_metres(dy, &y_unit, "y")?;
+    let dz_m = step_in_metres(dz, &z_unit, "z")?;
+
+    c.seek(HEADER_SIZE, "sur comment")?;
+    let comment = c.take(comment_size, "sur comment")?;
+    meta.insert(
+        "comment".into(),
+        String::from_utf8_lossy(comment).trim().to_string(),
+    );
+    c.take(private_size, "sur private zone")?;
+    let block = check_block_size(n, sample.size(), c.remaining(), "sur height data")?;
+    let raw = decode_samples(c.take(block, "sur height data")?, n, sample, le, "sur")?;
+    let threshold = f64::from(zmin);
+    let heights: Vec<f64> = raw
+        .into_iter()
+        .map(|r| {
+            if special_points != 0 && r < threshold {
+                f64::NAN
+            } else {
+                r * dz_m
+            }
+        })
+        .collect();
+    meta.insert("z_unit".into(), z_unit);
+    meta.insert("raw_zmin".into(), zmin.to_string());
+    meta.insert("raw_zmax".into(), zmax.to_string());
+    let grid = Array2::from_shape_vec((yres, xres), heights)
+        .map_err(|e| ParseError::malformed(format!("sur: grid shape: {e}")))?;
+    let map =
+        HeightMap::new(grid, dx_m, dy_m).map_err(|e| ParseError::malformed(format!("sur: {e}")))?;
+    Ok(Topography {
+        data: TopographyData::Areal(map),
+        channel: None,
+        metadata: meta,
+    })
+}
+
+fn positive(v: i32, name: &str) -> Result<usize, ParseError> {
+    usize::try_from(v)
+        .ok()
+        .filter(|&v| v > 0)
+        .ok_or_else(|| ParseError::malformed(format!("sur: {name} = {v} is not > 0")))
+}
+
+/// A step (`dx`, `dy`, `dz`) converted to metres with its unit name.
+fn step_in_metres(step: f64, unit: &str, axis: &str) -> Result<f64, ParseError> {
+    let factor = length_unit_to_metres(unit).ok_or_else(|| {
+        ParseError::unsupported(format!("sur: {axis} unit {unit:?} is not a length unit"))
+    })?;
+    let v = step * factor;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(ParseError::malformed(format!(
+            "sur: {axis} step {step} {unit} is not > 0"
+        )))
+    }
+}

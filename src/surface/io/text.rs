@@ -1,0 +1,284 @@
+//! Text and CSV topography reader: matrix grids, x y z triples and 1-D line scans.
+//!
+//! The file is split into header lines (any line with a non-numeric token) and data lines
+//! (only numbers, separated by whitespace, `,` or `;`; empty fields are skipped). Header lines
+//! must all come before the data; a text line inside the data block is an error (it usually
+//! means corruption). Every data line must have the same number of values.
+//!
+//! * **2 columns** → a line scan `x, z` (x strictly increasing, may be non-uniform), returned as
+//!   [`LineScan`]. Units come from the column-header line just above the data (e.g. the Dektak
+//!   CSV `Lateral um,Raw Micrometer`), else metres.
+//! * **3 columns** whose first two columns form a regular x-y grid → x y z triples; grid
+//!   points absent from the list are missing (`NaN`). Lengths in metres.
+//! * anything else → a **matrix**, one row per line (row = y, x fastest). Header styles read:
+//!   * `h=305 w=75`, `pixel size=3.69862e-007 m`, `data unit=rad`,
+//!     `height conversion factor (-> m)=2.91818e-008` (heights = value × factor);
+//!   * Gwyddion ASCII export: `# Width: 10.00 µm`, `# Height: 10.00 µm`, `# Value units: m`,
+//!     `# Channel: ZSensor` (dx = Width / columns, dy = Height / rows).
+//!
+//! Without a spacing in the header the spacing is 1 m per pixel and the metadata key
+//! `spacing_assumed` is `"true"`; without a height unit heights are metres and
+//! `height_unit_assumed` is `"true"`. The caller must then supply the real values.
+//! `nan` values are missing points.
+
+use std::collections::BTreeMap;
+
+use ndarray::Array2;
+
+use super::text_header::{column_units, TextHeader};
+use super::{LineScan, ParseError, Topography, TopographyData};
+use crate::surface::HeightMap;
+
+/// File extensions handled by this reader.
+pub(crate) const EXTENSIONS: &[&str] = &["txt", "csv", "asc", "xyz", "tsv"];
+
+/// Parses a text topography file.
+pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+    let text = match std::str::from_utf8(bytes) {
+        Ok(s) => std::borrow::Cow::Borrowed(s),
+        // Old exporters write `µ` as the Latin-1 byte 0xB5.
+        Err(_) => std::borrow::Cow::Owned(bytes.iter().map(|&b| char::from(b)).collect()),
+    };
+    if text.contains('\0') {
+        return Err(ParseError::malformed(
+            "text: file contains NUL bytes (binary, not text)",
+        ));
+    }
+    let mut header_lines: Vec<&str> = Vec::new();
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    let mut first_data_line = 0;
+    for (index, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() {
+            continue;
+        }
+        match numeric_row(line) {
+            Some(values) => {
+                if let Some(first) = rows.first() {
+                    if values.len() != first.len() {
+                        return Err(ParseError::malformed(format!(
+                            "text: line {} has {} values, the data lines before have {}",
+                            index + 1,
+                            values.len(),
+                            first.len()
+                        )));
+                    }
+                } else {
+                    first_data_line = index + 1;
+                }
+                rows.push(values);
+            }
+            None if rows.is_empty() => header_lines.push(line),
+            None => {
+                return Err(ParseError::malformed(format!(
+                    "text: line {} ({:?}) is not numeric, inside the data block that starts at line {first_data_line}",
+                    index + 1,
+                    truncate_for_message(line)
+                )))
+            }
+        }
+    }
+    let Some(columns) = rows.first().map(Vec::len) else {
+        return Err(ParseError::malformed("text: no numeric data lines"));
+    };
+    let header = TextHeader::parse(&header_lines)?;
+    if columns == 2 && !header.describes_matrix() {
+        return line_scan(&rows, header_lines.last().copied());
+    }
+    if columns == 3 && !header.describes_matrix() {
+        if let Some(t) = xyz_grid(&rows)? {
+            return Ok(t);
+        }
+    }
+    matrix(rows, columns, &header)
+}
+
+/// The numbers of a data line, `None` when any non-empty field is not a number.
+fn numeric_row(line: &str) -> Option<Vec<f64>> {
+    let mut out = Vec::new();
+    for token in line.split(|c: char| c.is_whitespace() || c == ',' || c == ';') {
+        if token.is_empty() {
+            continue;
+        }
+        let v: f64 = token.parse().ok()?;
+        out.push(if v.is_finite() { v } else { f64::NAN });
+    }
+    (!out.is_empty()).then_some(out)
+}
+
+fn truncate_for_message(line: &str) -> String {
+    line.chars().take(60).collect()
+}
+
+fn line_scan(rows: &[Vec<f64>], column_header: Option<&str>) -> Result<Topography, ParseError> {
+    let (x_factor, z_factor, assumed) = match column_header.and_then(column_units) {
+        Some((x, z)) => (x, z, false),
+        None => (1.0, 1.0, true),
+    };
+    let mut x = Vec::with_capacity(rows.len());
+    let mut z = Vec::with_capacity(rows.len());
+    for (i, row) in rows.iter().enumerate() {
+        let xi = row[0] * x_factor;
+        if xi.is_nan() || x.last().is_some_and(|&prev| xi <= prev) {
+            return Err(ParseError::malformed(format!(
+                "text: line-scan position {} at data row {} is not increasing",
+                row[0],
+                i + 1
+            )));
+        }
+        x.push(xi);
+        z.push(row[1] * z_factor);
+    }
+    if x.len() < 2 {
+        return Err(ParseError::malformed(
+            "text: a line scan needs at least 2 points",
+        ));
+    }
+    let mut metadata = BTreeMap::new();
+    if assumed {
+        metadata.insert("spacing_assumed".into(), "true".into());
+        metadata.insert("height_unit_assumed".into(), "true".into());
+    }
+    Ok(Topography {
+        data: TopographyData::Line(LineScan { x, z }),
+        channel: None,
+        metadata,
+    })
+}
+
+/// x y z triples on a regular grid; `None` when the x, y columns do not form one.
+fn xyz_grid(rows: &[Vec<f64>]) -> Result<Option<Topography>, ParseError> {
+    let Some(xs) = regular_axis(rows.iter().map(|r| r[0])) else {
+        return Ok(None);
+    };
+    let Some(ys) = regular_axis(rows.iter().map(|r| r[1])) else {
+        return Ok(None);
+    };
+    let (nx, ny) = (xs.count, ys.count);
+    // A sparse list must not make us allocate a huge grid: require ≥ 1/4 of it present.
+    if nx < 2 || ny < 2 || nx.saturating_mul(ny) > rows.len().saturating_mul(4) {
+        return Ok(None);
+    }
+    let mut grid = Array2::from_elem((ny, nx), f64::NAN);
+    for row in rows {
+        let ix = ((row[0] - xs.start) / xs.step).round() as usize;
+        let iy = ((row[1] - ys.start) / ys.step).round() as usize;
+        if let Some(cell) = grid.get_mut([iy, ix]) {
+            *cell = row[2];
+        }
+    }
+    let map = HeightMap::new(grid, xs.step, ys.step)
+        .map_err(|e| ParseError::malformed(format!("text: x y z grid: {e}")))?;
+    let mut metadata = BTreeMap::new();
+    metadata.insert("layout".into(), "xyz".into());
+    metadata.insert("height_unit_assumed".into(), "true".into());
+    metadata.insert("x_offset_m".into(), xs.start.to_string());
+    metadata.insert("y_offset_m".into(), ys.start.to_string());
+    Ok(Some(Topography {
+        data: TopographyData::Areal(map),
+        channel: None,
+        metadata,
+    }))
+}
+
+/// A regularly spaced set of coordinates.
+struct RegularAxis {
+    start: f64,
+    step: f64,
+    count: usize,
+}
+
+/// The distinct values of `values` if they are equally spaced (relative tolerance 1e-6 of
+/// the step, enough for coordinates printed with 7 significant digits).
+fn regular_axis(values: impl Iterator<Item = f64>) -> Option<RegularAxis> {
+    let mut v: Vec<f64> = values.collect();
+    if v.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    let (&first, &last) = (v.first()?, v.last()?);
+    if v.len() < 2 {
+        return None;
+    }
+    let step = (last - first) / (v.len() - 1) as f64;
+    let regular = v
+        .iter()
+        .enumerate()
+        .all(|(i, &x)| (x - (first + i as f64 * step)).abs() <= 1e-6 * step);
+    regular.then_some(RegularAxis {
+        start: first,
+        step,
+        count: v.len(),
+    })
+}
+
+fn matrix(
+    rows: Vec<Vec<f64>>,
+    columns: usize,
+    header: &TextHeader,
+) -> Result<Topography, ParseError> {
+    let n_rows = rows.len();
+    if let Some((h, w)) = header.rows_columns {
+        if w != columns {
+            return Err(ParseError::malformed(format!(
+                "text: header says w={w} columns, data lines have {columns}"
+            )));
+        }
+        if h != n_rows {
+            return Err(ParseError::truncated(format!(
+                "text: header says h={h} rows, file has {n_rows}"
+            )));
+        }
+    }
+    let mut metadata = header.metadata.clone();
+    let (dx, dy) = match header.spacing(columns, n_rows) {
+        Some(s) => s,
+        None => {
+            metadata.insert("spacing_assumed".into(), "true".into());
+            (1.0, 1.0)
+        }
+    };
+    let z_factor = match header.height_factor()? {
+        Some(f) => f,
+        None => {
+            metadata.insert("height_unit_assumed".into(), "true".into());
+            1.0
+        }
+    };
+    let values: Vec<f64> = rows.into_iter().flatten().map(|v| v * z_factor).collect();
+    let grid = Array2::from_shape_vec((n_rows, columns), values)
+        .map_err(|e| ParseError::malformed(format!("text: grid shape: {e}")))?;
+    let map =
+        HeightMap::new(grid, dx, dy).map_err(|e| ParseError::malformed(format!("text: {e}")))?;
+    Ok(Topography {
+        data: TopographyData::Areal(map),
+        channel: header.channel.clone(),
+        metadata,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn xyz_triples_with_a_missing_point() {
+        let text = "0 0 1\n1e-6 0 2\n0 2e-6 3\n";
+        let t = parse(text.as_bytes()).unwrap();
+        let TopographyData::Areal(m) = t.data else {
+            panic!("expected an areal map")
+        };
+        assert_eq!((m.nx(), m.ny(), m.dx(), m.dy()), (2, 2, 1e-6, 2e-6));
+        assert_eq!(m.missing_count(), 1);
+        assert_eq!(m.heights()[[1, 0]], 3.0);
+    }
+
+    #[test]
+    fn text_inside_data_is_an_error() {
+        let err = parse(b"1 2 3 4\n5 6 x 8\n").unwrap_err();
+        assert!(err.to_string().contains("line 2"), "{err}");
+        let err = parse(b"1 2 3 4\n5 6 7\n").unwrap_err();
+        assert!(err.to_string().contains("3 values"), "{err}");
+    }
+}
