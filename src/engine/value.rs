@@ -19,12 +19,17 @@ pub enum ParamValue {
 }
 
 impl ParamValue {
-    /// Interprets a string: a quantity with units ("1.19 um") or plain text.
-    pub fn from_text(text: &str) -> Self {
+    /// Interprets a string: a quantity with units ("1.19 um"), a number, or plain text. Text that
+    /// starts like a number but is not a valid quantity ("3 mpa", "1e400 m") is an error, not
+    /// silently text.
+    pub fn from_text(text: &str) -> Result<Self, String> {
         match crate::units::parse_quantity(text) {
-            Ok(v) if v.dimension != Dimension::Dimensionless => ParamValue::Quantity(v),
-            Ok(v) => ParamValue::Number(v.si),
-            Err(_) => ParamValue::Text(text.to_string()),
+            Ok(v) if v.dimension != Dimension::Dimensionless => Ok(ParamValue::Quantity(v)),
+            Ok(v) => Ok(ParamValue::Number(v.si)),
+            Err(crate::units::UnitError::NotAQuantity { .. }) => {
+                Ok(ParamValue::Text(text.to_string()))
+            }
+            Err(e) => Err(e.to_string()),
         }
     }
 
@@ -50,7 +55,7 @@ impl ParamValue {
             ParamValue::Int(_) => "integer",
             ParamValue::Number(_) => "number",
             ParamValue::Quantity(q) => q.dimension.name(),
-            ParamValue::Text(_) => "text",
+            ParamValue::Text(_) => "text value",
             ParamValue::Bool(_) => "boolean",
             ParamValue::List(_) => "list",
         }

@@ -82,18 +82,35 @@ impl StudyError {
                 "duplicate key{}: each key may appear only once in a mapping",
                 key.as_ref().map(|k| format!(" '{k}'")).unwrap_or_default()
             ),
+            serde_saphyr::Error::MultipleDocuments { .. } => String::from(
+                "a study file holds exactly one YAML document; remove the '---' separator and what follows",
+            ),
+            serde_saphyr::Error::SerdeMissingField { field, .. } => format!(
+                "missing required key '{field}' in the mapping that ends here; see docs/study-format.md"
+            ),
             other => strip_location_suffix(&other.to_string()),
         };
         Self::at(path, source, location, "", message)
     }
 }
 
+/// Drops a trailing " at line L, column C" (we print the location ourselves); anything else is
+/// kept as it is.
 fn strip_location_suffix(message: &str) -> String {
-    match message.rfind(" at line ") {
-        Some(i) => message[..i].to_string(),
-        None => message.to_string(),
+    if let Some(i) = message.rfind(" at line ") {
+        let tail = &message[i + " at line ".len()..];
+        let is_location = tail
+            .split(", column ")
+            .all(|part| !part.is_empty() && part.chars().all(|c| c.is_ascii_digit()));
+        if is_location && tail.contains(", column ") {
+            return message[..i].to_string();
+        }
     }
+    message.to_string()
 }
+
+/// At most this many characters of a source line are shown around the column.
+const SNIPPET_WIDTH: usize = 100;
 
 /// The source line of `location` with a caret under its column.
 fn snippet(source: &str, location: SourceLocation) -> Option<String> {
@@ -102,16 +119,24 @@ fn snippet(source: &str, location: SourceLocation) -> Option<String> {
     }
     let line = source
         .lines()
-        .nth(usize::try_from(location.line).ok()? - 1)?;
+        .nth(usize::try_from(location.line).ok()?.checked_sub(1)?)?;
     let number = location.line.to_string();
     let pad = " ".repeat(number.len());
-    let caret_col = usize::try_from(location.column)
+    let column = usize::try_from(location.column)
         .unwrap_or(1)
         .saturating_sub(1);
-    let caret: String = line
+    // Long lines are cut to a window around the column.
+    let start = column.saturating_sub(SNIPPET_WIDTH / 2);
+    let mut shown: String = line.chars().skip(start).take(SNIPPET_WIDTH).collect();
+    let mut caret_at = column - start;
+    if start > 0 {
+        shown.insert(0, '…');
+        caret_at += 1;
+    }
+    let caret: String = shown
         .chars()
-        .take(caret_col)
+        .take(caret_at)
         .map(|c| if c == '\t' { '\t' } else { ' ' })
         .collect();
-    Some(format!("{pad} |\n{number} | {line}\n{pad} | {caret}^"))
+    Some(format!("{pad} |\n{number} | {shown}\n{pad} | {caret}^"))
 }

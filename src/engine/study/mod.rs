@@ -93,8 +93,12 @@ impl<N: NodeSpec> Study<N> {
             ));
         }
         if file.nodes.is_empty() {
+            let line = source
+                .lines()
+                .position(|l| l.starts_with("nodes:"))
+                .map_or(0, |i| i as u64 + 1);
             return Err(err(
-                SourceLocation::default(),
+                SourceLocation { line, column: 1 },
                 String::from("nodes"),
                 String::from("a study needs at least one node"),
             ));

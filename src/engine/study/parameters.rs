@@ -167,7 +167,14 @@ fn zip_group(group: &IndexMap<String, Located<Axis>>) -> Result<Group, Parameter
     for (name, axis) in group {
         columns.push((name.clone(), axis.location, axis_values(name, axis)?));
     }
-    let len = columns.first().map_or(0, |c| c.2.len());
+    let Some(first) = columns.first() else {
+        return Err(ParameterError {
+            location: SourceLocation::default(),
+            parameter: String::from("zip"),
+            message: String::from("a zip group needs at least one axis: `zip: [{a: [...], b: [...]}]`"),
+        });
+    };
+    let len = first.2.len();
     if let Some((name, loc, values)) = columns.iter().find(|c| c.2.len() != len) {
         return Err(ParameterError {
             location: *loc,
@@ -262,20 +269,26 @@ fn range(args: &[ParamValue]) -> Result<Vec<ParamValue>, String> {
         if b < a {
             return Err(format!("range [{a}, {b}] is empty: last must be ≥ first"));
         }
-        let count = (b - a) / step + 1;
-        if count as usize > MAX_SCENARIOS {
-            return Err(format!(
-                "range has {count} values, more than {MAX_SCENARIOS}"
-            ));
+        // i128: the span of two i64 values cannot overflow.
+        let count = (i128::from(*b) - i128::from(*a)) / i128::from(step) + 1;
+        if count > MAX_SCENARIOS as i128 {
+            return Err(format!("range has {count} values, more than {MAX_SCENARIOS}"));
         }
-        return Ok((0..count).map(|i| ParamValue::Int(a + i * step)).collect());
+        return Ok((0..count as i64)
+            .map(|i| ParamValue::Int(a + i * step))
+            .collect());
     }
     let (first, last, dim) = endpoints(&args[0], &args[1])?;
     let step = match args.get(2) {
-        Some(s) => {
-            let (s, _, _) = endpoints(s, &args[1])?;
-            s
-        }
+        Some(s) => match s.as_dimensioned() {
+            Some(v) if v.dimension == dim => v.si,
+            _ => {
+                return Err(format!(
+                    "the step {s} must have the dimension of the end values ({})",
+                    dim.name()
+                ))
+            }
+        },
         None => {
             return Err(String::from(
                 "a non-integer range needs a step: [first, last, step]",
@@ -336,7 +349,14 @@ fn spaced(args: &[ParamValue], geometric: bool) -> Result<Vec<ParamValue>, Strin
 
 fn endpoints(a: &ParamValue, b: &ParamValue) -> Result<(f64, f64, Dimension), String> {
     match (a.as_dimensioned(), b.as_dimensioned()) {
-        (Some(x), Some(y)) if x.dimension == y.dimension => Ok((x.si, y.si, x.dimension)),
+        (Some(x), Some(y)) if x.dimension == y.dimension => {
+            // Keep the whole span finite, so every generated value is finite too.
+            if (y.si - x.si).is_finite() {
+                Ok((x.si, y.si, x.dimension))
+            } else {
+                Err(format!("end values {a} and {b} span more than the floating-point range"))
+            }
+        }
         (Some(x), Some(y)) => Err(format!(
             "end values have different dimensions: {a} is a {}, {b} is a {}",
             x.dimension.name(),
@@ -370,6 +390,13 @@ fn latin_hypercube(lhs: &Located<LatinHypercube>) -> Result<Group, ParameterErro
             format!("samples must be between 1 and {MAX_SCENARIOS}"),
         ));
     }
+    if spec.ranges.is_empty() {
+        return Err(err(
+            "latin_hypercube",
+            lhs.location,
+            String::from("needs at least one range: `ranges: {name: [low, high]}`"),
+        ));
+    }
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(spec.seed);
     let n = spec.samples;
     let mut names = Vec::new();
@@ -391,7 +418,7 @@ fn latin_hypercube(lhs: &Located<LatinHypercube>) -> Result<Group, ParameterErro
         };
         let (low, high, dim) =
             endpoints(&bounds[0], &bounds[1]).map_err(|m| err(name, axis.location, m))?;
-        if !(high > low) {
+        if high <= low || high.is_nan() || low.is_nan() {
             return Err(err(name, axis.location, String::from("needs high > low")));
         }
         // Fisher–Yates permutation of the strata, then a uniform point inside each stratum.

@@ -38,7 +38,7 @@ impl RawValue {
             RawValue::Int(i) => ParamValue::Int(*i),
             RawValue::Float(x) if x.is_finite() => ParamValue::Number(*x),
             RawValue::Float(x) => return Err(format!("{x} is not a finite number")),
-            RawValue::Text(s) => ParamValue::from_text(s),
+            RawValue::Text(s) => ParamValue::from_text(s)?,
             RawValue::List(items) => ParamValue::List(
                 items
                     .iter()

@@ -66,7 +66,7 @@ impl SurfaceTask {
         match &self.source {
             SurfaceSource::Synthetic(spec) => generate_synthetic_surface(spec)
                 .map(|m| (m, Boundary::Periodic))
-                .map_err(|e| NodeError::new(format!("synthetic surface: {e}"))),
+                .map_err(|e| NodeError::new(e.to_string())),
             SurfaceSource::Measured(m) => m.load().map(|map| (map, Boundary::Open)),
         }
     }

@@ -4,7 +4,7 @@ use serde::Deserialize;
 
 use crate::engine::study::{Param, ResolveContext, SpecError};
 use crate::engine::value::Field;
-use crate::surface::synthetic::{Anisotropy, SyntheticSurfaceSpec};
+use crate::surface::synthetic::{Anisotropy, SyntheticError, SyntheticSurfaceSpec};
 use crate::units::{Angle, Dimension, Length, Quantity};
 
 use super::{SurfaceSource, SurfaceTask};
@@ -144,23 +144,50 @@ impl SyntheticSpec {
         let seed = ctx.resolve(&self.seed, "synthetic.seed")?;
         params.push(Field::int("seed", seed as i64));
         params.push(Field::text("source", "synthetic"));
+        let spec = SyntheticSurfaceSpec {
+            nx,
+            ny,
+            lx,
+            ly,
+            sq,
+            hurst,
+            correlation_length,
+            short_wavelength_cutoff: cutoff,
+            anisotropy: anisotropy.map(|(aspect_ratio, angle)| Anisotropy {
+                aspect_ratio,
+                angle_deg: angle.to_degrees(),
+            }),
+            seed,
+        };
+        // Checks that involve several fields (e.g. the cutoff against the grid spacing) are made
+        // now, so `validate` reports them, not the run.
+        if let Err(SyntheticError::InvalidParameter {
+            name,
+            value,
+            expected,
+            unit,
+        }) = spec.validate()
+        {
+            let location = match name {
+                "short_wavelength_cutoff" => self
+                    .short_wavelength_cutoff
+                    .as_ref()
+                    .map(Param::location),
+                "correlation_length" => Some(self.correlation_length.location()),
+                "hurst" => Some(self.hurst.location()),
+                "sq" => Some(self.sq.location()),
+                _ => None,
+            }
+            .unwrap_or_else(|| self.grid[0].location());
+            return Err(SpecError {
+                location,
+                field: format!("synthetic.{name}"),
+                message: format!("{value} {unit} is out of range: expected {expected} ({unit})"),
+            });
+        }
         Ok(SurfaceTask {
             params,
-            source: SurfaceSource::Synthetic(SyntheticSurfaceSpec {
-                nx,
-                ny,
-                lx,
-                ly,
-                sq,
-                hurst,
-                correlation_length,
-                short_wavelength_cutoff: cutoff,
-                anisotropy: anisotropy.map(|(aspect_ratio, angle)| Anisotropy {
-                    aspect_ratio,
-                    angle_deg: angle.to_degrees(),
-                }),
-                seed,
-            }),
+            source: SurfaceSource::Synthetic(spec),
         })
     }
 }
