@@ -289,12 +289,14 @@ fn topographic_prominences(z: &[f64], nx: usize, ny: usize, boundary: Boundary) 
         .collect();
     order.par_sort_unstable();
     const UNSEEN: usize = usize::MAX;
+    // Union by size keeps the trees shallow; `peak[root]` is the highest point of the component and
+    // `lowest[root]` the last (lowest) point added to it.
     let mut parent = vec![UNSEEN; z.len()];
+    let mut size = vec![0usize; z.len()];
+    let mut peak = vec![UNSEEN; z.len()];
     let mut lowest = vec![0.0; z.len()];
     let mut prominence = vec![f64::NAN; z.len()];
     let mut roots = Vec::with_capacity(8);
-    // A component's root is its peak (the point that created it), so peaks compare as roots.
-    let higher = |a: usize, b: usize| ranks_above(z[a], a, z[b], b);
     for &(_, p) in &order {
         let (ix, iy) = (p % nx, p / nx);
         roots.clear();
@@ -313,26 +315,40 @@ fn topographic_prominences(z: &[f64], nx: usize, ny: usize, boundary: Boundary) 
                 }
             }
         }
-        let Some(winner) = roots
-            .iter()
-            .copied()
-            .reduce(|a, b| if higher(a, b) { a } else { b })
-        else {
+        let Some(winner) = roots.iter().copied().reduce(|a, b| {
+            if ranks_above(z[peak[a]], peak[a], z[peak[b]], peak[b]) {
+                a
+            } else {
+                b
+            }
+        }) else {
             parent[p] = p;
+            size[p] = 1;
+            peak[p] = p;
             lowest[p] = z[p];
             continue;
         };
         // `p` is the col of every other component: their peaks' prominence is fixed here.
+        let mut root = winner;
         for &r in roots.iter().filter(|&&r| r != winner) {
-            prominence[r] = z[r] - z[p];
-            parent[r] = winner;
+            prominence[peak[r]] = z[peak[r]] - z[p];
+            let (big, small) = if size[root] >= size[r] {
+                (root, r)
+            } else {
+                (r, root)
+            };
+            parent[small] = big;
+            size[big] += size[small];
+            root = big;
         }
-        parent[p] = winner;
-        lowest[winner] = z[p];
+        peak[root] = peak[winner];
+        parent[p] = root;
+        size[root] += 1;
+        lowest[root] = z[p];
     }
     for &(_, p) in &order {
         if parent[p] == p {
-            prominence[p] = z[p] - lowest[p];
+            prominence[peak[p]] = z[peak[p]] - lowest[p];
         }
     }
     prominence
