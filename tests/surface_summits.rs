@@ -93,6 +93,15 @@ fn border_summits_wrap_or_are_excluded() {
     // Excluded: the 3 maxima at ix = 0 or iy = 0 among (0|16, 0|16).
     assert_eq!(open.statistics.count, 5);
     assert!(open.summits.iter().all(|s| s.ix > 0 && s.iy > 0));
+    // Isotropic case of the radius: R = 1/(A k²) continuous, 1/(A k² s²) on the grid with
+    // s = sin(θ/2)/(θ/2), θ = 2π/16: the discretisation error θ²/12 = 1.3 %.
+    let k = 2.0 * PI / 16e-6;
+    let half = PI / 16.0;
+    let discrete = 1.0 / (1e-7 * k * k * (half.sin() / half).powi(2));
+    for s in &open.summits {
+        assert!((s.radius - discrete).abs() < 1e-9 * discrete);
+        assert!((s.radius * 1e-7 * k * k - 1.0).abs() < 0.014);
+    }
 }
 
 // A tilt ε·x does not move the maximum pixel (ε dx is below the curvature drop A(1 − cos kdx)), and

@@ -10,8 +10,8 @@
 //!
 //! Implementation: separable discrete convolution (x pass, then y pass) with the sampled weights
 //! `g_k = exp(−π (k·d/(αλ))²)`, truncated at `|k·d| ≤ λ` (the weight there is `exp(−π²/ln 2) ≈ 6.5e-7`
-//! of the centre, so truncation changes the transmission by less than 1e-5; ISO 16610-21 allows
-//! truncation at 0.5 λ, which we avoid for accuracy).
+//! of the centre, so truncation changes the transmission by less than 1e-5; a shorter truncation at
+//! ±0.5 λ, also in use, would drop about 0.8 % of the weight).
 //!
 //! Edges and missing points — **normalised convolution** (weights renormalised over valid points):
 //! `out(p) = Σ_q s(p−q) m(q) z(q) / Σ_q s(p−q) m(q)`, with `m(q) = 1` for a valid point inside the grid and
