@@ -343,6 +343,12 @@ fn crop_decimate_and_bilinear_resampling() {
         Err(ResampleError::WindowOutOfBounds { .. })
     ));
 
+    assert!(matches!(
+        resample_bilinear(&map, usize::MAX / 2, 4),
+        Err(ResampleError::TooLarge { .. })
+    ));
+    assert!(decimate(&map, 0, 1).is_err() && decimate(&map, 30, 1).is_err());
+
     let coarse = decimate(&map, 5, 2).unwrap();
     assert_eq!((coarse.nx(), coarse.ny()), (5, 6));
     assert!((coarse.dx() - 5e-6).abs() < 1e-20 && (coarse.dy() - 4e-6).abs() < 1e-20);

@@ -93,6 +93,15 @@ fn border_summits_wrap_or_are_excluded() {
     // Excluded: the 3 maxima at ix = 0 or iy = 0 among (0|16, 0|16).
     assert_eq!(open.statistics.count, 5);
     assert!(open.summits.iter().all(|s| s.ix > 0 && s.iy > 0));
+    // Isotropic case of the radius: R = 1/(A k²) continuous, 1/(A k² s²) on the grid with
+    // s = sin(θ/2)/(θ/2), θ = 2π/16: the discretisation error θ²/12 = 1.3 %.
+    let k = 2.0 * PI / 16e-6;
+    let half = PI / 16.0;
+    let discrete = 1.0 / (1e-7 * k * k * (half.sin() / half).powi(2));
+    for s in &open.summits {
+        assert!((s.radius - discrete).abs() < 1e-9 * discrete);
+        assert!((s.radius * 1e-7 * k * k - 1.0).abs() < 0.014);
+    }
 }
 
 // A tilt ε·x does not move the maximum pixel (ε dx is below the curvature drop A(1 − cos kdx)), and
@@ -189,4 +198,88 @@ fn height_and_prominence_thresholds() {
         ..SummitOptions::default()
     };
     assert!(find_summits(&map, bad).is_err());
+}
+
+/// Pseudo-random value in [0, 1) from an index (SplitMix64 finaliser).
+fn hash_unit(i: u64) -> f64 {
+    let mut x = i.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^= x >> 31;
+    (x >> 11) as f64 / (1u64 << 53) as f64
+}
+
+// Independent brute-force prominence on a small random surface with a hole: for a summit p, lower a
+// water level through the ranked points one at a time and search (breadth-first, 8-connected, valid
+// points at or above the level) for a point ranked above p; the level at which one is first reached
+// is the col. The highest summit never finds one: its prominence is its height above the minimum.
+#[test]
+fn prominence_matches_brute_force_search() {
+    let (nx, ny) = (13usize, 11usize);
+    let mut z = Array2::from_shape_fn((ny, nx), |(iy, ix)| hash_unit((iy * nx + ix) as u64));
+    z[[5, 6]] = f64::NAN;
+    let map = HeightMap::new(z.clone(), 1.0, 1.0).unwrap();
+    let options = SummitOptions {
+        min_prominence: Some(f64::MIN),
+        ..SummitOptions::default()
+    };
+    let found = find_summits(&map, options).unwrap();
+    assert!(found.statistics.count >= 5);
+    let flat: Vec<f64> = z.iter().copied().collect();
+    let mut ranked: Vec<usize> = (0..flat.len()).filter(|&p| !flat[p].is_nan()).collect();
+    ranked.sort_by(|&a, &b| flat[b].total_cmp(&flat[a]).then(a.cmp(&b)));
+    let rank_of = |p: usize| ranked.iter().position(|&q| q == p).unwrap();
+    let lowest = flat[*ranked.last().unwrap()];
+    for s in &found.summits {
+        let p = s.iy * nx + s.ix;
+        let rp = rank_of(p);
+        let mut expected = flat[p] - lowest;
+        for level in rp + 1..ranked.len() {
+            let allowed: Vec<bool> = (0..flat.len())
+                .map(|q| !flat[q].is_nan() && rank_of(q) <= level)
+                .collect();
+            let mut seen = vec![false; flat.len()];
+            let mut queue = std::collections::VecDeque::from([p]);
+            seen[p] = true;
+            let mut reached = false;
+            while let Some(q) = queue.pop_front() {
+                if rank_of(q) < rp {
+                    reached = true;
+                    break;
+                }
+                let (qx, qy) = ((q % nx) as isize, (q / nx) as isize);
+                for (ox, oy) in [
+                    (-1, -1),
+                    (0, -1),
+                    (1, -1),
+                    (-1, 0),
+                    (1, 0),
+                    (-1, 1),
+                    (0, 1),
+                    (1, 1),
+                ] {
+                    let (jx, jy) = (qx + ox, qy + oy);
+                    if jx < 0 || jy < 0 || jx >= nx as isize || jy >= ny as isize {
+                        continue;
+                    }
+                    let j = jy as usize * nx + jx as usize;
+                    if allowed[j] && !seen[j] {
+                        seen[j] = true;
+                        queue.push_back(j);
+                    }
+                }
+            }
+            if reached {
+                expected = flat[p] - flat[ranked[level]];
+                break;
+            }
+        }
+        assert_eq!(
+            s.prominence,
+            Some(expected),
+            "summit at ({}, {})",
+            s.ix,
+            s.iy
+        );
+    }
 }

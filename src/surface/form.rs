@@ -11,7 +11,6 @@
 //! Missing points stay missing in the result.
 
 use super::{HeightMap, HeightMapError};
-use ndarray::Array2;
 
 /// Highest polynomial degree accepted (66 terms); higher degrees are rarely form, and the cost grows
 /// with the square of the number of terms.
@@ -93,19 +92,19 @@ pub fn remove_polynomial_form(map: &HeightMap, degree: usize) -> Result<FormRemo
             if h.is_nan() {
                 continue;
             }
-            for a in 0..k {
-                let pa = px[[a, ix]];
+            let values = &px[ix];
+            for (a, &pa) in values.iter().enumerate() {
                 row_projection[a] += h * pa;
-                for b in a..k {
-                    row_moments[a * k + b] += pa * px[[b, ix]];
+                for (b, &pb) in values.iter().enumerate().skip(a) {
+                    row_moments[a * k + b] += pa * pb;
                 }
             }
         }
         for (p, &(ip, jp)) in orders.iter().enumerate() {
-            rhs[p] += py[[jp, iy]] * row_projection[ip];
+            rhs[p] += py[iy][jp] * row_projection[ip];
             for (q, &(iq, jq)) in orders.iter().enumerate().skip(p) {
                 let m = row_moments[ip.min(iq) * k + ip.max(iq)];
-                gram[p * n_terms + q] += py[[jp, iy]] * py[[jq, iy]] * m;
+                gram[p * n_terms + q] += py[iy][jp] * py[iy][jq] * m;
             }
         }
     }
@@ -123,14 +122,18 @@ pub fn remove_polynomial_form(map: &HeightMap, degree: usize) -> Result<FormRemo
     for (iy, mut row) in residual.rows_mut().into_iter().enumerate() {
         row_coefficients.fill(0.0);
         for (&(i, j), &c) in orders.iter().zip(&coefficients) {
-            row_coefficients[i] += c * py[[j, iy]];
+            row_coefficients[i] += c * py[iy][j];
         }
         let mut row_sum_sq = 0.0;
         for (ix, h) in row.iter_mut().enumerate() {
             if h.is_nan() {
                 continue;
             }
-            let form: f64 = (0..k).map(|i| row_coefficients[i] * px[[i, ix]]).sum();
+            let form: f64 = row_coefficients
+                .iter()
+                .zip(&px[ix])
+                .map(|(c, p)| c * p)
+                .sum();
             *h -= form;
             row_sum_sq += *h * *h;
         }
@@ -161,23 +164,24 @@ fn term_orders(degree: usize) -> Vec<(usize, usize)> {
         .collect()
 }
 
-/// `table[[k, i]] = P_k(2 i/(n−1) − 1)` for `k = 0..=degree`, `i = 0..n` (Bonnet's recurrence
+/// `table[i][k] = P_k(2 i/(n−1) − 1)` for `i = 0..n`, `k = 0..=degree` (Bonnet's recurrence
 /// `(k+1) P_{k+1} = (2k+1) u P_k − k P_{k−1}`). `n ≥ 2` is guaranteed by [`HeightMap`].
-fn legendre_table(n: usize, degree: usize) -> Array2<f64> {
-    let mut table = Array2::zeros((degree + 1, n));
-    for i in 0..n {
-        let u = 2.0 * i as f64 / (n - 1) as f64 - 1.0;
-        table[[0, i]] = 1.0;
-        if degree >= 1 {
-            table[[1, i]] = u;
-        }
-        for k in 1..degree {
-            let kf = k as f64;
-            table[[k + 1, i]] =
-                ((2.0 * kf + 1.0) * u * table[[k, i]] - kf * table[[k - 1, i]]) / (kf + 1.0);
-        }
-    }
-    table
+fn legendre_table(n: usize, degree: usize) -> Vec<Vec<f64>> {
+    (0..n)
+        .map(|i| {
+            let u = 2.0 * i as f64 / (n - 1) as f64 - 1.0;
+            let mut values = Vec::with_capacity(degree + 1);
+            values.push(1.0);
+            if degree >= 1 {
+                values.push(u);
+            }
+            for k in 1..degree {
+                let kf = k as f64;
+                values.push(((2.0 * kf + 1.0) * u * values[k] - kf * values[k - 1]) / (kf + 1.0));
+            }
+            values
+        })
+        .collect()
 }
 
 /// Solves the symmetric positive-definite system `a x = b` (`a` row-major `n×n`, overwritten by its
@@ -222,6 +226,7 @@ fn solve_cholesky(a: &mut [f64], b: &[f64], n: usize) -> Option<Vec<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use ndarray::Array2;
 
     #[test]
     fn term_order_and_legendre_values() {
@@ -231,7 +236,8 @@ mod tests {
         );
         let t = legendre_table(3, 2);
         // P2(u) = (3u² − 1)/2 at u = −1, 0, 1.
-        assert_eq!(t.row(2).to_vec(), vec![1.0, -0.5, 1.0]);
+        let p2: Vec<f64> = t.iter().map(|v| v[2]).collect();
+        assert_eq!(p2, vec![1.0, -0.5, 1.0]);
     }
 
     #[test]

@@ -23,7 +23,6 @@
 //! per-point gradients, i.e. the local surface element `sqrt(1 + |∇z|²) dx dy`.
 
 use super::HeightMap;
-use ndarray::Array2;
 
 /// How neighbours beyond the edge of the grid are treated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -84,50 +83,6 @@ pub(crate) fn neighbour_index(
     }
 }
 
-/// Height at `(ix + ox, iy + oy)` if that point exists (under `boundary`) and is valid.
-pub(crate) fn valid_height_at(
-    z: &Array2<f64>,
-    ix: usize,
-    iy: usize,
-    ox: isize,
-    oy: isize,
-    boundary: Boundary,
-) -> Option<f64> {
-    let (ny, nx) = z.dim();
-    let jx = neighbour_index(ix, ox, nx, boundary)?;
-    let jy = neighbour_index(iy, oy, ny, boundary)?;
-    let h = z[[jy, jx]];
-    (!h.is_nan()).then_some(h)
-}
-
-/// Slopes `(∂z/∂x, ∂z/∂y)` at `(ix, iy)` for `scheme`, or `None` if the point or a needed neighbour is
-/// missing or outside an open grid.
-pub(crate) fn gradient_at(
-    z: &Array2<f64>,
-    ix: usize,
-    iy: usize,
-    dx: f64,
-    dy: f64,
-    scheme: DifferenceScheme,
-    boundary: Boundary,
-) -> Option<(f64, f64)> {
-    let centre = valid_height_at(z, ix, iy, 0, 0, boundary)?;
-    match scheme {
-        DifferenceScheme::Central => {
-            let xp = valid_height_at(z, ix, iy, 1, 0, boundary)?;
-            let xm = valid_height_at(z, ix, iy, -1, 0, boundary)?;
-            let yp = valid_height_at(z, ix, iy, 0, 1, boundary)?;
-            let ym = valid_height_at(z, ix, iy, 0, -1, boundary)?;
-            Some(((xp - xm) / (2.0 * dx), (yp - ym) / (2.0 * dy)))
-        }
-        DifferenceScheme::Forward => {
-            let xp = valid_height_at(z, ix, iy, 1, 0, boundary)?;
-            let yp = valid_height_at(z, ix, iy, 0, 1, boundary)?;
-            Some(((xp - centre) / dx, (yp - centre) / dy))
-        }
-    }
-}
-
 /// `Sdq` and `Sdr` (percent) of `map` with the given scheme and boundary treatment.
 ///
 /// Sums are accumulated per row and then over rows (two-level summation, deterministic).
@@ -137,21 +92,53 @@ pub fn gradient_statistics(
     scheme: DifferenceScheme,
     boundary: Boundary,
 ) -> Result<GradientStatistics, GradientError> {
-    let z = map.heights();
-    let (dx, dy) = (map.dx(), map.dy());
+    let (nx, ny) = (map.nx(), map.ny());
+    let z = map.heights().as_standard_layout();
+    let flat = z
+        .as_slice()
+        .expect("an array in standard layout is contiguous");
+    // Offsets (back, ahead) of the two points each difference uses, and its denominator factor.
+    let (back, ahead, factor) = match scheme {
+        DifferenceScheme::Central => (-1, 1, 2.0),
+        DifferenceScheme::Forward => (0, 1, 1.0),
+    };
+    let (sx, sy) = (factor * map.dx(), factor * map.dy());
+    let columns: Vec<Option<(usize, usize)>> = (0..nx)
+        .map(|ix| {
+            Some((
+                neighbour_index(ix, back, nx, boundary)?,
+                neighbour_index(ix, ahead, nx, boundary)?,
+            ))
+        })
+        .collect();
+    let row = |iy: usize| &flat[iy * nx..(iy + 1) * nx];
     let mut count = 0usize;
     let mut sum_g2 = 0.0;
     let mut sum_area = 0.0;
-    for iy in 0..map.ny() {
+    for iy in 0..ny {
+        let (Some(ya), Some(yb)) = (
+            neighbour_index(iy, back, ny, boundary),
+            neighbour_index(iy, ahead, ny, boundary),
+        ) else {
+            continue;
+        };
+        let (centre, row_a, row_b) = (row(iy), row(ya), row(yb));
         let mut row_g2 = 0.0;
         let mut row_area = 0.0;
-        for ix in 0..map.nx() {
-            if let Some((gx, gy)) = gradient_at(z, ix, iy, dx, dy, scheme, boundary) {
-                let g2 = gx * gx + gy * gy;
-                row_g2 += g2;
-                row_area += g2 / ((1.0 + g2).sqrt() + 1.0);
-                count += 1;
+        for (ix, cols) in columns.iter().enumerate() {
+            let Some((xa, xb)) = *cols else {
+                continue;
+            };
+            let gx = (centre[xb] - centre[xa]) / sx;
+            let gy = (row_b[ix] - row_a[ix]) / sy;
+            let g2 = gx * gx + gy * gy;
+            // NaN in any point used (or in the centre itself) excludes the point.
+            if centre[ix].is_nan() || g2.is_nan() {
+                continue;
             }
+            row_g2 += g2;
+            row_area += g2 / ((1.0 + g2).sqrt() + 1.0);
+            count += 1;
         }
         sum_g2 += row_g2;
         sum_area += row_area;

@@ -27,6 +27,8 @@ pub enum ResampleError {
     },
     #[error("decimation steps must be ≥ 1, got ({step_x}, {step_y})")]
     BadStep { step_x: usize, step_y: usize },
+    #[error("target grid {nx} × {ny} is too large to allocate")]
+    TooLarge { nx: usize, ny: usize },
     #[error("resampled map is invalid: {0}")]
     HeightMap(#[from] HeightMapError),
 }
@@ -78,6 +80,13 @@ pub fn resample_bilinear(
 ) -> Result<HeightMap, ResampleError> {
     if nx < 2 || ny < 2 {
         return Err(HeightMapError::TooSmall { nx, ny }.into());
+    }
+    if nx
+        .checked_mul(ny)
+        .and_then(|n| n.checked_mul(std::mem::size_of::<f64>()))
+        .is_none_or(|bytes| bytes > isize::MAX as usize)
+    {
+        return Err(ResampleError::TooLarge { nx, ny });
     }
     let z = map.heights();
     let ratio_x = (map.nx() - 1) as f64 / (nx - 1) as f64;

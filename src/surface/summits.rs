@@ -28,10 +28,9 @@
 //! radius; mean and standard deviation (population) of the summit heights.
 
 use super::amplitude::valid_mean_min_max;
-use super::gradient::{neighbour_index, valid_height_at};
+use super::gradient::neighbour_index;
 use super::{Boundary, HeightMap};
-use std::cmp::Ordering;
-use std::collections::HashMap;
+use rayon::slice::ParallelSliceMut;
 
 /// Options of [`find_summits`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -127,45 +126,70 @@ pub fn find_summits(map: &HeightMap, options: SummitOptions) -> Result<Summits, 
         }
     }
     let (_, mean, _, _) = valid_mean_min_max(map).ok_or(SummitError::NoValidPoints)?;
-    let z = map.heights();
     let (nx, ny, dx, dy) = (map.nx(), map.ny(), map.dx(), map.dy());
+    let z = map.heights().as_standard_layout();
+    let flat = z
+        .as_slice()
+        .expect("an array in standard layout is contiguous");
     let boundary = options.boundary;
     let prominences = options
         .min_prominence
-        .map(|_| topographic_prominences(map, boundary));
+        .map(|_| topographic_prominences(flat, nx, ny, boundary));
+    let pairs = |n: usize| -> Vec<Option<(usize, usize)>> {
+        (0..n)
+            .map(|i| {
+                Some((
+                    neighbour_index(i, -1, n, boundary)?,
+                    neighbour_index(i, 1, n, boundary)?,
+                ))
+            })
+            .collect()
+    };
+    let (columns, rows) = (pairs(nx), pairs(ny));
 
     let mut summits = Vec::new();
     let mut candidate_count = 0;
-    for iy in 0..ny {
-        for ix in 0..nx {
-            let Some(centre) = valid_height_at(z, ix, iy, 0, 0, boundary) else {
+    for (iy, row_pair) in rows.iter().enumerate() {
+        let Some((ym, yp)) = *row_pair else {
+            continue;
+        };
+        for (ix, column_pair) in columns.iter().enumerate() {
+            let Some((xm, xp)) = *column_pair else {
                 continue;
             };
-            let mut around = [0.0; 8];
-            let mut complete = true;
-            for (slot, &(ox, oy)) in around.iter_mut().zip(&NEIGHBOURS) {
-                match valid_height_at(z, ix, iy, ox, oy, boundary) {
-                    Some(h) => *slot = h,
-                    None => complete = false,
-                }
-            }
-            if !complete {
+            let p = iy * nx + ix;
+            let centre = flat[p];
+            // Raster indices in the order of NEIGHBOURS.
+            let q = [
+                ym * nx + xm,
+                ym * nx + ix,
+                ym * nx + xp,
+                iy * nx + xm,
+                iy * nx + xp,
+                yp * nx + xm,
+                yp * nx + ix,
+                yp * nx + xp,
+            ];
+            let around = q.map(|j| flat[j]);
+            if centre.is_nan() || around.iter().any(|h| h.is_nan()) {
                 continue;
             }
             candidate_count += 1;
-            let p = iy * nx + ix;
-            let is_max = NEIGHBOURS.iter().zip(&around).all(|(&(ox, oy), &h)| {
-                let q = neighbour_raster(ix, iy, ox, oy, nx, ny, boundary);
-                ranks_above(centre, p, h, q)
-            });
-            if !is_max {
+            if !q
+                .iter()
+                .zip(&around)
+                .all(|(&j, &h)| ranks_above(centre, p, h, j))
+            {
                 continue;
             }
             let height = centre - mean;
             if options.min_height.is_some_and(|t| height < t) {
                 continue;
             }
-            let prominence = prominences.as_ref().and_then(|m| m.get(&p).copied());
+            let prominence = prominences
+                .as_ref()
+                .and_then(|m| m.get(p).copied())
+                .filter(|v| !v.is_nan());
             if options
                 .min_prominence
                 .is_some_and(|t| prominence.is_none_or(|v| v < t))
@@ -203,21 +227,6 @@ pub fn find_summits(map: &HeightMap, options: SummitOptions) -> Result<Summits, 
 /// `true` if the point (height `a`, raster index `p`) ranks above (height `b`, index `q`).
 fn ranks_above(a: f64, p: usize, b: f64, q: usize) -> bool {
     a > b || (a == b && p < q)
-}
-
-/// Raster index of the neighbour `(ix + ox, iy + oy)`; only called for neighbours known to exist.
-fn neighbour_raster(
-    ix: usize,
-    iy: usize,
-    ox: isize,
-    oy: isize,
-    nx: usize,
-    ny: usize,
-    boundary: Boundary,
-) -> usize {
-    let jx = neighbour_index(ix, ox, nx, boundary).unwrap_or(ix);
-    let jy = neighbour_index(iy, oy, ny, boundary).unwrap_or(iy);
-    jy * nx + jx
 }
 
 fn summarise(
@@ -259,24 +268,36 @@ fn summarise(
 }
 
 /// Topographic prominence of every peak (point with no higher 8-neighbour in the ranking order) of the
-/// valid-point graph, keyed by raster index. Union–find sweep in descending order: a point whose ranked-
+/// valid-point graph, indexed by raster index (`NaN` for points that are not peaks). Union–find sweep in descending order: a point whose ranked-
 /// higher neighbours belong to several components is the col of all but the highest of them, whose
 /// peaks get prominence `peak − col`; the last surviving peak of each region gets `peak − region min`.
-fn topographic_prominences(map: &HeightMap, boundary: Boundary) -> HashMap<usize, f64> {
-    let (nx, ny) = (map.nx(), map.ny());
-    let z: Vec<f64> = map.heights().iter().copied().collect();
-    let mut order: Vec<usize> = (0..z.len()).filter(|&p| !z[p].is_nan()).collect();
-    order.sort_unstable_by(|&p, &q| match z[q].total_cmp(&z[p]) {
-        Ordering::Equal => p.cmp(&q),
-        other => other,
-    });
+fn topographic_prominences(z: &[f64], nx: usize, ny: usize, boundary: Boundary) -> Vec<f64> {
+    // Sort keys: descending height (order-preserving integer image of the float, inverted), then
+    // ascending raster index — the same total order as `ranks_above`.
+    let descending_key = |h: f64| {
+        let bits = h.to_bits();
+        let ascending = if bits >> 63 == 1 {
+            !bits
+        } else {
+            bits | 1 << 63
+        };
+        u64::MAX - ascending
+    };
+    let mut order: Vec<(u64, usize)> = (0..z.len())
+        .filter(|&p| !z[p].is_nan())
+        .map(|p| (descending_key(z[p]), p))
+        .collect();
+    order.par_sort_unstable();
     const UNSEEN: usize = usize::MAX;
+    // Union by size keeps the trees shallow; `peak[root]` is the highest point of the component and
+    // `lowest[root]` the last (lowest) point added to it.
     let mut parent = vec![UNSEEN; z.len()];
+    let mut size = vec![0usize; z.len()];
     let mut peak = vec![UNSEEN; z.len()];
     let mut lowest = vec![0.0; z.len()];
-    let mut prominence = HashMap::new();
+    let mut prominence = vec![f64::NAN; z.len()];
     let mut roots = Vec::with_capacity(8);
-    for &p in &order {
+    for &(_, p) in &order {
         let (ix, iy) = (p % nx, p / nx);
         roots.clear();
         for &(ox, oy) in &NEIGHBOURS {
@@ -294,29 +315,40 @@ fn topographic_prominences(map: &HeightMap, boundary: Boundary) -> HashMap<usize
                 }
             }
         }
-        // The component with the highest peak (earliest in `order`) absorbs the others.
-        let Some(&winner) = roots.iter().min_by(|&&a, &&b| {
-            let (pa, pb) = (peak[a], peak[b]);
-            match z[pb].total_cmp(&z[pa]) {
-                Ordering::Equal => pa.cmp(&pb),
-                other => other,
+        let Some(winner) = roots.iter().copied().reduce(|a, b| {
+            if ranks_above(z[peak[a]], peak[a], z[peak[b]], peak[b]) {
+                a
+            } else {
+                b
             }
         }) else {
             parent[p] = p;
+            size[p] = 1;
             peak[p] = p;
             lowest[p] = z[p];
             continue;
         };
+        // `p` is the col of every other component: their peaks' prominence is fixed here.
+        let mut root = winner;
         for &r in roots.iter().filter(|&&r| r != winner) {
-            prominence.insert(peak[r], z[peak[r]] - z[p]);
-            parent[r] = winner;
+            prominence[peak[r]] = z[peak[r]] - z[p];
+            let (big, small) = if size[root] >= size[r] {
+                (root, r)
+            } else {
+                (r, root)
+            };
+            parent[small] = big;
+            size[big] += size[small];
+            root = big;
         }
-        parent[p] = winner;
-        lowest[winner] = z[p];
+        peak[root] = peak[winner];
+        parent[p] = root;
+        size[root] += 1;
+        lowest[root] = z[p];
     }
-    for &p in &order {
+    for &(_, p) in &order {
         if parent[p] == p {
-            prominence.insert(peak[p], z[peak[p]] - lowest[p]);
+            prominence[peak[p]] = z[peak[p]] - lowest[p];
         }
     }
     prominence
