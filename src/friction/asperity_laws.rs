@@ -4,7 +4,8 @@
 //! x = ω/ω_c is the dimensionless interference. The breakpoints are exactly x = 1, 6, 110 with the
 //! convention that a breakpoint belongs to the range below it (x = 1 is Hertz, x = 6 uses the
 //! 1–6 fit, x = 110 the 6–110 fit). The fits are NOT continuous there; the jumps are kept as
-//! published (P/P_c at x = 1: 1 → 1.03; at 6: 13.24 → 13.34; at 110: 526.7 → 3/K·110).
+//! published (for ν = 0.3: P/P_c at x = 1: 1 → 1.03; at 6: 13.23 → 13.46; at 110: 530.2 → 571.9;
+//! A/A_c at 1: 1 → 0.93; at 6: 7.12 → 7.33; at 110: 205.4 → 220).
 //!
 //! # Sources and what was confirmed
 //! * KE 2002 load fits (Kogut & Etsion, J. Appl. Mech. 69 (2002) 657): P/P_c = x^1.5,
