@@ -24,8 +24,8 @@ fn gw_function_reference_values() {
 /// F_1(t) = φ(t) − t·Q(t) in closed form; the quadrature's 1e-10 relative tolerance allows 2e-10.
 #[test]
 fn gw_function_one_matches_closed_form() {
-    for &t in &[-3.0, -1.0, 0.0, 0.5, 2.0, 5.0, 8.0] {
-        let phi = (-0.5 * t * t as f64).exp() / (2.0 * std::f64::consts::PI).sqrt();
+    for &t in &[-3.0f64, -1.0, 0.0, 0.5, 2.0, 5.0, 8.0] {
+        let phi = (-0.5 * t * t).exp() / (2.0 * std::f64::consts::PI).sqrt();
         let tail = asperity::friction::upper_tail_probability(t);
         let exact = phi - t * tail;
         let value = gw_function(1.0, t)

@@ -29,6 +29,9 @@ fn model(psi: f64, kind: AsperityModel, options: ModelOptions) -> StatisticalMod
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// A single-asperity law x ↦ ratio.
+type Law = Box<dyn Fn(f64) -> f64>;
+
 fn gaussian(z: f64, s: f64) -> f64 {
     (-0.5 * (z / s).powi(2)).exp() / (s * (2.0 * std::f64::consts::PI).sqrt())
 }
@@ -130,11 +133,7 @@ fn check_all(m: &StatisticalModel, d: f64) {
     let beyond = m.options.adhesion_beyond_fits;
     let form = m.options.static_friction_form;
     let tag = format!("{:?} psi={:.2} d*={d}", m.model, m.plasticity_index);
-    let (p_law, a_law, q_law): (
-        Box<dyn Fn(f64) -> f64>,
-        Box<dyn Fn(f64) -> f64>,
-        Box<dyn Fn(f64) -> f64>,
-    ) = match m.model {
+    let (p_law, a_law, q_law): (Law, Law, Law) = match m.model {
         AsperityModel::KogutEtsion => (
             Box::new(move |x| ke_load_ratio(x, k)),
             Box::new(ke_area_ratio),
