@@ -14,8 +14,7 @@ pub(crate) const INV_SQRT_2PI: f64 = 0.398_942_280_401_432_7;
 pub(crate) const GAUSSIAN_CUT: f64 = 40.0;
 
 /// Standard deviations of the Gaussian at which integrals get breakpoints (peak and flanks).
-pub(crate) const GAUSSIAN_FEATURES: [f64; 11] =
-    [-16.0, -8.0, -4.0, -2.0, -1.0, 0.0, 1.0, 2.0, 4.0, 8.0, 16.0];
+pub(crate) const GAUSSIAN_FEATURES: [f64; 9] = [-8.0, -4.0, -2.0, -1.0, 0.0, 1.0, 2.0, 4.0, 8.0];
 
 /// Relative tolerance of every statistical integral (numerical note 5 of the reference).
 pub const INTEGRAL_REL_TOL: f64 = 1e-10;

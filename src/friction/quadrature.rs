@@ -2,10 +2,9 @@
 //!
 //! The integral is the sum over caller-given pieces (the pieces carry the breakpoints of the
 //! asperity laws and of the Gaussian). Every piece starts as one interval; the interval with the
-//! largest error estimate |K15 − G7| is bisected until the summed estimate satisfies
+//! largest error estimate (see [`kronrod_15`]) is bisected until the summed estimate satisfies
 //! `Σ err ≤ rel_tol · |Σ value|` (or `Σ err ≤ abs_floor`, which only matters for an integral that
-//! is zero to within underflow). The raw Kronrod–Gauss difference is used as the error estimate: it
-//! bounds the error of the 15-point value with a wide margin for the smooth integrands used here.
+//! is zero to within underflow).
 //! A piece may be *graded at its left end*: x = a + (b − a) u^k (k = 3), which turns an endpoint
 //! behaviour x^b (b > −1) into u^{k(b+1)−1}, smooth enough for Gauss rules (numerical note 2 of
 //! the reference).
@@ -117,29 +116,50 @@ fn mapped(piece: &Piece<'_>, t: f64) -> f64 {
     }
 }
 
-/// Apply the 7/15 rule on [lo, hi] of a piece's internal coordinate; returns (K15, |K15 − G7|).
+/// Apply the 7/15 rule on [lo, hi] of a piece's internal coordinate; returns (K15, error).
+///
+/// Error estimate (the QUADPACK QK15 heuristic): with e = |K15 − G7| and the spread
+/// r = ∫|f − mean f| by the Kronrod rule, err = r · min(1, (200 e / r)^1.5), floored at
+/// 50 ε_mach ∫|f| (rounding). For smooth integrands this tracks the true error of K15, which is far
+/// smaller than e; correctness at 1e-8 is verified against independent Simpson quadrature in the
+/// test suite.
 fn kronrod_15(piece: &Piece<'_>, lo: f64, hi: f64) -> (f64, f64) {
     let centre = 0.5 * (lo + hi);
     let half = 0.5 * (hi - lo);
     let f_centre = mapped(piece, centre);
+    let mut pairs = [(0.0, 0.0); 7];
     let mut kronrod = KRONROD_WEIGHTS[7] * f_centre;
     let mut gauss = GAUSS_WEIGHTS[3] * f_centre;
-    for (j, (&node, &weight)) in KRONROD_NODES
+    let mut absolute = KRONROD_WEIGHTS[7] * f_centre.abs();
+    for (j, ((&node, &weight), pair)) in KRONROD_NODES
         .iter()
         .zip(KRONROD_WEIGHTS.iter())
-        .take(7)
+        .zip(pairs.iter_mut())
         .enumerate()
     {
         let dx = half * node;
-        let pair = mapped(piece, centre - dx) + mapped(piece, centre + dx);
-        kronrod += weight * pair;
+        let (left, right) = (mapped(piece, centre - dx), mapped(piece, centre + dx));
+        *pair = (left, right);
+        kronrod += weight * (left + right);
+        absolute += weight * (left.abs() + right.abs());
         if j % 2 == 1 {
-            gauss += GAUSS_WEIGHTS[j / 2] * pair;
+            gauss += GAUSS_WEIGHTS[j / 2] * (left + right);
         }
     }
+    let mean = 0.5 * kronrod;
+    let mut spread = KRONROD_WEIGHTS[7] * (f_centre - mean).abs();
+    for (&weight, &(left, right)) in KRONROD_WEIGHTS.iter().zip(pairs.iter()) {
+        spread += weight * ((left - mean).abs() + (right - mean).abs());
+    }
     let value = kronrod * half;
-    let error = ((kronrod - gauss) * half).abs();
-    (value, error)
+    let raw = ((kronrod - gauss) * half).abs();
+    let spread = spread * half.abs();
+    let mut error = raw;
+    if spread != 0.0 && raw != 0.0 {
+        error = spread * (200.0 * raw / spread).powf(1.5).min(1.0);
+    }
+    let rounding = 50.0 * f64::EPSILON * absolute * half.abs();
+    (value, error.max(rounding))
 }
 
 /// Integrate the sum of `pieces` to relative tolerance `rel_tol` (absolute floor `abs_floor`).

@@ -12,12 +12,15 @@
 //! pull-off load returns [`FrictionError::LoadBelowPullOff`]; μ_s is reported only for a
 //! compressive load F > 0 (it is `None` for a tensile load).
 //!
-//! μ(F) curves reuse one grid for all loads, so each extra load costs one Brent refinement.
+//! μ(F) curves reuse one table for all loads: every net-load evaluation made by Brent is inserted
+//! into it, so later loads start from narrower brackets (each extra load costs a few iterations).
+//! The table only ever holds exact evaluations, so root counting stays valid (refinement can only
+//! reveal sign changes, never invent them).
 
 use super::asperity_laws::AsperityModel;
 use super::error::FrictionError;
 use super::root_finding::{brent, golden_minimum};
-use super::statistical_integrals::StatisticalModel;
+use super::statistical_integrals::{AdhesionForce, IntegralValue, StatisticalModel};
 
 /// Grid and solver settings of the separation solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -165,6 +168,18 @@ impl NetLoadGrid {
         }
     }
 
+    /// Add exact evaluations (d*, P − F_s) to the table, keeping it sorted; later loads of a curve
+    /// then start from narrower brackets.
+    fn insert(&mut self, points: &[(f64, f64)]) {
+        for &(d, net) in points {
+            let index = self.d_star.partition_point(|&x| x < d);
+            if self.d_star.get(index) != Some(&d) {
+                self.d_star.insert(index, d);
+                self.net_load.insert(index, net);
+            }
+        }
+    }
+
     /// Brackets [d_i, d_{i+1}] where P − F_s − load changes sign (or is zero at d_i).
     fn brackets(&self, load: f64) -> Vec<usize> {
         let g: Vec<f64> = self.net_load.iter().map(|n| n - load).collect();
@@ -241,16 +256,46 @@ pub fn static_friction_on_grid(
             expected: "a bracket inside the grid",
         });
     };
+    // Brent runs on ln(net/F) when the whole bracket carries a compressive net load (F > 0): the
+    // net load falls off like a Gaussian tail, so its logarithm is nearly linear in d* and Brent's
+    // interpolation converges in fewer steps. Otherwise it runs on net − F.
+    let logarithmic = load > 0.0 && fa > 0.0 && fb > 0.0;
+    let residual = |net: f64| {
+        if logarithmic {
+            (net / load).ln()
+        } else {
+            net - load
+        }
+    };
+    let mut evaluated = Vec::new();
+    let mut last: Option<(f64, IntegralValue, AdhesionForce)> = None;
     let root = brent(
-        &mut |d| Ok::<f64, FrictionError>(net_load(model, d)? - load),
+        &mut |d| {
+            let p = model.contact_load(d)?;
+            let fs = model.adhesion_force(d)?;
+            let net = p.value - fs.total();
+            evaluated.push((d, net));
+            last = Some((d, p, fs));
+            if logarithmic && net <= 0.0 {
+                // Not expected inside a bracket positive at both ends (P − F_s is monotone there);
+                // a non-positive value is mapped to the residual of the smallest positive net
+                // load, finite and below every other value, so the sign logic stays correct.
+                return Ok::<f64, FrictionError>(residual(f64::MIN_POSITIVE));
+            }
+            Ok::<f64, FrictionError>(residual(net))
+        },
         a,
         b,
-        fa - load,
-        fb - load,
+        residual(fa),
+        residual(fb),
         settings.d_star_tolerance,
         100,
     )?;
-    evaluate_at(model, load, root.x, brackets.len(), root.iterations)
+    grid.insert(&evaluated);
+    let cached = last
+        .filter(|(d, _, _)| *d == root.x)
+        .map(|(_, p, fs)| (p, fs));
+    evaluate_at(model, load, root.x, cached, brackets.len(), root.iterations)
 }
 
 /// Solve for one external load `load` (N > pull-off load).
@@ -280,11 +325,14 @@ fn evaluate_at(
     model: &StatisticalModel,
     load: f64,
     d_star: f64,
+    cached: Option<(IntegralValue, AdhesionForce)>,
     roots_found: usize,
     brent_iterations: usize,
 ) -> Result<StaticFrictionResult, FrictionError> {
-    let p = model.contact_load(d_star)?;
-    let fs = model.adhesion_force(d_star)?;
+    let (p, fs) = match cached {
+        Some(values) => values,
+        None => (model.contact_load(d_star)?, model.adhesion_force(d_star)?),
+    };
     let q = model.static_friction_force(d_star)?;
     let area = model.contact_area(d_star)?;
     let rel = |v: f64, e: f64| if v == 0.0 { 0.0 } else { (e / v).abs() };

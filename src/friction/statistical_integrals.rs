@@ -16,9 +16,10 @@
 //!
 //! with h = ε + σ(d* − z*) the gap of a non-contacting summit. Numerics (reference §11): contact
 //! integrals are taken in x, split at x = 1, 6, 110 and at the Gaussian peak and flanks
-//! (z* = 0, ±s, ±2s, …, ±16s), graded at x = 0 (x = x₁u³, so x^b with b < 1 is smooth in u), cut
-//! at z* = max(d*, 0) + 40s (φ* < 1e-300 beyond); the non-contacting integral uses h = ε(1 + t),
-//! split at t = 1, 10, 100, … and at the Gaussian features, cut at z* = min(d*, 0) − 40s. Every
+//! (z* = 0, ±s, ±2s, ±4s, ±8s), graded at x = 0 (x = x₁u³, so x^b with b < 1 is smooth in u), cut
+//! at z* = max(d*, 0) + 40s (φ* < 1e-300 beyond); the non-contacting integral uses h = ε(1 + t)
+//! in the variable v = ln(1 + t) (decades of t equally spaced, the (ε/h)² decay becomes e⁻ᵛ),
+//! split at the Gaussian features, cut at z* = min(d*, 0) − 40s. Every
 //! integral is adaptive Gauss–Kronrod 7/15 to relative tolerance [`INTEGRAL_REL_TOL`] (1e-10)
 //! with no absolute tolerance (only an exactly-zero integrand stops on error = 0).
 
@@ -283,24 +284,27 @@ impl StatisticalModel {
         })
     }
 
-    /// ∫_{−∞}^{d*} f(h)/(2πRΔγ) φ*(z*) dz* with h = ε(1 + t), z* = d* − (ε/σ) t.
+    /// ∫_{−∞}^{d*} f(h)/(2πRΔγ) φ*(z*) dz* with h = ε(1 + t), z* = d* − (ε/σ) t, taken in
+    /// v = ln(1 + t) (so the decades t = 1, 10, 100, … are equally spaced and (1 + t)⁻² dt = e⁻ᵛ dv
+    /// is smooth), split at the Gaussian peak and flanks.
     fn non_contacting_integral(&self, d_star: f64) -> QuadratureOutcome {
         let s = self.summit_std_star();
         let eps_star = self.adhesion.equilibrium_distance / self.summits.sigma;
         let z_low = d_star.min(0.0) - GAUSSIAN_CUT * s;
-        let t_max = (d_star - z_low) / eps_star;
-        let mut candidates: Vec<f64> = GAUSSIAN_FEATURES
+        let v_max = ((d_star - z_low) / eps_star).ln_1p();
+        let candidates: Vec<f64> = GAUSSIAN_FEATURES
             .iter()
             .map(|g| (d_star - g * s) / eps_star)
+            .filter(|t| *t > 0.0)
+            .map(f64::ln_1p)
             .collect();
-        let mut decade = 1.0;
-        while decade < t_max {
-            candidates.push(decade);
-            decade *= 10.0;
-        }
-        let points = breakpoints(0.0, t_max, &candidates);
-        let integrand = |t: f64| {
-            lennard_jones_adhesion_ratio(1.0 + t) * normal_pdf(d_star - eps_star * t, s) * eps_star
+        let points = breakpoints(0.0, v_max, &candidates);
+        let integrand = |v: f64| {
+            let h_over_eps = v.exp();
+            lennard_jones_adhesion_ratio(h_over_eps)
+                * h_over_eps
+                * normal_pdf(d_star - eps_star * (h_over_eps - 1.0), s)
+                * eps_star
         };
         let pieces: Vec<Piece<'_>> = points
             .windows(2)
