@@ -1,9 +1,9 @@
 //! The separation solve and μ_s: limits, errors, curves and magnitudes (statistical models).
 
 use asperity::friction::{
-    net_load, static_friction, static_friction_curve, AdhesionParameters, AsperityModel,
-    FrictionError, Material, ModelOptions, NetLoadGrid, SolveSettings, StatisticalModel,
-    SummitStatistics,
+    net_load, static_friction, static_friction_at_pressure, static_friction_curve,
+    AdhesionParameters, AsperityModel, FrictionError, Material, ModelOptions, NetLoadGrid,
+    SolveSettings, StatisticalModel, SummitStatistics,
 };
 
 /// Steel-like model (σ = 1 µm, β = 0.04, E = 115 GPa, H = 2 GPa, ν = 0.3, A_n = 1 cm²) with a
@@ -50,6 +50,11 @@ fn solution_balances_the_load() {
     assert!((mu - r.static_friction_force / load).abs() <= 1e-15 * mu);
     assert!((r.separation_from_heights - r.separation_from_summits - m.summits.y_s).abs() < 1e-18);
     assert!(r.contacting_summits > 0.0 && r.real_contact_area > 0.0);
+    // The same load given as a nominal pressure (F / A_n) gives the same solution (rounding).
+    let by_pressure =
+        static_friction_at_pressure(&m, load / m.nominal_area, &SolveSettings::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+    assert!((by_pressure.d_star - r.d_star).abs() < 1e-9);
 }
 
 /// Δγ = 0 removes adhesion exactly; F_s is linear in Δγ (1e-12, rounding only) and μ_s(Δγ → 0)
@@ -204,4 +209,53 @@ fn curve_matches_independent_solves() {
         let (a, b) = (c.mu_s.unwrap_or(f64::NAN), s.mu_s.unwrap_or(f64::NAN));
         assert!((a / b - 1.0).abs() < 1e-9, "{a} vs {b}");
     }
+}
+
+/// Hand-built inconsistent inputs and bad settings are typed errors, not NaN.
+#[test]
+fn inconsistent_inputs_and_settings_are_rejected() {
+    let m = model(1.0, 0.5, AsperityModel::KogutEtsion);
+    let mut summits = m.summits;
+    summits.sigma_s = 2.0 * summits.sigma;
+    assert!(matches!(
+        StatisticalModel::new(
+            m.model,
+            summits,
+            m.material,
+            m.adhesion,
+            1e-4,
+            ModelOptions::default()
+        ),
+        Err(FrictionError::InvalidParameter {
+            name: "summit statistics",
+            ..
+        })
+    ));
+    let mut material = m.material;
+    material.poisson_ratio = f64::NAN;
+    assert!(StatisticalModel::new(
+        m.model,
+        m.summits,
+        material,
+        m.adhesion,
+        1e-4,
+        ModelOptions::default()
+    )
+    .is_err());
+    let bad = SolveSettings {
+        grid_step: 0.0,
+        ..SolveSettings::default()
+    };
+    assert!(matches!(
+        static_friction(&m, 1.0, &bad),
+        Err(FrictionError::InvalidParameter {
+            name: "grid_step",
+            ..
+        })
+    ));
+    let bad = SolveSettings {
+        d_star_min: f64::NAN,
+        ..SolveSettings::default()
+    };
+    assert!(static_friction(&m, 1.0, &bad).is_err());
 }

@@ -43,8 +43,8 @@ pub use per_summit::{
 };
 pub use quadrature::QuadratureOutcome;
 pub use static_friction::{
-    net_load, static_friction, static_friction_curve, static_friction_on_grid, NetLoadGrid,
-    SolveSettings, SolveStatus, StaticFrictionResult,
+    net_load, static_friction, static_friction_at_pressure, static_friction_curve,
+    static_friction_on_grid, NetLoadGrid, SolveSettings, SolveStatus, StaticFrictionResult,
 };
 pub use statistical_integrals::{AdhesionForce, IntegralValue, ModelOptions, StatisticalModel};
 pub use summit_statistics::{SpectralMoments, SummitStatistics, MCCOOL_ALPHA_BOUND};

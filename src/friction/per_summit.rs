@@ -135,6 +135,13 @@ pub fn summit_friction(
     adhesion: &AdhesionParameters,
     options: &ModelOptions,
 ) -> Result<SummitFriction, FrictionError> {
+    // Material and adhesion have public fields: re-validate them (cheap) before use.
+    let material = &Material::new(
+        material.composite_modulus,
+        material.hardness,
+        material.poisson_ratio,
+    )?;
+    let adhesion = &AdhesionParameters::new(adhesion.energy, adhesion.equilibrium_distance)?;
     let radius = require_positive("summit radius", summit.radius)?;
     if !summit.interference.is_finite() {
         return Err(FrictionError::InvalidParameter {
@@ -185,6 +192,13 @@ pub fn per_summit_friction(
     adhesion: &AdhesionParameters,
     options: &ModelOptions,
 ) -> Result<PerSummitResult, FrictionError> {
+    let material = Material::new(
+        material.composite_modulus,
+        material.hardness,
+        material.poisson_ratio,
+    )?;
+    let adhesion = AdhesionParameters::new(adhesion.energy, adhesion.equilibrium_distance)?;
+    let (material, adhesion) = (&material, &adhesion);
     let per: Vec<SummitFriction> = summits
         .iter()
         .map(|s| summit_friction(s, model, material, adhesion, options))

@@ -49,6 +49,51 @@ impl Default for SolveSettings {
     }
 }
 
+impl SolveSettings {
+    /// Check the settings: finite values with d_star_floor ≤ d_star_min,
+    /// d_star_max_in_summit_std > max(d_star_min, 0), a grid step ≥ 1e-3 (bounding the table
+    /// size) and a positive tolerance.
+    pub fn validated(&self) -> Result<Self, FrictionError> {
+        let invalid = |name: &'static str, value: f64, expected: &'static str| {
+            Err(FrictionError::InvalidParameter {
+                name,
+                value,
+                expected,
+            })
+        };
+        if !(self.grid_step.is_finite() && self.grid_step >= 1e-3) {
+            return invalid("grid_step", self.grid_step, "a grid step >= 1e-3");
+        }
+        if !(self.d_star_min.is_finite()
+            && self.d_star_floor.is_finite()
+            && self.d_star_floor <= self.d_star_min)
+        {
+            return invalid(
+                "d_star_floor",
+                self.d_star_floor,
+                "finite d_star_floor <= d_star_min",
+            );
+        }
+        if !(self.d_star_max_in_summit_std.is_finite()
+            && self.d_star_max_in_summit_std > self.d_star_min.max(0.0))
+        {
+            return invalid(
+                "d_star_max_in_summit_std",
+                self.d_star_max_in_summit_std,
+                "a finite value above max(d_star_min, 0)",
+            );
+        }
+        if !(self.d_star_tolerance.is_finite() && self.d_star_tolerance > 0.0) {
+            return invalid(
+                "d_star_tolerance",
+                self.d_star_tolerance,
+                "a finite tolerance > 0",
+            );
+        }
+        Ok(*self)
+    }
+}
+
 /// Diagnostics of one solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolveStatus {
@@ -116,7 +161,7 @@ pub fn net_load(model: &StatisticalModel, d_star: f64) -> Result<f64, FrictionEr
 impl NetLoadGrid {
     /// Tabulate P − F_s on the default range of `settings`.
     pub fn new(model: &StatisticalModel, settings: &SolveSettings) -> Result<Self, FrictionError> {
-        let step = super::error::require_positive("grid_step", settings.grid_step)?;
+        let step = settings.validated()?.grid_step;
         let hi = settings.d_star_max_in_summit_std * model.summit_std_star();
         let mut d_star = Vec::new();
         let mut net = Vec::new();
@@ -306,6 +351,15 @@ pub fn static_friction(
 ) -> Result<StaticFrictionResult, FrictionError> {
     let mut grid = NetLoadGrid::new(model, settings)?;
     static_friction_on_grid(model, &mut grid, load, settings)
+}
+
+/// Solve for a nominal pressure `pressure` (Pa): F = pressure × A_n.
+pub fn static_friction_at_pressure(
+    model: &StatisticalModel,
+    pressure: f64,
+    settings: &SolveSettings,
+) -> Result<StaticFrictionResult, FrictionError> {
+    static_friction(model, pressure * model.nominal_area, settings)
 }
 
 /// μ(F) curve: one result per load, sharing one net-load grid (each load may fail on its own).

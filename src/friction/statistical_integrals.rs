@@ -124,6 +124,14 @@ impl StatisticalModel {
         options: ModelOptions,
     ) -> Result<Self, FrictionError> {
         let nominal_area = require_positive("nominal_area", nominal_area)?;
+        // The component types have public fields: re-validate them here.
+        let material = Material::new(
+            material.composite_modulus,
+            material.hardness,
+            material.poisson_ratio,
+        )?;
+        let adhesion = AdhesionParameters::new(adhesion.energy, adhesion.equilibrium_distance)?;
+        let summits = summits.validated()?;
         let critical = material.critical_values(summits.radius);
         let plasticity_index = material.plasticity_index(summits.sigma_s, summits.radius);
         Ok(Self {

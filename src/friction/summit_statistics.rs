@@ -136,6 +136,27 @@ impl SummitStatistics {
         })
     }
 
+    /// Re-check a value built field by field: the explicit constructor must reproduce its σ_s,
+    /// y_s and α from σ, R, η (relative 1e-9), so hand-made inconsistent values are rejected.
+    pub fn validated(&self) -> Result<Self, FrictionError> {
+        let check = Self::from_explicit(self.sigma, self.radius, self.density)?;
+        let consistent = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
+        if consistent(self.sigma_s, check.sigma_s)
+            && consistent(self.y_s, check.y_s)
+            && consistent(self.alpha, check.alpha)
+            && consistent(self.beta, check.beta)
+        {
+            Ok(*self)
+        } else {
+            Err(FrictionError::InvalidParameter {
+                name: "summit statistics",
+                value: self.sigma_s,
+                expected:
+                    "sigma_s, y_s, beta, alpha consistent with sigma, R, eta (use the constructors)",
+            })
+        }
+    }
+
     /// Ratio σ_s/σ: the standard deviation of the summit-height pdf in σ units.
     pub fn summit_std_ratio(&self) -> f64 {
         self.sigma_s / self.sigma
