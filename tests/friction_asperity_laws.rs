@@ -133,3 +133,70 @@ fn deformation_states_by_breakpoint() {
     assert_eq!(s(110.0), ElasticPlastic);
     assert_eq!(s(110.5), FullyPlastic);
 }
+
+/// DMT adhesion of an elastic sphere computed directly: the Lennard-Jones pressure
+/// p(h) = (8Δγ/3ε)[(ε/h)³ − (ε/h)⁹] integrated over the gap outside a Hertz contact,
+/// h(r) = ε + r²/2R − ω + (1/πR)[(2a² − r²) asin(a/r) + a√(r² − a²)], a = √(Rω) (Johnson 1985,
+/// §3.4). Returns F/(2πRΔγ). Composite Simpson on a geometric grid in r − a.
+fn dmt_over_hertz_gap(radius: f64, omega: f64, eps: f64) -> f64 {
+    let a = (radius * omega).sqrt();
+    let gap = |r: f64| {
+        let ratio = (a / r).min(1.0);
+        let u = ((2.0 * a * a - r * r) * ratio.asin() + a * (r * r - a * a).max(0.0).sqrt())
+            / (std::f64::consts::PI * radius);
+        r * r / (2.0 * radius) - omega + u + eps
+    };
+    let pressure = |h: f64| {
+        let q = eps / h;
+        8.0 / (3.0 * eps) * (q.powi(3) - q.powi(9))
+    };
+    let r_max = (100.0 * a).max((2.0 * radius * 1e4 * eps).sqrt());
+    let mut points = vec![a];
+    let mut step = (a * 1e-8).max(1e-12);
+    while a + step < r_max {
+        points.push(a + step);
+        step *= 2.0;
+    }
+    points.push(r_max);
+    let mut total = 0.0;
+    for w in points.windows(2) {
+        let n = 200;
+        let h = (w[1] - w[0]) / n as f64;
+        let mut acc = 0.0;
+        for i in 0..=n {
+            let r = w[0] + i as f64 * h;
+            let weight = if i == 0 || i == n {
+                1.0
+            } else if i % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
+            acc += weight * pressure(gap(r)) * 2.0 * std::f64::consts::PI * r;
+        }
+        total += acc * h / 3.0;
+    }
+    total / (2.0 * std::f64::consts::PI * radius)
+}
+
+/// The reference's consistency check of the KE 2003 elastic adhesion fit 0.98 x^0.298 (ε/ω_c)^−0.29:
+/// it matches a direct DMT integration over the Hertz gap "within a few per cent". Observed over
+/// ω/ε = 2.5 … 2500: at most 7.3 %; the tolerance is 8 %. The integrator itself is checked on the
+/// rigid limit (ω → 0: exactly 2πRΔγ, to 1e-6 for the Simpson grid).
+#[test]
+fn elastic_adhesion_fit_matches_direct_dmt_integration() {
+    let eps = 0.158e-9;
+    let radius = 1e-4;
+    assert!((dmt_over_hertz_gap(radius, 1e-15, eps) - 1.0).abs() < 1e-6);
+    for &wc_over_eps in &[25.0, 250.0, 2500.0] {
+        let wc = wc_over_eps * eps;
+        for &x in &[0.1, 0.3, 1.0] {
+            let direct = dmt_over_hertz_gap(radius, x * wc, eps);
+            let fit = contacting_adhesion_ratio(x, eps / wc, AdhesionBeyondFits::HoldAtX110);
+            assert!(
+                (fit / direct - 1.0).abs() < 0.08,
+                "ω_c/ε {wc_over_eps}, x {x}: fit {fit} vs DMT {direct}"
+            );
+        }
+    }
+}
