@@ -235,6 +235,28 @@ impl NetLoadGrid {
             .collect()
     }
 
+    /// Number of distinct roots among `brackets`: sign changes in a cluster of consecutive table
+    /// intervals spanning less than 1e-6 in d* (points left by an earlier Brent refinement at the
+    /// same load, where quadrature noise can flip the sign) count as one root.
+    fn count_roots(&self, brackets: &[usize]) -> usize {
+        let mut roots = 0;
+        let mut cluster_start: Option<f64> = None;
+        let mut previous: Option<usize> = None;
+        for &i in brackets {
+            let (Some(&lo), Some(&hi)) = (self.d_star.get(i), self.d_star.get(i + 1)) else {
+                continue;
+            };
+            let continues = previous.is_some_and(|p| p + 1 == i)
+                && cluster_start.is_some_and(|start| hi - start < 1e-6);
+            if !continues {
+                roots += 1;
+                cluster_start = Some(lo);
+            }
+            previous = Some(i);
+        }
+        roots
+    }
+
     /// Pull-off load: the minimum of P − F_s, refined by golden section around the grid minimum.
     pub fn pull_off_load(&self, model: &StatisticalModel) -> Result<f64, FrictionError> {
         let Some((i_min, _)) = self
@@ -340,7 +362,8 @@ pub fn static_friction_on_grid(
     let cached = last
         .filter(|(d, _, _)| *d == root.x)
         .map(|(_, p, fs)| (p, fs));
-    evaluate_at(model, load, root.x, cached, brackets.len(), root.iterations)
+    let roots_found = grid.count_roots(&brackets);
+    evaluate_at(model, load, root.x, cached, roots_found, root.iterations)
 }
 
 /// Solve for one external load `load` (N > pull-off load).
