@@ -17,7 +17,7 @@
 //!   plastic) was confirmed from the KE 2002 abstract.
 //! * KE 2002 area fits A/A_c = 0.93 x^1.136 (1 < x ≤ 6), 0.94 x^1.146 (6 < x ≤ 110), 2x (x > 110):
 //!   NOT confirmed by the search tool (no primary or secondary text found); taken from the
-//!   project reference `friction_models.md`, which marks them [check].
+//!   project reference `friction_models.md`, which marks them \[check\].
 //! * KE 2003 adhesion fits (J. Colloid Interface Sci. 261 (2003) 372) F_s/(2πRΔγ) =
 //!   a x^b (ε/ω_c)^c: NOT confirmed by the search tool; taken from the project reference. The
 //!   elastic piece (0.98, 0.298, −0.29) was checked independently in the test suite against a

@@ -8,7 +8,7 @@
 //! * [`asperity_laws`] — single-asperity laws (KE 2002 load/area, KE 2003 adhesion, DMT/LJ,
 //!   KE 2004 Q_max literal/clipped, CEB), with what was confirmed from the literature;
 //! * [`statistical_integrals`] — P(d*), A(d*), F_s(d*), Q_max(d*), N(d*) for KE 2004 and CEB;
-//! * [`static_friction`] — solve F = P − F_s for d*, μ_s = Q_max/F, μ(F) curves;
+//! * [`mod@static_friction`] — solve F = P − F_s for d*, μ_s = Q_max/F, μ(F) curves;
 //! * [`per_summit`] — the same laws applied per identified summit, force-weighted μ and the
 //!   homogenization to the whole surface;
 //! * `quadrature`, `root_finding` (crate-private) — adaptive Gauss–Kronrod and Brent (own implementations).
