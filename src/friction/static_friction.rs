@@ -4,13 +4,17 @@
 //! F(d*) → 0⁻ as d* → ∞ (adhesion outlasts contact) and has a minimum, the pull-off load. The net
 //! load P − F_s is evaluated on a grid of d* (default [−3, 12 σ_s/σ], step 0.5; the lower end is
 //! extended in steps of 3 down to −30 when the load needs it), every sign change of
-//! P − F_s − F between grid points is counted as a root, and each bracket can be refined with
-//! Brent (x tolerance 1e-11 in d*, i.e. ~1e-17 m for σ = 1 µm). **The root with the smallest d\*
-//! is taken**: there dF/dd* < 0, the stable equilibrium under load control (for a tensile load
-//! between pull-off and 0 the other root lies on the unstable, receding branch). Two roots
-//! closer than one grid step are not resolved (documented limitation). A tensile load below the
-//! pull-off load returns [`FrictionError::LoadBelowPullOff`]; μ_s is reported only for a
-//! compressive load F > 0 (it is `None` for a tensile load).
+//! P − F_s − F between grid points is counted as a root ([`SolveStatus::roots_found`]). **The
+//! root with the smallest d\* is taken** and refined with Brent (x tolerance 1e-11 in d*, i.e.
+//! ~1e-17 m for σ = 1 µm; run on ln((P − F_s)/F) when the bracket is compressive at both ends,
+//! on P − F_s − F otherwise): there dF/dd* < 0, the stable equilibrium under load control (for a
+//! tensile load between pull-off and 0 the other root lies on the unstable, receding branch).
+//! Two roots closer than one grid step are not resolved (a limitation). A tensile load below the
+//! pull-off load returns [`FrictionError::LoadBelowPullOff`] (pull-off = grid minimum of P − F_s
+//! refined by golden section; a minimum beyond the top of the grid is not searched); μ_s is
+//! reported only for a compressive load F > 0 (it is `None` for a tensile load). With the
+//! literal KE 2004 Q_max at high ψ, Q_max and μ_s can come out negative; they are reported as
+//! computed (see [`super::asperity_laws`]).
 //!
 //! μ(F) curves reuse one table for all loads: every net-load evaluation made by Brent is inserted
 //! into it, so later loads start from narrower brackets (each extra load costs a few iterations).
@@ -144,7 +148,8 @@ pub struct StaticFrictionResult {
     pub status: SolveStatus,
 }
 
-/// Net load P − F_s (N) tabulated on a d* grid, reusable across loads.
+/// Net load P − F_s (N) tabulated on a d* grid, reusable across loads of the SAME model (the
+/// table must only hold exact evaluations of that model; the solver keeps it so).
 #[derive(Debug, Clone, PartialEq)]
 pub struct NetLoadGrid {
     /// Grid d* (ascending).
