@@ -103,6 +103,9 @@ fn static_friction_polynomial_shape() {
         1e-9
     ));
     assert!(close(ke_static_friction_ratio(2.5821, lit), 0.94695, 1e-5));
+    // The documented zero (clipped-form kink) is a root to rounding: |p| ≤ 1e-14 (p' ≈ −0.9 there).
+    let zero = asperity::friction::asperity_laws::KE_STATIC_FRICTION_ZERO;
+    assert!(ke_static_friction_ratio(zero, lit).abs() < 1e-14);
     assert!(ke_static_friction_ratio(4.29, lit) > 0.0);
     assert!(ke_static_friction_ratio(4.30, lit) < 0.0);
     assert!(ke_static_friction_ratio(6.0, lit) < 0.0);

@@ -152,6 +152,10 @@ pub fn ceb_area_ratio(x: f64) -> f64 {
     }
 }
 
+/// Zero of the KE 2004 polynomial x^1.425 (0.85 − 0.4x + 0.09x² − 0.01x³) in (1, 6): where the
+/// clipped form has its kink (a quadrature breakpoint). Obtained by bisection to rounding.
+pub const KE_STATIC_FRICTION_ZERO: f64 = 4.294_625_761_688_716_5;
+
 /// KE 2004 Q_max/P_c at dimensionless interference x.
 pub fn ke_static_friction_ratio(x: f64, form: StaticFrictionForm) -> f64 {
     if x <= 0.0 {

@@ -26,7 +26,7 @@
 use super::asperity_laws::{
     ceb_area_ratio, ceb_load_ratio, ceb_static_friction_ratio, contacting_adhesion_ratio,
     ke_area_ratio, ke_load_ratio, ke_static_friction_ratio, lennard_jones_adhesion_ratio,
-    AdhesionBeyondFits, AsperityModel, StaticFrictionForm,
+    AdhesionBeyondFits, AsperityModel, StaticFrictionForm, KE_STATIC_FRICTION_ZERO,
 };
 use super::error::{require_positive, FrictionError};
 use super::gw_functions::{
@@ -244,9 +244,12 @@ impl StatisticalModel {
     pub fn static_friction_force(&self, d_star: f64) -> Result<IntegralValue, FrictionError> {
         let form = self.options.static_friction_form;
         let outcome = match self.model {
-            AsperityModel::KogutEtsion => {
-                self.contact_integral(d_star, &|x| ke_static_friction_ratio(x, form), &[1.0], 6.0)
-            }
+            AsperityModel::KogutEtsion => self.contact_integral(
+                d_star,
+                &|x| ke_static_friction_ratio(x, form),
+                &[1.0, KE_STATIC_FRICTION_ZERO],
+                6.0,
+            ),
             AsperityModel::ChangEtsionBogy => {
                 self.contact_integral(d_star, &ceb_static_friction_ratio, &[], 1.0)
             }
