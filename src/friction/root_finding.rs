@@ -9,18 +9,33 @@ pub(crate) struct Root {
     pub(crate) iterations: usize,
 }
 
+/// Stopping rules of [`brent`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct BrentTolerances {
+    /// Absolute tolerance on x.
+    pub(crate) x_tol: f64,
+    /// Stop once |f(x)| ≤ f_tol.
+    pub(crate) f_tol: f64,
+    /// Maximum evaluations of f after the two given.
+    pub(crate) max_iterations: usize,
+}
+
 /// Brent's method (inverse quadratic interpolation / secant / bisection) on [a, b] with f(a), f(b)
 /// of opposite sign (or one zero). Stops when the bracket half-width is ≤ 2·ε_mach·|x| + x_tol/2
-/// or f(x) = 0; at most `max_iterations` evaluations of f after the two given.
+/// or |f(x)| ≤ f_tol; at most `max_iterations` evaluations of f after the two given.
 pub(crate) fn brent<E>(
     f: &mut dyn FnMut(f64) -> Result<f64, E>,
     a: f64,
     b: f64,
     fa: f64,
     fb: f64,
-    x_tol: f64,
-    max_iterations: usize,
+    tolerances: BrentTolerances,
 ) -> Result<Root, E> {
+    let BrentTolerances {
+        x_tol,
+        f_tol,
+        max_iterations,
+    } = tolerances;
     let (mut a, mut b, mut fa, mut fb) = (a, b, fa, fb);
     let (mut c, mut fc) = (a, fa);
     let mut step = b - a;
@@ -42,7 +57,7 @@ pub(crate) fn brent<E>(
         }
         let tol = 2.0 * f64::EPSILON * b.abs() + 0.5 * x_tol;
         let half = 0.5 * (c - b);
-        if half.abs() <= tol || fb == 0.0 || iteration == max_iterations {
+        if half.abs() <= tol || fb.abs() <= f_tol || iteration == max_iterations {
             return Ok(Root {
                 x: b,
                 f: fb,
@@ -137,7 +152,19 @@ mod tests {
     #[test]
     fn brent_finds_cube_root() {
         let mut f = |x: f64| -> Result<f64, ()> { Ok(x * x * x - 2.0) };
-        let root = brent(&mut f, 0.0, 2.0, -2.0, 6.0, 1e-14, 100).unwrap_or(Root {
+        let root = brent(
+            &mut f,
+            0.0,
+            2.0,
+            -2.0,
+            6.0,
+            BrentTolerances {
+                x_tol: 1e-14,
+                f_tol: 0.0,
+                max_iterations: 100,
+            },
+        )
+        .unwrap_or(Root {
             x: 0.0,
             f: 1.0,
             iterations: 0,

@@ -5,9 +5,10 @@
 //! load P − F_s is evaluated on a grid of d* (default [−3, 12 σ_s/σ], step 0.5; the lower end is
 //! extended in steps of 3 down to −30 when the load needs it), every sign change of
 //! P − F_s − F between grid points is counted as a root ([`SolveStatus::roots_found`]). **The
-//! root with the smallest d\* is taken** and refined with Brent (x tolerance 1e-11 in d*, i.e.
-//! ~1e-17 m for σ = 1 µm; run on ln((P − F_s)/F) when the bracket is compressive at both ends,
-//! on P − F_s − F otherwise): there dF/dd* < 0, the stable equilibrium under load control (for a
+//! root with the smallest d\* is taken** and refined with Brent, run on ln((P − F_s)/F) when the
+//! bracket is compressive at both ends and on P − F_s − F otherwise; it stops at an x tolerance
+//! of 1e-11 in d* (~1e-17 m for σ = 1 µm) or a relative load residual ≤ 1e-11. There
+//! dF/dd* < 0, the stable equilibrium under load control (for a
 //! tensile load between pull-off and 0 the other root lies on the unstable, receding branch).
 //! Two roots closer than one grid step are not resolved (a limitation). A tensile load below the
 //! pull-off load returns [`FrictionError::LoadBelowPullOff`] (pull-off = grid minimum of P − F_s
@@ -23,8 +24,12 @@
 
 use super::asperity_laws::AsperityModel;
 use super::error::FrictionError;
-use super::root_finding::{brent, golden_minimum};
+use super::root_finding::{brent, golden_minimum, BrentTolerances};
 use super::statistical_integrals::{AdhesionForce, IntegralValue, StatisticalModel};
+
+/// Brent also stops once the relative load residual |P − F_s − F|/|F| (or |ln((P − F_s)/F)|) is
+/// ≤ 1e-11, below the 1e-10 accuracy of the integrals, where further steps only chase noise.
+const RESIDUAL_TOLERANCE: f64 = 1e-11;
 
 /// Grid and solver settings of the separation solve.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -360,8 +365,15 @@ pub fn static_friction_on_grid(
         b,
         residual(fa),
         residual(fb),
-        settings.d_star_tolerance,
-        100,
+        BrentTolerances {
+            x_tol: settings.d_star_tolerance,
+            f_tol: if logarithmic {
+                RESIDUAL_TOLERANCE
+            } else {
+                RESIDUAL_TOLERANCE * load.abs()
+            },
+            max_iterations: 100,
+        },
     )?;
     grid.insert(&evaluated);
     let cached = last
