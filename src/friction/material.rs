@@ -1,0 +1,138 @@
+//! Material of a contact pair and the critical (first-yield) values of a spherical asperity.
+//!
+//! Composite modulus 1/E = (1 − ν1²)/E1 + (1 − ν2²)/E2 (Hertz); hardness H and Poisson ratio ν of
+//! the softer body; hardness factor K = 0.454 + 0.41 ν (Chang, Etsion & Bogy, J. Tribol. 109
+//! (1987) 257: the peak Hertz pressure at first yield is K·H). Critical values of a sphere of
+//! radius R on a flat (Kogut & Etsion, J. Appl. Mech. 69 (2002) 657):
+//!
+//! ```text
+//! ω_c = (π K H / (2E))² R      P_c = (2/3) π K H R ω_c      A_c = π R ω_c
+//! ```
+//!
+//! Plasticity index (KE form): ψ = (2E/(π K H)) √(σ_s/R), evaluated with the **summit-height**
+//! standard deviation σ_s (as KE 2003/2004 do), so that ω_c/σ_s = 1/ψ².
+
+use super::error::{require_positive, FrictionError};
+
+/// Elastic and plastic properties of a contact pair (SI units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Composite modulus E (Pa).
+    pub composite_modulus: f64,
+    /// Hardness H of the softer body (Pa).
+    pub hardness: f64,
+    /// Poisson ratio ν of the softer body.
+    pub poisson_ratio: f64,
+}
+
+/// First-yield values of one spherical asperity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CriticalValues {
+    /// Critical interference ω_c (m).
+    pub interference: f64,
+    /// Critical load P_c (N).
+    pub load: f64,
+    /// Critical contact area A_c (m²).
+    pub area: f64,
+}
+
+fn require_poisson(name: &'static str, nu: f64) -> Result<f64, FrictionError> {
+    if nu.is_finite() && nu > -1.0 && nu < 0.5 {
+        Ok(nu)
+    } else {
+        Err(FrictionError::InvalidParameter {
+            name,
+            value: nu,
+            expected: "a Poisson ratio in (-1, 0.5)",
+        })
+    }
+}
+
+impl Material {
+    /// Material from the composite modulus E (Pa), the softer body's hardness H (Pa) and Poisson
+    /// ratio ν. Requires E > 0, 0 < H < E, −1 < ν < 0.5.
+    pub fn new(
+        composite_modulus: f64,
+        hardness: f64,
+        poisson_ratio: f64,
+    ) -> Result<Self, FrictionError> {
+        let composite_modulus = require_positive("composite_modulus", composite_modulus)?;
+        let hardness = require_positive("hardness", hardness)?;
+        if hardness >= composite_modulus {
+            return Err(FrictionError::InvalidParameter {
+                name: "hardness",
+                value: hardness,
+                expected: "a hardness below the composite modulus",
+            });
+        }
+        let poisson_ratio = require_poisson("poisson_ratio", poisson_ratio)?;
+        Ok(Self {
+            composite_modulus,
+            hardness,
+            poisson_ratio,
+        })
+    }
+
+    /// Material from both bodies: E1, ν1, E2, ν2 (Pa, –), the hardness H (Pa) of the softer body
+    /// and `softer_is_first` choosing whose ν enters K.
+    pub fn from_bodies(
+        e1: f64,
+        nu1: f64,
+        e2: f64,
+        nu2: f64,
+        hardness: f64,
+        softer_is_first: bool,
+    ) -> Result<Self, FrictionError> {
+        let e1 = require_positive("e1", e1)?;
+        let e2 = require_positive("e2", e2)?;
+        let nu1 = require_poisson("nu1", nu1)?;
+        let nu2 = require_poisson("nu2", nu2)?;
+        let compliance = (1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2;
+        let nu = if softer_is_first { nu1 } else { nu2 };
+        Self::new(1.0 / compliance, hardness, nu)
+    }
+
+    /// Hardness factor K = 0.454 + 0.41 ν.
+    pub fn hardness_factor(&self) -> f64 {
+        0.454 + 0.41 * self.poisson_ratio
+    }
+
+    /// Critical values ω_c, P_c, A_c of a sphere of radius `radius` (m).
+    pub fn critical_values(&self, radius: f64) -> CriticalValues {
+        let k = self.hardness_factor();
+        let ratio = std::f64::consts::PI * k * self.hardness / (2.0 * self.composite_modulus);
+        let interference = ratio * ratio * radius;
+        CriticalValues {
+            interference,
+            load: 2.0 / 3.0 * std::f64::consts::PI * k * self.hardness * radius * interference,
+            area: std::f64::consts::PI * radius * interference,
+        }
+    }
+
+    /// Plasticity index ψ = (2E/(π K H)) √(σ_s/R), with σ_s the summit-height std (m) and R the
+    /// mean summit radius (m).
+    pub fn plasticity_index(&self, sigma_s: f64, radius: f64) -> f64 {
+        let k = self.hardness_factor();
+        2.0 * self.composite_modulus / (std::f64::consts::PI * k * self.hardness)
+            * (sigma_s / radius).sqrt()
+    }
+}
+
+/// Adhesion parameters: adhesion energy Δγ (N/m, ≥ 0) and Lennard-Jones equilibrium distance ε (m, > 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AdhesionParameters {
+    /// Adhesion energy Δγ (N/m); 0 switches adhesion off.
+    pub energy: f64,
+    /// Lennard-Jones equilibrium distance ε (m), e.g. 0.158e-9 for iron.
+    pub equilibrium_distance: f64,
+}
+
+impl AdhesionParameters {
+    /// Validated adhesion parameters (Δγ ≥ 0, ε > 0).
+    pub fn new(energy: f64, equilibrium_distance: f64) -> Result<Self, FrictionError> {
+        Ok(Self {
+            energy: super::error::require_non_negative("adhesion_energy", energy)?,
+            equilibrium_distance: require_positive("equilibrium_distance", equilibrium_distance)?,
+        })
+    }
+}

@@ -1,0 +1,467 @@
+//! The static friction coefficient of the statistical models (KE 2004 §8 of the reference):
+//! solve **F = P(d*) − F_s(d*)** for the separation d*, then **μ_s = Q_max(d*) / F**.
+//!
+//! F(d*) → 0⁻ as d* → ∞ (adhesion outlasts contact) and has a minimum, the pull-off load. The net
+//! load P − F_s is evaluated on a grid of d* (default [−3, 12 σ_s/σ], step 0.5; the lower end is
+//! extended in steps of 3 down to −30 when the load needs it), every sign change of
+//! P − F_s − F between grid points is counted as a root ([`SolveStatus::roots_found`]). **The
+//! root with the smallest d\* is taken** and refined with Brent, run on ln((P − F_s)/F) when the
+//! bracket is compressive at both ends and on P − F_s − F otherwise; it stops at an x tolerance
+//! of 1e-11 in d* (~1e-17 m for σ = 1 µm) or a relative load residual ≤ 1e-11. There
+//! dF/dd* < 0, the stable equilibrium under load control (for a
+//! tensile load between pull-off and 0 the other root lies on the unstable, receding branch).
+//! Two roots closer than one grid step are not resolved (a limitation). A tensile load below the
+//! pull-off load returns [`FrictionError::LoadBelowPullOff`] (pull-off = grid minimum of P − F_s
+//! refined by golden section; a minimum beyond the top of the grid is not searched); μ_s is
+//! reported only for a compressive load F > 0 (it is `None` for a tensile load). With the
+//! literal KE 2004 Q_max at high ψ, Q_max and μ_s can come out negative; they are reported as
+//! computed (see [`super::asperity_laws`]).
+//!
+//! μ(F) curves reuse one table for all loads: every net-load evaluation made by Brent is inserted
+//! into it, so later loads start from narrower brackets (each extra load costs a few iterations).
+//! The table only ever holds exact evaluations, so root counting stays valid (refinement can only
+//! reveal sign changes, never invent them).
+
+use super::asperity_laws::AsperityModel;
+use super::error::FrictionError;
+use super::root_finding::{brent, golden_minimum, BrentTolerances};
+use super::statistical_integrals::{AdhesionForce, IntegralValue, StatisticalModel};
+
+/// Brent also stops once the relative load residual |P − F_s − F|/|F| (or |ln((P − F_s)/F)|) is
+/// ≤ 1e-11, below the 1e-10 accuracy of the integrals, where further steps only chase noise.
+const RESIDUAL_TOLERANCE: f64 = 1e-11;
+
+/// Grid and solver settings of the separation solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveSettings {
+    /// Lowest d* of the initial grid (σ units).
+    pub d_star_min: f64,
+    /// Highest d* of the grid in units of s = σ_s/σ.
+    pub d_star_max_in_summit_std: f64,
+    /// Grid step in d*.
+    pub grid_step: f64,
+    /// Lowest d* the grid may be extended to for heavy loads.
+    pub d_star_floor: f64,
+    /// Brent absolute tolerance on d*.
+    pub d_star_tolerance: f64,
+}
+
+impl Default for SolveSettings {
+    fn default() -> Self {
+        Self {
+            d_star_min: -3.0,
+            d_star_max_in_summit_std: 12.0,
+            grid_step: 0.5,
+            d_star_floor: -30.0,
+            d_star_tolerance: 1e-11,
+        }
+    }
+}
+
+impl SolveSettings {
+    /// Check the settings: finite values with d_star_floor ≤ d_star_min,
+    /// d_star_max_in_summit_std > max(d_star_min, 0), a grid step ≥ 1e-3 (bounding the table
+    /// size) and a positive tolerance.
+    pub fn validated(&self) -> Result<Self, FrictionError> {
+        let invalid = |name: &'static str, value: f64, expected: &'static str| {
+            Err(FrictionError::InvalidParameter {
+                name,
+                value,
+                expected,
+            })
+        };
+        if !(self.grid_step.is_finite() && self.grid_step >= 1e-3) {
+            return invalid("grid_step", self.grid_step, "a grid step >= 1e-3");
+        }
+        if !(self.d_star_min.is_finite()
+            && self.d_star_floor.is_finite()
+            && self.d_star_floor <= self.d_star_min)
+        {
+            return invalid(
+                "d_star_floor",
+                self.d_star_floor,
+                "finite d_star_floor <= d_star_min",
+            );
+        }
+        if !(self.d_star_max_in_summit_std.is_finite()
+            && self.d_star_max_in_summit_std > self.d_star_min.max(0.0))
+        {
+            return invalid(
+                "d_star_max_in_summit_std",
+                self.d_star_max_in_summit_std,
+                "a finite value above max(d_star_min, 0)",
+            );
+        }
+        if !(self.d_star_tolerance.is_finite() && self.d_star_tolerance > 0.0) {
+            return invalid(
+                "d_star_tolerance",
+                self.d_star_tolerance,
+                "a finite tolerance > 0",
+            );
+        }
+        Ok(*self)
+    }
+}
+
+/// Diagnostics of one solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveStatus {
+    /// Number of sign changes of P − F_s − F found on the grid.
+    pub roots_found: usize,
+    /// Index (0 = smallest d*) of the root taken; always 0 (see module docs).
+    pub root_taken: usize,
+    /// Brent iterations of the refinement.
+    pub brent_iterations: usize,
+    /// |P − F_s − F| / |F| at the solution.
+    pub relative_residual: f64,
+    /// Largest relative error estimate among the integrals reported.
+    pub max_integral_relative_error: f64,
+}
+
+/// Static friction of a statistical model at one external load.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticFrictionResult {
+    /// Model used.
+    pub model: AsperityModel,
+    /// External load F (N, compressive positive).
+    pub external_load: f64,
+    /// μ_s = Q_max / F (None for F ≤ 0).
+    pub mu_s: Option<f64>,
+    /// Contact load P (N).
+    pub contact_load: f64,
+    /// Total adhesion force F_s (N).
+    pub adhesion_force: f64,
+    /// Adhesion of contacting summits (N).
+    pub adhesion_contacting: f64,
+    /// Adhesion of non-contacting summits (N).
+    pub adhesion_non_contacting: f64,
+    /// Static friction force Q_max (N).
+    pub static_friction_force: f64,
+    /// Dimensionless separation d* = d/σ from the summit mean plane.
+    pub d_star: f64,
+    /// Separation d from the summit mean plane (m).
+    pub separation_from_summits: f64,
+    /// Separation h = d + y_s from the mean plane of surface heights (m).
+    pub separation_from_heights: f64,
+    /// Plasticity index ψ (with σ_s).
+    pub plasticity_index: f64,
+    /// Expected number of contacting summits.
+    pub contacting_summits: f64,
+    /// Real contact area (m²).
+    pub real_contact_area: f64,
+    /// Solver diagnostics.
+    pub status: SolveStatus,
+}
+
+/// Net load P − F_s (N) tabulated on a d* grid, reusable across loads of the SAME model (the
+/// table must only hold exact evaluations of that model; the solver keeps it so).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NetLoadGrid {
+    /// Grid d* (ascending).
+    pub d_star: Vec<f64>,
+    /// P − F_s at each grid point (N).
+    pub net_load: Vec<f64>,
+}
+
+/// Net load P(d*) − F_s(d*) in N.
+pub fn net_load(model: &StatisticalModel, d_star: f64) -> Result<f64, FrictionError> {
+    Ok(model.contact_load(d_star)?.value - model.adhesion_force(d_star)?.total())
+}
+
+impl NetLoadGrid {
+    /// Tabulate P − F_s on the default range of `settings`.
+    pub fn new(model: &StatisticalModel, settings: &SolveSettings) -> Result<Self, FrictionError> {
+        let step = settings.validated()?.grid_step;
+        let hi = settings.d_star_max_in_summit_std * model.summit_std_star();
+        let mut d_star = Vec::new();
+        let mut net = Vec::new();
+        let mut d = settings.d_star_min;
+        while d <= hi + 0.5 * step {
+            d_star.push(d);
+            net.push(net_load(model, d)?);
+            d += step;
+        }
+        Ok(Self {
+            d_star,
+            net_load: net,
+        })
+    }
+
+    /// Extend the grid downward (steps of 3) until the net load at its low end exceeds `load`.
+    fn cover_load(
+        &mut self,
+        model: &StatisticalModel,
+        load: f64,
+        settings: &SolveSettings,
+    ) -> Result<(), FrictionError> {
+        loop {
+            let (Some(&d0), Some(&f0)) = (self.d_star.first(), self.net_load.first()) else {
+                return Ok(());
+            };
+            if f0 > load {
+                return Ok(());
+            }
+            if d0 - 3.0 < settings.d_star_floor {
+                return Err(FrictionError::LoadAboveSearchRange {
+                    load,
+                    max_load: f0,
+                    d_star_min: d0,
+                });
+            }
+            let mut lower_d = Vec::new();
+            let mut lower_f = Vec::new();
+            let mut d = d0 - 3.0;
+            while d < d0 - 0.5 * settings.grid_step {
+                lower_d.push(d);
+                lower_f.push(net_load(model, d)?);
+                d += settings.grid_step;
+            }
+            lower_d.append(&mut self.d_star);
+            lower_f.append(&mut self.net_load);
+            self.d_star = lower_d;
+            self.net_load = lower_f;
+        }
+    }
+
+    /// Add exact evaluations (d*, P − F_s) to the table, keeping it sorted; later loads of a curve
+    /// then start from narrower brackets.
+    fn insert(&mut self, points: &[(f64, f64)]) {
+        for &(d, net) in points {
+            let index = self.d_star.partition_point(|&x| x < d);
+            if self.d_star.get(index) != Some(&d) {
+                self.d_star.insert(index, d);
+                self.net_load.insert(index, net);
+            }
+        }
+    }
+
+    /// Brackets [d_i, d_{i+1}] where P − F_s − load changes sign (or is zero at d_i).
+    fn brackets(&self, load: f64) -> Vec<usize> {
+        let g: Vec<f64> = self.net_load.iter().map(|n| n - load).collect();
+        g.windows(2)
+            .enumerate()
+            .filter(|(_, w)| w[0] == 0.0 || w[0] * w[1] < 0.0)
+            .map(|(i, _)| i)
+            .collect()
+    }
+
+    /// Number of distinct roots among `brackets`: sign changes in a cluster of consecutive table
+    /// intervals spanning less than 1e-6 in d* (points left by an earlier Brent refinement at the
+    /// same load, where quadrature noise can flip the sign) count as one root.
+    fn count_roots(&self, brackets: &[usize]) -> usize {
+        let mut roots = 0;
+        let mut cluster_start: Option<f64> = None;
+        let mut previous: Option<usize> = None;
+        for &i in brackets {
+            let (Some(&lo), Some(&hi)) = (self.d_star.get(i), self.d_star.get(i + 1)) else {
+                continue;
+            };
+            let continues = previous.is_some_and(|p| p + 1 == i)
+                && cluster_start.is_some_and(|start| hi - start < 1e-6);
+            if !continues {
+                roots += 1;
+                cluster_start = Some(lo);
+            }
+            previous = Some(i);
+        }
+        roots
+    }
+
+    /// Pull-off load: the minimum of P − F_s, refined by golden section around the grid minimum.
+    pub fn pull_off_load(&self, model: &StatisticalModel) -> Result<f64, FrictionError> {
+        let Some((i_min, _)) = self
+            .net_load
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.total_cmp(b.1))
+        else {
+            return Ok(0.0);
+        };
+        let lo = self
+            .d_star
+            .get(i_min.saturating_sub(1))
+            .copied()
+            .unwrap_or(0.0);
+        let hi = self.d_star.get(i_min + 1).copied().unwrap_or(lo);
+        let (_, f_min, _) = golden_minimum(&mut |d| net_load(model, d), lo, hi, 1e-9)?;
+        let grid_min = self.net_load.get(i_min).copied().unwrap_or(f_min);
+        Ok(f_min.min(grid_min))
+    }
+}
+
+/// Solve for one external load `load` (N) using (and extending) a precomputed grid.
+pub fn static_friction_on_grid(
+    model: &StatisticalModel,
+    grid: &mut NetLoadGrid,
+    load: f64,
+    settings: &SolveSettings,
+) -> Result<StaticFrictionResult, FrictionError> {
+    if !load.is_finite() || load == 0.0 {
+        return Err(FrictionError::InvalidParameter {
+            name: "external_load",
+            value: load,
+            expected: "a finite, non-zero load (N)",
+        });
+    }
+    if load > 0.0 {
+        grid.cover_load(model, load, settings)?;
+    }
+    let brackets = grid.brackets(load);
+    let Some(&first) = brackets.first() else {
+        let pull_off = grid.pull_off_load(model)?;
+        return Err(if load < 0.0 {
+            FrictionError::LoadBelowPullOff { load, pull_off }
+        } else {
+            let max_load = grid.net_load.first().copied().unwrap_or(0.0);
+            let d_star_min = grid.d_star.first().copied().unwrap_or(settings.d_star_min);
+            FrictionError::LoadAboveSearchRange {
+                load,
+                max_load,
+                d_star_min,
+            }
+        });
+    };
+    let (Some(&a), Some(&b), Some(&fa), Some(&fb)) = (
+        grid.d_star.get(first),
+        grid.d_star.get(first + 1),
+        grid.net_load.get(first),
+        grid.net_load.get(first + 1),
+    ) else {
+        return Err(FrictionError::InvalidParameter {
+            name: "grid",
+            value: first as f64,
+            expected: "a bracket inside the grid",
+        });
+    };
+    // Brent runs on ln(net/F) when the whole bracket carries a compressive net load (F > 0): the
+    // net load falls off like a Gaussian tail, so its logarithm is nearly linear in d* and Brent's
+    // interpolation converges in fewer steps. Otherwise it runs on net − F.
+    let logarithmic = load > 0.0 && fa > 0.0 && fb > 0.0;
+    let residual = |net: f64| {
+        if logarithmic {
+            (net / load).ln()
+        } else {
+            net - load
+        }
+    };
+    let mut evaluated = Vec::new();
+    let mut last: Option<(f64, IntegralValue, AdhesionForce)> = None;
+    let root = brent(
+        &mut |d| {
+            let p = model.contact_load(d)?;
+            let fs = model.adhesion_force(d)?;
+            let net = p.value - fs.total();
+            evaluated.push((d, net));
+            last = Some((d, p, fs));
+            if logarithmic && net <= 0.0 {
+                // Not expected inside a bracket positive at both ends (P − F_s is monotone there);
+                // a non-positive value is mapped to the residual of the smallest positive net
+                // load, finite and below every other value, so the sign logic stays correct.
+                return Ok::<f64, FrictionError>(residual(f64::MIN_POSITIVE));
+            }
+            Ok::<f64, FrictionError>(residual(net))
+        },
+        a,
+        b,
+        residual(fa),
+        residual(fb),
+        BrentTolerances {
+            x_tol: settings.d_star_tolerance,
+            f_tol: if logarithmic {
+                RESIDUAL_TOLERANCE
+            } else {
+                RESIDUAL_TOLERANCE * load.abs()
+            },
+            max_iterations: 100,
+        },
+    )?;
+    grid.insert(&evaluated);
+    let cached = last
+        .filter(|(d, _, _)| *d == root.x)
+        .map(|(_, p, fs)| (p, fs));
+    let roots_found = grid.count_roots(&brackets);
+    evaluate_at(model, load, root.x, cached, roots_found, root.iterations)
+}
+
+/// Solve for one external load `load` (N > pull-off load).
+pub fn static_friction(
+    model: &StatisticalModel,
+    load: f64,
+    settings: &SolveSettings,
+) -> Result<StaticFrictionResult, FrictionError> {
+    let mut grid = NetLoadGrid::new(model, settings)?;
+    static_friction_on_grid(model, &mut grid, load, settings)
+}
+
+/// Solve for a nominal pressure `pressure` (Pa): F = pressure × A_n.
+pub fn static_friction_at_pressure(
+    model: &StatisticalModel,
+    pressure: f64,
+    settings: &SolveSettings,
+) -> Result<StaticFrictionResult, FrictionError> {
+    static_friction(model, pressure * model.nominal_area, settings)
+}
+
+/// μ(F) curve: one result per load, sharing one net-load grid (each load may fail on its own).
+pub fn static_friction_curve(
+    model: &StatisticalModel,
+    loads: &[f64],
+    settings: &SolveSettings,
+) -> Result<Vec<Result<StaticFrictionResult, FrictionError>>, FrictionError> {
+    let mut grid = NetLoadGrid::new(model, settings)?;
+    Ok(loads
+        .iter()
+        .map(|&load| static_friction_on_grid(model, &mut grid, load, settings))
+        .collect())
+}
+
+fn evaluate_at(
+    model: &StatisticalModel,
+    load: f64,
+    d_star: f64,
+    cached: Option<(IntegralValue, AdhesionForce)>,
+    roots_found: usize,
+    brent_iterations: usize,
+) -> Result<StaticFrictionResult, FrictionError> {
+    let (p, fs) = match cached {
+        Some(values) => values,
+        None => (model.contact_load(d_star)?, model.adhesion_force(d_star)?),
+    };
+    let q = model.static_friction_force(d_star)?;
+    let area = model.contact_area(d_star)?;
+    let rel = |v: f64, e: f64| if v == 0.0 { 0.0 } else { (e / v).abs() };
+    let max_integral_relative_error = [
+        rel(p.value, p.error),
+        rel(fs.contacting.value, fs.contacting.error),
+        rel(fs.non_contacting.value, fs.non_contacting.error),
+        rel(q.value, q.error),
+        rel(area.value, area.error),
+    ]
+    .into_iter()
+    .fold(0.0, f64::max);
+    let net = p.value - fs.total();
+    let sigma = model.summits.sigma;
+    Ok(StaticFrictionResult {
+        model: model.model,
+        external_load: load,
+        mu_s: (load > 0.0).then(|| q.value / load),
+        contact_load: p.value,
+        adhesion_force: fs.total(),
+        adhesion_contacting: fs.contacting.value,
+        adhesion_non_contacting: fs.non_contacting.value,
+        static_friction_force: q.value,
+        d_star,
+        separation_from_summits: d_star * sigma,
+        separation_from_heights: d_star * sigma + model.summits.y_s,
+        plasticity_index: model.plasticity_index,
+        contacting_summits: model.contacting_summits(d_star),
+        real_contact_area: area.value,
+        status: SolveStatus {
+            roots_found,
+            root_taken: 0,
+            brent_iterations,
+            relative_residual: ((net - load) / load).abs(),
+            max_integral_relative_error,
+        },
+    })
+}
