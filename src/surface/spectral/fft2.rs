@@ -19,7 +19,6 @@ use rustfft::FftPlanner;
 pub struct FftFailure(pub String);
 
 /// Forward 2-D transform of a real `[ny, nx]` grid to its `[ny, nx/2 + 1]` half spectrum.
-#[allow(dead_code)] // the spectral statistics (PSD, ACF) are its callers; they land next
 pub(crate) fn forward_real_2d(z: &Array2<f64>) -> Result<Array2<Complex64>, FftFailure> {
     let (ny, nx) = z.dim();
     let nxh = nx / 2 + 1;
