@@ -281,3 +281,44 @@ fn invalid_inputs_are_typed_errors() {
         Err(SpectralError::InvalidOption { name: "q_max", .. })
     ));
 }
+
+/// Margins of the single-seed tests above over 20 seeds each (slow in the dev profile):
+/// `cargo test --release --test surface_spectral_statistics -- --ignored`.
+#[test]
+#[ignore]
+fn seed_sweep_stays_within_tolerances() {
+    let mut worst_hurst: f64 = 0.0;
+    let mut worst_length: f64 = 0.0;
+    let mut worst_direction: f64 = 0.0;
+    for seed in 100..120 {
+        for hurst in [0.5, 0.8] {
+            let s = spec(hurst, seed);
+            let (map, measured, model) = measured_and_model(&s);
+            let options = HurstFitOptions {
+                window: Window::None,
+                ..Default::default()
+            };
+            let fit = hurst_exponent(&map, options).unwrap();
+            worst_hurst = worst_hurst.max((fit.hurst - hurst).abs());
+            let m = measured.correlation_lengths(ISO_ACF_THRESHOLD).unwrap();
+            let t = model.correlation_lengths(ISO_ACF_THRESHOLD).unwrap();
+            for length in [m.x.unwrap(), m.y.unwrap()] {
+                worst_length = worst_length.max(relative_error(length, t.x.unwrap()));
+            }
+        }
+        let mut s = spec(0.8, seed);
+        s.correlation_length = 1e-3 / 8.0;
+        s.anisotropy = Some(Anisotropy {
+            aspect_ratio: 4.0,
+            angle_deg: 30.0,
+        });
+        let map = generate_synthetic_surface(&s).unwrap();
+        let direction = texture_direction(&map, Window::None).unwrap();
+        worst_direction = worst_direction.max(angular_distance(direction.std_deg, 30.0));
+    }
+    println!("worst |ΔH| {worst_hurst:.3}, length {worst_length:.3}, Std {worst_direction}°");
+    assert!(
+        worst_hurst < 0.05 && worst_length < 0.10 && worst_direction <= 5.0,
+        "worst |ΔH| {worst_hurst:.3}, correlation length {worst_length:.3}, Std {worst_direction}°"
+    );
+}
