@@ -6,3 +6,4 @@ pub mod io;
 pub use height_map::{HeightMap, HeightMapError};
 pub mod spectral;
 pub mod synthetic;
+pub mod twins;
