@@ -256,6 +256,20 @@ fn invalid_inputs_are_typed_errors() {
     );
     let acf = autocorrelation(&map, AcfBoundary::Periodic).unwrap();
     assert!(matches!(
+        acf.decay_length(f64::NAN, 0.2),
+        Err(SpectralError::InvalidOption {
+            name: "angle_deg",
+            ..
+        })
+    ));
+    assert!(matches!(
+        acf.texture(0.0),
+        Err(SpectralError::InvalidOption {
+            name: "threshold",
+            ..
+        })
+    ));
+    assert!(matches!(
         acf.correlation_lengths(1.5),
         Err(SpectralError::InvalidOption {
             name: "threshold",

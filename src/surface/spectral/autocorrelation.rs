@@ -99,8 +99,11 @@ pub fn autocorrelation(
     padded
         .slice_mut(ndarray::s![..ny, ..nx])
         .assign(&z.mapv(|v| v - mean));
-    let power = forward_real_2d(&padded)?.mapv(|v| Complex64::new(v.norm_sqr(), 0.0));
+    let mut power = forward_real_2d(&padded)?;
+    drop(padded);
+    power.mapv_inplace(|v| Complex64::new(v.norm_sqr(), 0.0));
     let circular = inverse_real_2d(&power, px)?;
+    drop(power);
     let (hx, hy) = (nx / 2, ny / 2);
     let mut values = Array2::<f64>::zeros((2 * hy + 1, 2 * hx + 1));
     for ((row, col), value) in values.indexed_iter_mut() {
@@ -192,6 +195,13 @@ impl Autocorrelation {
         threshold: f64,
     ) -> Result<Option<f64>, SpectralError> {
         check_threshold(threshold)?;
+        if !angle_deg.is_finite() {
+            return Err(SpectralError::InvalidOption {
+                name: "angle_deg",
+                value: angle_deg.to_string(),
+                expected: "a finite angle in degrees".into(),
+            });
+        }
         let (s, c) = angle_deg.to_radians().sin_cos();
         let step = self.dx.min(self.dy) / 4.0;
         let mut previous = 1.0;
