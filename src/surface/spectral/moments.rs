@@ -25,7 +25,7 @@
 //! summit curvature and density) depend on the pixel size and the S-filter; compare them only at
 //! equal sampling and filtering.
 
-use ndarray::{s, Array2, ArrayView2};
+use rayon::prelude::*;
 
 use super::error::{require_complete, SpectralError};
 use super::psd::{periodogram, Window};
@@ -112,26 +112,35 @@ fn from_differences(map: &HeightMap) -> Result<SpectralMoments, SpectralError> {
     let mean = z.sum() / (nx * ny) as f64;
     let m0 = z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (nx * ny) as f64;
 
-    let zx = (&z.slice(s![.., 1..]) - &z.slice(s![.., ..-1])) / dx;
-    let zy = (&z.slice(s![1.., ..]) - &z.slice(s![..-1, ..])) / dy;
-    let m2x = mean_square(zx.view());
-    let m2y = mean_square(zy.view());
-    let m4x = if nx >= 3 {
-        mean_square(second_difference_x(z.view(), dx).view())
-    } else {
-        0.0
+    let h: Vec<f64> = z.iter().copied().collect(); // row-major, x fastest
+                                                   // Per-row sums in row order, then a sequential total: deterministic for any thread count.
+    let rows: Vec<[f64; 6]> = (0..ny)
+        .into_par_iter()
+        .map(|j| difference_sums(&h, nx, ny, j))
+        .collect();
+    let mut sums = [0.0; 6];
+    for row in &rows {
+        for (total, value) in sums.iter_mut().zip(row) {
+            *total += value;
+        }
+    }
+    let [zx2, zy2, zxx2, zyy2, zxy2, cross] = sums;
+    let mean = |sum: f64, count: usize, scale: f64| {
+        if count > 0 {
+            sum / (count as f64 * scale)
+        } else {
+            0.0
+        }
     };
-    let m4y = if ny >= 3 {
-        mean_square(second_difference_x(z.t(), dy).view())
-    } else {
-        0.0
-    };
-    let zxy = (&zx.slice(s![1.., ..]) - &zx.slice(s![..-1, ..])) / dy;
+    let (dx2, dy2) = (dx * dx, dy * dy);
+    let m2x = mean(zx2, ny * (nx - 1), dx2);
+    let m2y = mean(zy2, (ny - 1) * nx, dy2);
+    let m4x = mean(zxx2, ny * nx.saturating_sub(2), dx2 * dx2);
+    let m4y = mean(zyy2, ny.saturating_sub(2) * nx, dy2 * dy2);
     let m4_iso = if nx >= 3 && ny >= 3 {
-        let zxx = second_difference_x(z.slice(s![1..ny - 1, ..]), dx);
-        let zyy = second_difference_x(z.slice(s![.., 1..nx - 1]).t(), dy);
-        let cross = (&zxx * &zyy.t()).mean().unwrap_or(0.0);
-        3.0 / 8.0 * (m4x + m4y) + 0.5 * mean_square(zxy.view()) + 0.25 * cross
+        3.0 / 8.0 * (m4x + m4y)
+            + 0.5 * mean(zxy2, (ny - 1) * (nx - 1), dx2 * dy2)
+            + 0.25 * mean(cross, (ny - 2) * (nx - 2), dx2 * dy2)
     } else {
         0.0
     };
@@ -155,13 +164,34 @@ fn from_differences(map: &HeightMap) -> Result<SpectralMoments, SpectralError> {
     })
 }
 
-/// `(z[i+1] − 2 z[i] + z[i−1]) / h²` along the second axis (columns), interior columns only.
-fn second_difference_x(z: ArrayView2<f64>, h: f64) -> Array2<f64> {
-    let n = z.ncols();
-    let centre = z.slice(s![.., 1..n - 1]);
-    (&z.slice(s![.., 2..]) - &(&centre * 2.0) + z.slice(s![.., ..n - 2])) / (h * h)
-}
-
-fn mean_square(a: ArrayView2<f64>) -> f64 {
-    a.iter().map(|v| v * v).sum::<f64>() / a.len() as f64
+/// Unscaled sums over row `j` of a row-major `[ny, nx]` grid: `Σ Δx²`, `Σ Δy²` (to row
+/// `j + 1`), `Σ Δxx²`, `Σ Δyy²` (rows `j ± 1`), `Σ Δxy²` (cell to row `j + 1`), `Σ Δxx·Δyy`.
+fn difference_sums(h: &[f64], nx: usize, ny: usize, j: usize) -> [f64; 6] {
+    let row = &h[j * nx..(j + 1) * nx];
+    let next = (j + 1 < ny).then(|| &h[(j + 1) * nx..(j + 2) * nx]);
+    let prev = (j > 0).then(|| &h[(j - 1) * nx..j * nx]);
+    let mut sums = [0.0; 6];
+    for i in 0..nx {
+        let zxx = (i > 0 && i + 1 < nx).then(|| row[i + 1] - 2.0 * row[i] + row[i - 1]);
+        if i + 1 < nx {
+            sums[0] += (row[i + 1] - row[i]).powi(2);
+        }
+        if let Some(zxx) = zxx {
+            sums[2] += zxx * zxx;
+        }
+        if let Some(next) = next {
+            sums[1] += (next[i] - row[i]).powi(2);
+            if i + 1 < nx {
+                sums[4] += (next[i + 1] - next[i] - row[i + 1] + row[i]).powi(2);
+            }
+            if let Some(prev) = prev {
+                let zyy = next[i] - 2.0 * row[i] + prev[i];
+                sums[3] += zyy * zyy;
+                if let Some(zxx) = zxx {
+                    sums[5] += zxx * zyy;
+                }
+            }
+        }
+    }
+    sums
 }
