@@ -27,3 +27,4 @@ pub use resample::{crop, decimate, resample_bilinear, ResampleError};
 pub use summits::{find_summits, Summit, SummitError, SummitOptions, SummitStatistics, Summits};
 pub mod spectral;
 pub mod synthetic;
+pub mod twins;

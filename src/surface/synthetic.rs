@@ -24,6 +24,13 @@
 //! `λ_u`, across it over `λ_v` (grinding marks along `u` have `aspect_ratio > 1`). `C0` follows
 //! from the Sq normalisation, which is applied to the realised surface so its Sq is exact.
 //!
+//! # Roll-off wavelength vs measured correlation length
+//! `correlation_length` is the roll-off wavelength `λ_r`, not an ACF decay length. The length a
+//! measurement reports (the lag where the ACF first drops to 0.2, as for Sal) follows from the
+//! model's ensemble ACF, [`model_autocorrelation`], on the same grid: for an isotropic surface
+//! with `λ_r = L/16` on 512² it is ≈ 0.24 λ_r (H = 0.3), 0.28 λ_r (H = 0.5), 0.32 λ_r (H = 0.8),
+//! 0.34 λ_r (H = 1). `crate::surface::twins` inverts this mapping numerically.
+//!
 //! # Synthesis
 //! Each Fourier mode of the real-FFT half spectrum (`kx ≥ 0`) is a complex Gaussian with
 //! `E|Z|² ∝ C(q)` (Box–Muller normal deviates). The modes that must be their own conjugate

@@ -19,12 +19,14 @@ use rustfft::FftPlanner;
 pub struct FftFailure(pub String);
 
 /// Forward 2-D transform of a real `[ny, nx]` grid to its `[ny, nx/2 + 1]` half spectrum.
-#[allow(dead_code)] // the spectral statistics (PSD, ACF) are its callers; they land next
 pub(crate) fn forward_real_2d(z: &Array2<f64>) -> Result<Array2<Complex64>, FftFailure> {
     let (ny, nx) = z.dim();
     let nxh = nx / 2 + 1;
     let r2c = RealFftPlanner::<f64>::new().plan_fft_forward(nx);
-    let rows: Vec<f64> = z.iter().copied().collect();
+    let standard = z.as_standard_layout();
+    let rows = standard
+        .as_slice()
+        .ok_or_else(|| FftFailure("height grid is not contiguous".into()))?;
     let mut half = vec![Complex64::new(0.0, 0.0); ny * nxh];
     half.par_chunks_mut(nxh)
         .zip(rows.par_chunks(nx))
@@ -89,18 +91,17 @@ fn columns_in_place(data: &mut [Complex64], ny: usize, ncols: usize, inverse: bo
     } else {
         planner.plan_fft_forward(ny)
     };
-    let mut columns = transpose(data, ny, ncols);
+    let mut columns = vec![Complex64::new(0.0, 0.0); data.len()];
+    transpose_into(data, &mut columns, ny, ncols);
     columns.par_chunks_mut(ny).for_each_init(
         || vec![Complex64::new(0.0, 0.0); fft.get_inplace_scratch_len()],
         |scratch, column| fft.process_with_scratch(column, scratch),
     );
-    let back = transpose(&columns, ncols, ny);
-    data.copy_from_slice(&back);
+    transpose_into(&columns, data, ncols, ny);
 }
 
-/// Transposes a row-major `[rows, cols]` buffer into a row-major `[cols, rows]` one.
-fn transpose(data: &[Complex64], rows: usize, cols: usize) -> Vec<Complex64> {
-    let mut out = vec![Complex64::new(0.0, 0.0); data.len()];
+/// Writes the transpose of a row-major `[rows, cols]` buffer into a row-major `[cols, rows]` one.
+fn transpose_into(data: &[Complex64], out: &mut [Complex64], rows: usize, cols: usize) {
     out.par_chunks_mut(rows)
         .enumerate()
         .for_each(|(c, column)| {
@@ -108,7 +109,6 @@ fn transpose(data: &[Complex64], rows: usize, cols: usize) -> Vec<Complex64> {
                 *value = data[r * cols + c];
             }
         });
-    out
 }
 
 #[cfg(test)]

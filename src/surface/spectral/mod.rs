@@ -1,5 +1,22 @@
-//! Spectral analysis of height maps: FFT helpers, PSD, autocorrelation, Hurst exponent, moments.
+//! Spectral analysis of complete height maps (no missing points): PSD, autocorrelation, Sal/Str,
+//! texture direction Std, Hurst exponent and spectral moments. All inputs and outputs in SI
+//! units; wavenumbers `q = 2π/λ` in rad/m.
 
+pub mod autocorrelation;
+pub mod direction;
+pub mod error;
 pub(crate) mod fft2;
+pub mod hurst;
+pub mod moments;
+pub mod psd;
 
+pub use autocorrelation::{
+    autocorrelation, AcfBoundary, AcfTexture, Autocorrelation, CorrelationLengths, RadialAcf,
+    ISO_ACF_THRESHOLD,
+};
+pub use direction::{texture_direction, TextureDirection};
+pub use error::SpectralError;
 pub use fft2::FftFailure;
+pub use hurst::{fit_power_law, hurst_exponent, HurstFit, HurstFitOptions};
+pub use moments::{spectral_moments, MomentMethod, ProfileMoments, SpectralMoments};
+pub use psd::{periodogram, profile_psd, radial_psd, Axis, Periodogram, PsdTable, Window};

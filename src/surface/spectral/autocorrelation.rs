@@ -1,0 +1,326 @@
+//! Areal autocorrelation function (ACF), its radial average, and the ISO 25178-2 spatial
+//! parameters Sal and Str; correlation lengths along x and y.
+//!
+//! `f(τ) = ⟨z(r) z(r + τ)⟩ / ⟨z²⟩` for mean-removed heights, computed by FFT
+//! (Wiener–Khinchin). Two boundary treatments:
+//! * [`AcfBoundary::Periodic`] — circular correlation, for periodic (synthetic) surfaces;
+//! * [`AcfBoundary::ZeroPadded`] — the map is zero-padded to twice its size so no lag wraps
+//!   around, and each lag is averaged over its overlap `(nx − |ix|)(ny − |iy|)` points
+//!   (the unbiased estimator used by e.g. Gwyddion). For measured surfaces.
+//!
+//! Lags are kept up to half the map, `|ix| ≤ nx/2`, `|iy| ≤ ny/2`, beyond which fewer than half
+//! of the points contribute.
+//!
+//! Decay lengths (ISO 25178-2:2012, §4.2 and Sal/Str definitions, threshold `s`, default 0.2):
+//! along a direction, the lag distance at which `f` first drops to `s`, found by walking the ray
+//! in steps of `min(dx, dy)/4` with bilinear interpolation of `f` and linear interpolation of the
+//! crossing. Sal is the minimum over directions (1° steps over 180°, the ACF being point
+//! symmetric), Str = Sal / (maximum over directions), undefined (`None`) when some direction does
+//! not decay within the lag range. The correlation lengths along x and y use the same threshold on
+//! the lag axes (grid points, linear interpolation), so `Sal ≤ min(ξx, ξy)` up to interpolation.
+
+use ndarray::Array2;
+use realfft::num_complex::Complex64;
+
+use super::error::{require_complete, SpectralError};
+use super::fft2::{forward_real_2d, inverse_real_2d};
+use super::psd::Axis;
+use crate::surface::HeightMap;
+
+/// ISO 25178-2 default threshold `s` for Sal and Str.
+pub const ISO_ACF_THRESHOLD: f64 = 0.2;
+
+/// Boundary treatment of the ACF (see module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AcfBoundary {
+    Periodic,
+    ZeroPadded,
+}
+
+/// Normalised areal ACF on a centred lag grid: `values[[hy + iy, hx + ix]] = f(ix·dx, iy·dy)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Autocorrelation {
+    values: Array2<f64>,
+    dx: f64,
+    dy: f64,
+    hx: usize,
+    hy: usize,
+}
+
+/// Radially averaged ACF: `acf[k]` is the mean over lags with `|τ|` in bin `k` of width
+/// `max(dx, dy)` centred on `r[k]` (m), up to the largest full circle of lags.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RadialAcf {
+    pub r: Vec<f64>,
+    pub acf: Vec<f64>,
+}
+
+/// Sal, Str and the directions of fastest and slowest decay.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AcfTexture {
+    /// Autocorrelation length Sal, m: shortest decay distance to `threshold`.
+    pub sal: f64,
+    /// Texture aspect ratio Str = Sal / longest decay distance, in (0, 1]; `None` when some
+    /// direction does not decay within the lag range (strongly directional or too small map).
+    pub str_ratio: Option<f64>,
+    /// Direction of fastest decay (of Sal), degrees from x in [0, 180).
+    pub fastest_decay_deg: f64,
+    /// Longest decay distance, m, when every direction decays.
+    pub longest_decay: Option<f64>,
+    /// Threshold `s` used.
+    pub threshold: f64,
+}
+
+/// Correlation lengths along the x and y lag axes (`None`: no decay within half the map).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CorrelationLengths {
+    /// m
+    pub x: Option<f64>,
+    /// m
+    pub y: Option<f64>,
+    /// Threshold `s` used.
+    pub threshold: f64,
+}
+
+/// Computes the normalised ACF of a complete height map.
+pub fn autocorrelation(
+    map: &HeightMap,
+    boundary: AcfBoundary,
+) -> Result<Autocorrelation, SpectralError> {
+    require_complete(map)?;
+    let (nx, ny) = (map.nx(), map.ny());
+    let z = map.heights();
+    let mean = z.sum() / (nx * ny) as f64;
+    let (px, py) = match boundary {
+        AcfBoundary::Periodic => (nx, ny),
+        AcfBoundary::ZeroPadded => (2 * nx, 2 * ny),
+    };
+    let mut padded = Array2::<f64>::zeros((py, px));
+    padded
+        .slice_mut(ndarray::s![..ny, ..nx])
+        .assign(&z.mapv(|v| v - mean));
+    let mut power = forward_real_2d(&padded)?;
+    drop(padded);
+    power.mapv_inplace(|v| Complex64::new(v.norm_sqr(), 0.0));
+    let circular = inverse_real_2d(&power, px)?;
+    drop(power);
+    let (hx, hy) = (nx / 2, ny / 2);
+    let mut values = Array2::<f64>::zeros((2 * hy + 1, 2 * hx + 1));
+    for ((row, col), value) in values.indexed_iter_mut() {
+        let (iy, ix) = (row as isize - hy as isize, col as isize - hx as isize);
+        let overlap = match boundary {
+            AcfBoundary::Periodic => 1.0,
+            AcfBoundary::ZeroPadded => ((nx - ix.unsigned_abs()) * (ny - iy.unsigned_abs())) as f64,
+        };
+        let (wy, wx) = (
+            iy.rem_euclid(py as isize) as usize,
+            ix.rem_euclid(px as isize) as usize,
+        );
+        *value = circular[[wy, wx]] / overlap;
+    }
+    let zero = values[[hy, hx]];
+    if !(zero > 0.0 && zero.is_finite()) {
+        return Err(SpectralError::FlatSurface);
+    }
+    values /= zero;
+    Ok(Autocorrelation {
+        values,
+        dx: map.dx(),
+        dy: map.dy(),
+        hx,
+        hy,
+    })
+}
+
+impl Autocorrelation {
+    /// Wraps a normalised ACF given on the periodic lag grid of an `[ny, nx]` map (lag `(0, 0)` at
+    /// `[0, 0]`, negative lags wrapped), e.g. a model ACF; spacings in metres.
+    pub fn from_periodic_lags(periodic: &Array2<f64>, dx: f64, dy: f64) -> Self {
+        let (ny, nx) = periodic.dim();
+        let (hx, hy) = (nx / 2, ny / 2);
+        let values = Array2::from_shape_fn((2 * hy + 1, 2 * hx + 1), |(row, col)| {
+            let iy = (row as isize - hy as isize).rem_euclid(ny as isize) as usize;
+            let ix = (col as isize - hx as isize).rem_euclid(nx as isize) as usize;
+            periodic[[iy, ix]]
+        });
+        Self {
+            values,
+            dx,
+            dy,
+            hx,
+            hy,
+        }
+    }
+
+    /// Centred lag grid `[[hy + iy, hx + ix]]`.
+    pub fn values(&self) -> &Array2<f64> {
+        &self.values
+    }
+
+    /// Largest lags `(hx·dx, hy·dy)` in metres.
+    pub fn max_lag(&self) -> (f64, f64) {
+        (self.hx as f64 * self.dx, self.hy as f64 * self.dy)
+    }
+
+    /// ACF at lag index `(ix, iy)`, `None` outside the lag range.
+    pub fn at(&self, ix: isize, iy: isize) -> Option<f64> {
+        let row = usize::try_from(iy + self.hy as isize).ok()?;
+        let col = usize::try_from(ix + self.hx as isize).ok()?;
+        self.values.get((row, col)).copied()
+    }
+
+    /// Bilinear interpolation at lag `(tx, ty)` in metres, `None` outside the lag range.
+    pub fn interpolate(&self, tx: f64, ty: f64) -> Option<f64> {
+        let (fx, fy) = (tx / self.dx, ty / self.dy);
+        let (x0, y0) = (fx.floor(), fy.floor());
+        let (ax, ay) = (fx - x0, fy - y0);
+        let (ix, iy) = (x0 as isize, y0 as isize);
+        let f00 = self.at(ix, iy)?;
+        let f10 = if ax > 0.0 { self.at(ix + 1, iy)? } else { f00 };
+        let f01 = if ay > 0.0 { self.at(ix, iy + 1)? } else { f00 };
+        let f11 = if ax > 0.0 && ay > 0.0 {
+            self.at(ix + 1, iy + 1)?
+        } else if ax > 0.0 {
+            f10
+        } else {
+            f01
+        };
+        Some((1.0 - ay) * ((1.0 - ax) * f00 + ax * f10) + ay * ((1.0 - ax) * f01 + ax * f11))
+    }
+
+    /// Decay distance (m) to `threshold` along the direction at `angle_deg` from x.
+    pub fn decay_length(
+        &self,
+        angle_deg: f64,
+        threshold: f64,
+    ) -> Result<Option<f64>, SpectralError> {
+        check_threshold(threshold)?;
+        if !angle_deg.is_finite() {
+            return Err(SpectralError::InvalidOption {
+                name: "angle_deg",
+                value: angle_deg.to_string(),
+                expected: "a finite angle in degrees".into(),
+            });
+        }
+        let (s, c) = angle_deg.to_radians().sin_cos();
+        let step = self.dx.min(self.dy) / 4.0;
+        let mut previous = 1.0;
+        let mut k = 1usize;
+        loop {
+            let r = k as f64 * step;
+            let Some(value) = self.interpolate(r * c, r * s) else {
+                return Ok(None);
+            };
+            if value <= threshold {
+                return Ok(Some(r - step * (threshold - value) / (previous - value)));
+            }
+            previous = value;
+            k += 1;
+        }
+    }
+
+    /// Sal and Str (ISO 25178-2) for threshold `s` ([`ISO_ACF_THRESHOLD`] by default).
+    pub fn texture(&self, threshold: f64) -> Result<AcfTexture, SpectralError> {
+        let mut shortest: Option<(f64, f64)> = None;
+        let mut longest: Option<f64> = Some(0.0);
+        for degree in 0..180 {
+            let angle = degree as f64;
+            match self.decay_length(angle, threshold)? {
+                Some(r) => {
+                    if shortest.is_none_or(|(best, _)| r < best) {
+                        shortest = Some((r, angle));
+                    }
+                    longest = longest.map(|l| l.max(r));
+                }
+                None => longest = None,
+            }
+        }
+        let (sal, fastest_decay_deg) = shortest.ok_or_else(|| {
+            let (mx, my) = self.max_lag();
+            SpectralError::NoDecay {
+                threshold,
+                max_lag: mx.max(my),
+            }
+        })?;
+        Ok(AcfTexture {
+            sal,
+            str_ratio: longest.map(|l| sal / l),
+            fastest_decay_deg,
+            longest_decay: longest,
+            threshold,
+        })
+    }
+
+    /// Correlation lengths along the x and y lag axes for threshold `s` (linear interpolation
+    /// between grid lags).
+    pub fn correlation_lengths(&self, threshold: f64) -> Result<CorrelationLengths, SpectralError> {
+        check_threshold(threshold)?;
+        Ok(CorrelationLengths {
+            x: self.axis_decay(Axis::X, threshold),
+            y: self.axis_decay(Axis::Y, threshold),
+            threshold,
+        })
+    }
+
+    fn axis_decay(&self, axis: Axis, threshold: f64) -> Option<f64> {
+        let (count, spacing) = match axis {
+            Axis::X => (self.hx, self.dx),
+            Axis::Y => (self.hy, self.dy),
+        };
+        let mut previous = 1.0;
+        for k in 1..=count as isize {
+            let value = match axis {
+                Axis::X => self.at(k, 0)?,
+                Axis::Y => self.at(0, k)?,
+            };
+            if value <= threshold {
+                let fraction = (previous - threshold) / (previous - value);
+                return Some(((k - 1) as f64 + fraction) * spacing);
+            }
+            previous = value;
+        }
+        None
+    }
+
+    /// Radially averaged ACF (see [`RadialAcf`]).
+    pub fn radial(&self) -> RadialAcf {
+        let width = self.dx.max(self.dy);
+        let (mx, my) = self.max_lag();
+        let r_max = mx.min(my);
+        let bins = (r_max / width + 0.5).floor() as usize + 1;
+        let mut sum = vec![0.0; bins];
+        let mut count = vec![0usize; bins];
+        for ((row, col), value) in self.values.indexed_iter() {
+            let tx = (col as f64 - self.hx as f64) * self.dx;
+            let ty = (row as f64 - self.hy as f64) * self.dy;
+            let k = (tx.hypot(ty) / width + 0.5).floor() as usize;
+            if let (Some(s), Some(c)) = (sum.get_mut(k), count.get_mut(k)) {
+                *s += value;
+                *c += 1;
+            }
+        }
+        let mut radial = RadialAcf {
+            r: Vec::new(),
+            acf: Vec::new(),
+        };
+        for (k, (s, c)) in sum.iter().zip(&count).enumerate() {
+            if *c > 0 {
+                radial.r.push(k as f64 * width);
+                radial.acf.push(s / *c as f64);
+            }
+        }
+        radial
+    }
+}
+
+fn check_threshold(threshold: f64) -> Result<(), SpectralError> {
+    if threshold > 0.0 && threshold < 1.0 {
+        Ok(())
+    } else {
+        Err(SpectralError::InvalidOption {
+            name: "threshold",
+            value: threshold.to_string(),
+            expected: "0 < s < 1 (ISO 25178-2 default 0.2)".into(),
+        })
+    }
+}

@@ -1,0 +1,84 @@
+//! Texture direction Std from the angular power spectrum.
+//!
+//! The angular power spectrum (ISO 25178-2:2012, after Stout et al., *The development of methods
+//! for the characterisation of roughness in three dimensions*, 1993) sums the 2-D PSD over
+//! wavevector directions: `APS(θ) = Σ_{modes with arg q ∈ θ ± ½°} C(q)` for `0 < |q| ≤ q_N`,
+//! `q_N = min(π/dx, π/dy)`, in 1° bins over [0°, 180°) (`C(q) = C(−q)`). Most power sits in the
+//! few long-wavelength modes, so a single bin of one random realisation is noisy; the peak is
+//! taken on the APS smoothed by a circular moving average over ±5° (11 bins). A lay (grinding
+//! marks) along direction `φ` puts its power at wavevectors normal to it, so
+//!
+//! **Std = (θ_peak + 90°) mod 180°**, the lay direction, counter-clockwise from the x axis.
+//!
+//! Instrument software differs in the reference axis (some measure from y); this crate always
+//! measures from x. On isotropic surfaces the peak is dominated by the grid's lattice directions
+//! (0°, 45°, 90°) and Std is not meaningful; `peak_share` (the share of the total power within
+//! ±5° of the peak, 11/180 for an ideally isotropic spectrum) tells how dominant the direction is.
+
+use std::f64::consts::PI;
+
+use super::error::SpectralError;
+use super::psd::{periodogram, Window};
+use crate::surface::HeightMap;
+
+/// Half width, in 1° bins, of the moving average applied before locating the peak.
+pub const SMOOTHING_HALF_WIDTH: usize = 5;
+
+/// Std and the angular power spectrum it comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextureDirection {
+    /// Std: lay direction, degrees from x in [0, 180).
+    pub std_deg: f64,
+    /// Wavevector direction of the spectral peak, degrees in [0, 180).
+    pub spectrum_peak_deg: f64,
+    /// Share of the total power within ±5° of the peak, in (0, 1] (11/180 ≈ 0.061 for an
+    /// ideally isotropic spectrum).
+    pub peak_share: f64,
+    /// `APS` in 1° bins centred on 0°, 1°, …, 179°, normalised to sum 1.
+    pub angular_spectrum: Vec<f64>,
+}
+
+/// Computes Std of a complete height map (see module docs).
+pub fn texture_direction(
+    map: &HeightMap,
+    window: Window,
+) -> Result<TextureDirection, SpectralError> {
+    let p = periodogram(map, window)?;
+    let q_max = (PI / map.dx()).min(PI / map.dy());
+    let mut aps = vec![0.0; 180];
+    for ((j, i), c) in p.c.indexed_iter() {
+        let (qx, qy) = p.wavevector(j, i);
+        let q = qx.hypot(qy);
+        if q == 0.0 || q > q_max {
+            continue;
+        }
+        let degrees = qy.atan2(qx).to_degrees().rem_euclid(180.0);
+        let bin = (degrees.round() as usize) % 180;
+        if let Some(slot) = aps.get_mut(bin) {
+            *slot += p.multiplicity(i) * c;
+        }
+    }
+    let total: f64 = aps.iter().sum();
+    if total.is_nan() || total <= 0.0 {
+        return Err(SpectralError::FlatSurface);
+    }
+    aps.iter_mut().for_each(|v| *v /= total);
+    let smoothed: Vec<f64> = (0..180)
+        .map(|k| {
+            (k + 180 - SMOOTHING_HALF_WIDTH..=k + 180 + SMOOTHING_HALF_WIDTH)
+                .map(|m| aps[m % 180])
+                .sum::<f64>()
+        })
+        .collect();
+    let (peak, share) =
+        smoothed.iter().enumerate().fold(
+            (0, f64::MIN),
+            |best, (k, v)| if *v > best.1 { (k, *v) } else { best },
+        );
+    Ok(TextureDirection {
+        std_deg: ((peak + 90) % 180) as f64,
+        spectrum_peak_deg: peak as f64,
+        peak_share: share,
+        angular_spectrum: aps,
+    })
+}
