@@ -20,6 +20,8 @@ pub enum Dimension {
     Force,
     SurfaceEnergy,
     Angle,
+    /// Per unit area (m⁻²): summit densities, fourth spectral moments.
+    InverseArea,
 }
 
 impl Dimension {
@@ -33,6 +35,7 @@ impl Dimension {
             Dimension::Force => "force",
             Dimension::SurfaceEnergy => "surface energy",
             Dimension::Angle => "angle",
+            Dimension::InverseArea => "inverse area",
         }
     }
 
@@ -46,6 +49,7 @@ impl Dimension {
             Dimension::Force => "N",
             Dimension::SurfaceEnergy => "N/m",
             Dimension::Angle => "rad",
+            Dimension::InverseArea => "m^-2",
         }
     }
 
@@ -59,6 +63,7 @@ impl Dimension {
             Dimension::Force => "10 N",
             Dimension::SurfaceEnergy => "0.5 N/m",
             Dimension::Angle => "30 deg",
+            Dimension::InverseArea => "1e9 1/m^2",
         }
     }
 
@@ -141,6 +146,9 @@ const UNITS: &[Unit] = &[
     unit("rad", Dimension::Angle, 0),
     DEG,
     DEG_SIGN,
+    unit("1/m^2", Dimension::InverseArea, 0),
+    unit("1/mm^2", Dimension::InverseArea, 6),
+    unit("1/um^2", Dimension::InverseArea, 12),
 ];
 
 /// A value in SI units with its dimension.

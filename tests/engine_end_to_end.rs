@@ -252,3 +252,51 @@ nodes:
     assert!(tmp.is_empty(), "stale temporary folders left: {tmp:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_failing_node_fails_only_itself_and_is_a_row_with_its_message() {
+    let dir = tempdir("failing");
+    // A file whose content is not a topography: planning hashes it, computing it fails.
+    std::fs::write(dir.join("broken.x3p"), b"PK\x03\x04 this is not a zip archive").unwrap();
+    let text = r#"
+study: failing
+nodes:
+  good:
+    surface:
+      synthetic: {grid: [16, 16], size: [50 um, 50 um], sq: 1 um, hurst: 0.8,
+                  correlation_length: 10 um, seed: 1}
+  bad:
+    surface:
+      file: {path: broken.x3p}
+"#;
+    let r = run(&dir, text, &dir.join("cache"), "out");
+    assert_eq!((r.report.computed, r.report.failed), (1, 1));
+    assert!(!r.report.all_ok());
+    let surfaces =
+        ParquetReader::new(std::fs::File::open(dir.join("out/surfaces.parquet")).unwrap())
+            .finish()
+            .unwrap();
+    let status: Vec<_> = surfaces
+        .column("status")
+        .unwrap()
+        .str()
+        .unwrap()
+        .into_iter()
+        .map(|s| s.unwrap().to_string())
+        .collect();
+    let message: Vec<_> = surfaces
+        .column("message")
+        .unwrap()
+        .str()
+        .unwrap()
+        .into_iter()
+        .map(|s| s.unwrap().to_string())
+        .collect();
+    let bad = status.iter().position(|s| s == "failed").unwrap();
+    assert!(message[bad].contains("broken.x3p"), "{}", message[bad]);
+    assert!(status.contains(&String::from("ok")));
+    // The failure is not cached: the next run tries again.
+    let again = run(&dir, text, &dir.join("cache"), "out2");
+    assert_eq!((again.report.cached, again.report.failed), (1, 1));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -8,10 +8,11 @@ use crate::engine::node::{NodeError, NodeTask};
 use crate::engine::study::{ResolveContext, SpecError};
 use crate::engine::value::Field;
 use crate::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
-use crate::surface::{amplitude_statistics, Boundary, HeightMap};
+use crate::surface::{Boundary, HeightMap};
 use crate::units::Dimension;
 
 mod measured;
+mod metrics;
 mod synthetic;
 
 pub use measured::FileSpec;
@@ -26,7 +27,7 @@ pub(crate) const HEIGHTS: &str = "heights";
 
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
 /// computed statistics change, so stale cache entries are never reused.
-pub const SURFACE_KIND_VERSION: u32 = 1;
+pub const SURFACE_KIND_VERSION: u32 = 2;
 
 /// `surface:` — where the heights come from.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -72,38 +73,6 @@ impl SurfaceTask {
     }
 }
 
-/// The `surfaces` table metrics of a height map (ISO 25178-2 amplitude and hybrid parameters).
-fn surface_metrics(map: &HeightMap, boundary: Boundary) -> Result<Vec<Field>, NodeError> {
-    let a = amplitude_statistics(map, boundary)
-        .map_err(|e| NodeError::new(format!("statistics: {e}")))?;
-    let len = |name: &str, v: f64| Field::float(name, v, Dimension::Length);
-    let mut metrics = vec![
-        Field::int("grid_nx", map.nx() as i64),
-        Field::int("grid_ny", map.ny() as i64),
-        len("dx", map.dx()),
-        len("dy", map.dy()),
-        Field::int("missing_points", a.missing_count as i64),
-        len("sq", a.sq),
-        len("sa", a.sa),
-        len("sp", a.sp),
-        len("sv", a.sv),
-        len("sz", a.sz),
-    ];
-    // Undefined statistics (a flat map has no skewness) are left out: the cell is null.
-    let optional = [
-        ("ssk", a.ssk),
-        ("sku", a.sku),
-        ("sdq", a.sdq),
-        ("sdr_percent", a.sdr_percent),
-    ];
-    metrics.extend(
-        optional
-            .into_iter()
-            .filter_map(|(name, v)| v.map(|v| Field::float(name, v, Dimension::Dimensionless))),
-    );
-    Ok(metrics)
-}
-
 impl NodeTask for SurfaceTask {
     fn kind(&self) -> &'static str {
         KIND
@@ -131,12 +100,12 @@ impl NodeTask for SurfaceTask {
 
     fn compute(&self, _inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
         let (map, boundary) = self.heights()?;
-        let metrics = surface_metrics(&map, boundary)?;
+        let report = metrics::surface_report(&map, boundary)?;
         let heights = map.into_heights().into_dyn();
         Ok(Artifact {
-            metrics,
+            metrics: report.metrics,
             arrays: [(String::from(HEIGHTS), heights)].into_iter().collect(),
-            tables: Default::default(),
+            tables: report.tables,
         })
     }
 }

@@ -1,0 +1,207 @@
+//! What a `surface` node reports: the `surfaces` table row and its long tables (`summits`, `psd`,
+//! `acf`).
+//!
+//! * Amplitude and hybrid parameters (ISO 25178-2) over valid points, mean removed, no levelling.
+//! * Spectral parameters need a complete map: for a map with missing points they are left out
+//!   (null cells) unless the study fills the points (`fill_missing: true`). Periodic (synthetic)
+//!   maps use no window, the periodic ACF and spectrum moments; measured maps use a Hann window,
+//!   the zero-padded ACF and finite-difference moments (see `surface::spectral`).
+//! * Greenwood–Williamson summit statistics (η, R, σ_s, y_s, β) from the isotropic profile moments
+//!   (Nayak/McCool, `friction::SummitStatistics`); omitted when α ≤ 0.8968, where they are undefined.
+//! * Identified summits (8-neighbour maxima): count, density, mean radius, and one row each.
+
+use std::collections::BTreeMap;
+
+use crate::engine::artifact::Table;
+use crate::engine::node::NodeError;
+use crate::engine::value::Field;
+use crate::friction::SummitStatistics as GwSummits;
+use crate::surface::spectral::{
+    autocorrelation, hurst_exponent, radial_psd, spectral_moments, texture_direction,
+    AcfBoundary, HurstFitOptions, MomentMethod, Window, ISO_ACF_THRESHOLD,
+};
+use crate::surface::{amplitude_statistics, find_summits, Boundary, HeightMap, SummitOptions};
+use crate::units::Dimension;
+
+/// The table row and long tables of one surface.
+pub(super) struct SurfaceReport {
+    pub metrics: Vec<Field>,
+    pub tables: BTreeMap<String, Table>,
+}
+
+fn len(name: &str, v: f64) -> Field {
+    Field::float(name, v, Dimension::Length)
+}
+
+fn num(name: &str, v: f64) -> Field {
+    Field::float(name, v, Dimension::Dimensionless)
+}
+
+/// Computes every metric and table of `map`.
+pub(super) fn surface_report(map: &HeightMap, boundary: Boundary) -> Result<SurfaceReport, NodeError> {
+    let a = amplitude_statistics(map, boundary)
+        .map_err(|e| NodeError::new(format!("statistics: {e}")))?;
+    let mut metrics = vec![
+        Field::int("grid_nx", map.nx() as i64),
+        Field::int("grid_ny", map.ny() as i64),
+        len("dx", map.dx()),
+        len("dy", map.dy()),
+        Field::int("missing_points", a.missing_count as i64),
+        len("sq", a.sq),
+        len("sa", a.sa),
+        len("sp", a.sp),
+        len("sv", a.sv),
+        len("sz", a.sz),
+    ];
+    // Undefined statistics (a flat map has no skewness) are left out: the cell is null.
+    let optional = [
+        ("ssk", a.ssk),
+        ("sku", a.sku),
+        ("sdq", a.sdq),
+        ("sdr_percent", a.sdr_percent),
+    ];
+    metrics.extend(
+        optional
+            .into_iter()
+            .filter_map(|(name, v)| v.map(|v| num(name, v))),
+    );
+    let mut tables = BTreeMap::new();
+    if a.missing_count == 0 && a.sq > 0.0 {
+        spectral_metrics(map, boundary, &mut metrics, &mut tables)?;
+    }
+    summit_metrics(map, boundary, &mut metrics, &mut tables)?;
+    Ok(SurfaceReport { metrics, tables })
+}
+
+fn spectral_metrics(
+    map: &HeightMap,
+    boundary: Boundary,
+    metrics: &mut Vec<Field>,
+    tables: &mut BTreeMap<String, Table>,
+) -> Result<(), NodeError> {
+    let periodic = boundary == Boundary::Periodic;
+    let window = if periodic { Window::None } else { Window::Hann };
+    let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
+    let method = if periodic {
+        MomentMethod::Spectrum
+    } else {
+        MomentMethod::FiniteDifference
+    };
+    let m = spectral_moments(map, method).map_err(|e| fail("spectral moments", &e))?;
+    for (suffix, p) in [("", m.isotropic), ("_x", m.x), ("_y", m.y)] {
+        metrics.push(Field::float(format!("m0{suffix}"), p.m0, Dimension::Area));
+        metrics.push(num(&format!("m2{suffix}"), p.m2));
+        metrics.push(Field::float(
+            format!("m4{suffix}"),
+            p.m4,
+            Dimension::InverseArea,
+        ));
+    }
+    if let Ok(gw) = GwSummits::from_moments(m.isotropic.m0, m.isotropic.m2, m.isotropic.m4) {
+        metrics.extend([
+            Field::float("gw_summit_density", gw.density, Dimension::InverseArea),
+            len("gw_summit_radius", gw.radius),
+            len("gw_sigma_s", gw.sigma_s),
+            len("gw_y_s", gw.y_s),
+            num("gw_beta", gw.beta),
+            num("gw_alpha", gw.alpha),
+        ]);
+    }
+    let acf_boundary = if periodic {
+        AcfBoundary::Periodic
+    } else {
+        AcfBoundary::ZeroPadded
+    };
+    let acf = autocorrelation(map, acf_boundary).map_err(|e| fail("autocorrelation", &e))?;
+    if let Ok(texture) = acf.texture(ISO_ACF_THRESHOLD) {
+        metrics.push(len("sal", texture.sal));
+        if let Some(str_ratio) = texture.str_ratio {
+            metrics.push(num("str", str_ratio));
+        }
+    }
+    if let Ok(lengths) = acf.correlation_lengths(ISO_ACF_THRESHOLD) {
+        metrics.extend(lengths.x.map(|x| len("correlation_length_x", x)));
+        metrics.extend(lengths.y.map(|y| len("correlation_length_y", y)));
+    }
+    if let Ok(direction) = texture_direction(map, window) {
+        metrics.push(Field::float(
+            "std",
+            direction.std_deg.to_radians(),
+            Dimension::Angle,
+        ));
+    }
+    if let Ok(fit) = hurst_exponent(
+        map,
+        HurstFitOptions {
+            q_min: None,
+            q_max: None,
+            window,
+        },
+    ) {
+        metrics.extend([
+            num("hurst_fit", fit.hurst),
+            num("hurst_fit_q_min_rad_per_m", fit.q_min),
+            num("hurst_fit_q_max_rad_per_m", fit.q_max),
+            num("hurst_fit_r_squared", fit.r_squared),
+        ]);
+    }
+    let radial = acf.radial();
+    let mut acf_table = Table::default();
+    acf_table.push_float("r", Dimension::Length, radial.r);
+    acf_table.push_float("acf", Dimension::Dimensionless, radial.acf);
+    tables.insert(String::from("acf"), acf_table);
+    let psd = radial_psd(map, window).map_err(|e| fail("PSD", &e))?;
+    let mut psd_table = Table::default();
+    psd_table.push_float("q_rad_per_m", Dimension::Dimensionless, psd.q);
+    psd_table.push_float("c_m4", Dimension::Dimensionless, psd.c);
+    tables.insert(String::from("psd"), psd_table);
+    Ok(())
+}
+
+fn summit_metrics(
+    map: &HeightMap,
+    boundary: Boundary,
+    metrics: &mut Vec<Field>,
+    tables: &mut BTreeMap<String, Table>,
+) -> Result<(), NodeError> {
+    let found = find_summits(
+        map,
+        SummitOptions {
+            boundary,
+            min_height: None,
+            min_prominence: None,
+        },
+    )
+    .map_err(|e| NodeError::new(format!("summits: {e}")))?;
+    let s = &found.statistics;
+    metrics.push(Field::int("summit_count", s.count as i64));
+    metrics.push(Field::float(
+        "summit_density",
+        s.density,
+        Dimension::InverseArea,
+    ));
+    metrics.extend(s.mean_radius.map(|r| len("summit_mean_radius", r)));
+    metrics.extend(s.height_std.map(|h| len("summit_height_std", h)));
+    let mut t = Table::default();
+    t.push_int("ix", found.summits.iter().map(|x| x.ix as i64).collect());
+    t.push_int("iy", found.summits.iter().map(|x| x.iy as i64).collect());
+    t.push_float("x", Dimension::Length, found.summits.iter().map(|x| x.x).collect());
+    t.push_float("y", Dimension::Length, found.summits.iter().map(|x| x.y).collect());
+    t.push_float(
+        "height",
+        Dimension::Length,
+        found.summits.iter().map(|x| x.height).collect(),
+    );
+    t.push_float(
+        "slope",
+        Dimension::Dimensionless,
+        found.summits.iter().map(|x| x.slope).collect(),
+    );
+    t.push_float(
+        "radius",
+        Dimension::Length,
+        found.summits.iter().map(|x| x.radius).collect(),
+    );
+    tables.insert(String::from("summits"), t);
+    Ok(())
+}
