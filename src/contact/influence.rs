@@ -202,7 +202,7 @@ mod tests {
         let p: Vec<f64> = (0..nx * ny).map(|i| ((i * 37) % 11) as f64).collect();
         let mut u = vec![0.0; nx * ny];
         op.apply(&p, &mut u).unwrap();
-        for i in 0..nx * ny {
+        for (i, &ui) in u.iter().enumerate() {
             let (ix, iy) = ((i % nx) as f64, (i / nx) as f64);
             let direct: f64 = (0..nx * ny)
                 .map(|j| {
@@ -211,7 +211,7 @@ mod tests {
                 })
                 .sum();
             // FFT round-off relative to the largest term.
-            assert!((u[i] - direct).abs() < 1e-12 * direct.abs().max(1.0));
+            assert!((ui - direct).abs() < 1e-12 * direct.abs().max(1.0));
         }
         assert!((op.self_influence() - pixel_influence(0.0, 0.0, dx, dy) / 2.0).abs() < 1e-14);
     }
