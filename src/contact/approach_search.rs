@@ -42,12 +42,17 @@ pub(crate) fn solve(
             _ => None,
         })
     };
-    let fail = |termination, iterations, last: Option<CgOutcome>| CgOutcome {
-        termination,
-        iterations,
-        residuals: last.map(|o| o.residuals).unwrap_or_default(),
-        approach: last.map_or(start_approach, |o| o.approach),
-        mean_pressure: last.map_or(0.0, |o| o.mean_pressure),
+    let fail = |termination, iterations, last: Option<CgOutcome>| {
+        let mean_pressure = last.map_or(0.0, |o| o.mean_pressure);
+        let mut residuals = last.map(|o| o.residuals).unwrap_or_default();
+        residuals.force = (mean_pressure - nominal_pressure).abs() / nominal_pressure;
+        CgOutcome {
+            termination,
+            iterations,
+            residuals,
+            approach: last.map_or(start_approach, |o| o.approach),
+            mean_pressure,
+        }
     };
     let finish = |mut out: CgOutcome, iterations| {
         out.residuals.force = (out.mean_pressure - nominal_pressure).abs() / nominal_pressure;

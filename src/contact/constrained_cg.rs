@@ -59,25 +59,35 @@ pub(crate) struct CgOutcome {
     pub mean_pressure: f64,
 }
 
+/// Statistics of the gap pass; `y = g − δ_prev` on the free set `F`.
 #[derive(Debug, Clone, Copy)]
 struct GapAcc {
-    free_sum: f64,
+    free_y: f64,
+    free_y2: f64,
     free_count: f64,
+    free_max: f64,
+    free_min: f64,
     zero_min: f64,
     sat_max: f64,
 }
 
 impl GapAcc {
     const EMPTY: Self = Self {
-        free_sum: 0.0,
+        free_y: 0.0,
+        free_y2: 0.0,
         free_count: 0.0,
+        free_max: f64::NEG_INFINITY,
+        free_min: f64::INFINITY,
         zero_min: f64::INFINITY,
         sat_max: f64::NEG_INFINITY,
     };
     fn combine(a: Self, b: &Self) -> Self {
         Self {
-            free_sum: a.free_sum + b.free_sum,
+            free_y: a.free_y + b.free_y,
+            free_y2: a.free_y2 + b.free_y2,
             free_count: a.free_count + b.free_count,
+            free_max: a.free_max.max(b.free_max),
+            free_min: a.free_min.min(b.free_min),
             zero_min: a.zero_min.min(b.zero_min),
             sat_max: a.sat_max.max(b.sat_max),
         }
@@ -86,17 +96,25 @@ impl GapAcc {
 
 /// Sums of one pass, combined block by block in a fixed order.
 #[derive(Debug, Clone, Copy, Default)]
-struct Sums([f64; 4]);
+struct Sums([f64; 8]);
 
 impl Sums {
     fn combine(a: Self, b: &Self) -> Self {
-        Self([
-            a.0[0] + b.0[0],
-            a.0[1] + b.0[1],
-            a.0[2] + b.0[2],
-            a.0[3] + b.0[3],
-        ])
+        let mut out = a;
+        for (o, v) in out.0.iter_mut().zip(b.0) {
+            *o += v;
+        }
+        out
     }
+}
+
+/// Free-set statistics after an update: `Σ_F p`, `max_F p`, `Σ_{p = p_lim} p`, `|F|`.
+#[derive(Debug, Clone, Copy)]
+struct FreeStats {
+    free_sum: f64,
+    free_max: f64,
+    sat_sum: f64,
+    free_count: f64,
 }
 
 /// Pressures, displacements, gaps and CG vectors of one grid, allocated once.
@@ -136,8 +154,9 @@ impl Workspace {
         self.p.len()
     }
 
-    /// `g = g₀ + u − offset`; statistics of `g` on the free set and at the bounds.
-    fn gap_pass(&mut self, offset: f64, plim: f64) -> GapAcc {
+    /// `g = g₀ + u − offset`; statistics of `y = g − δ_prev` on the free set and of `g` at the
+    /// bounds.
+    fn gap_pass(&mut self, offset: f64, delta_prev: f64, plim: f64) -> GapAcc {
         self.g
             .par_chunks_mut(BLOCK)
             .zip(self.g0.par_chunks(BLOCK))
@@ -154,8 +173,12 @@ impl Workspace {
                     } else if pi >= plim {
                         a.sat_max = a.sat_max.max(v);
                     } else {
-                        a.free_sum += v;
+                        let y = v - delta_prev;
+                        a.free_y += y;
+                        a.free_y2 += y * y;
                         a.free_count += 1.0;
+                        a.free_max = a.free_max.max(v);
+                        a.free_min = a.free_min.min(v);
                     }
                 }
                 *acc = a;
@@ -165,40 +188,17 @@ impl Workspace {
             .fold(GapAcc::EMPTY, GapAcc::combine)
     }
 
-    /// `g ← g − δ`; returns `[Σ_F g², max sep. violation, max |g| on F, max plastic violation]`.
-    fn residual_pass(&mut self, delta: f64, plim: f64) -> [f64; 4] {
-        self.g
-            .par_chunks_mut(BLOCK)
-            .zip(self.p.par_chunks(BLOCK))
-            .zip(self.partials.par_iter_mut())
-            .for_each(|((g, p), acc)| {
-                let mut a = [0.0; 4];
-                for (gi, &pi) in g.iter_mut().zip(p) {
-                    let v = *gi - delta;
-                    *gi = v;
-                    if pi <= 0.0 {
-                        a[1] = f64::max(a[1], -v);
-                    } else if pi >= plim {
-                        a[3] = f64::max(a[3], v);
-                    } else {
-                        a[0] += v * v;
-                        a[2] = f64::max(a[2], v.abs());
-                    }
-                }
-                *acc = Sums(a);
-            });
-        self.partials.iter().fold([0.0; 4], |a, b| {
-            [
-                a[0] + b.0[0],
-                a[1].max(b.0[1]),
-                a[2].max(b.0[2]),
-                a[3].max(b.0[3]),
-            ]
-        })
+    /// `g ← g − δ`.
+    fn shift_gap(&mut self, delta: f64) {
+        if delta != 0.0 {
+            self.g
+                .par_chunks_mut(BLOCK)
+                .for_each(|g| g.iter_mut().for_each(|gi| *gi -= delta));
+        }
     }
 
-    /// `t ← g + β t` on the free set, 0 elsewhere.
-    fn direction_pass(&mut self, beta: f64, plim: f64) {
+    /// `t ← (g − δ) + β t` on the free set, 0 elsewhere.
+    fn direction_pass(&mut self, beta: f64, delta: f64, plim: f64) {
         self.t
             .par_chunks_mut(BLOCK)
             .zip(self.g.par_chunks(BLOCK))
@@ -206,7 +206,7 @@ impl Workspace {
             .for_each(|((t, g), p)| {
                 for ((ti, &gi), &pi) in t.iter_mut().zip(g).zip(p) {
                     *ti = if is_free(pi, plim) {
-                        gi + beta * *ti
+                        (gi - delta) + beta * *ti
                     } else {
                         0.0
                     };
@@ -214,8 +214,8 @@ impl Workspace {
             });
     }
 
-    /// `[Σ_F w, Σ_F w t, Σ_F t, Σ_F g t]` with `w = K t`.
-    fn step_pass(&mut self, plim: f64) -> Sums {
+    /// `[Σ_F w, Σ_F w t, Σ_F t, Σ_F (g − δ) t]` with `w = K t`.
+    fn step_pass(&mut self, delta: f64, plim: f64) -> [f64; 4] {
         self.partials
             .par_iter_mut()
             .zip(self.w.par_chunks(BLOCK))
@@ -223,67 +223,85 @@ impl Workspace {
             .zip(self.g.par_chunks(BLOCK))
             .zip(self.p.par_chunks(BLOCK))
             .for_each(|((((acc, w), t), g), p)| {
-                let mut a = [0.0; 4];
+                let mut a = [0.0; 8];
                 for (((&wi, &ti), &gi), &pi) in w.iter().zip(t).zip(g).zip(p) {
                     if is_free(pi, plim) {
                         a[0] += wi;
                         a[1] += wi * ti;
                         a[2] += ti;
-                        a[3] += gi * ti;
+                        a[3] += (gi - delta) * ti;
                     }
                 }
                 *acc = Sums(a);
             });
-        self.partials.iter().fold(Sums::default(), Sums::combine)
+        let s = self.partials.iter().fold(Sums::default(), Sums::combine).0;
+        [s[0], s[1], s[2], s[3]]
     }
 
-    /// CG update, projection and re-entry; returns `[Σ p, points re-entered, points projected, 0]`.
-    fn update_pass(&mut self, tau: f64, plim: f64) -> Sums {
+    /// CG update `p ← p − τ t`, projection on the box, re-entry `p ← p − τ (g − δ)` at bounds
+    /// with a wrong-signed gap, and `u ← u − τ w` (exact when nothing was projected or re-entered).
+    /// Returns `(Σ p, points re-entered, points projected, free-set statistics)`.
+    fn update_pass(&mut self, tau: f64, delta: f64, plim: f64) -> (f64, f64, f64, FreeStats) {
         self.p
             .par_chunks_mut(BLOCK)
+            .zip(self.u.par_chunks_mut(BLOCK))
+            .zip(self.w.par_chunks(BLOCK))
             .zip(self.t.par_chunks(BLOCK))
             .zip(self.g.par_chunks(BLOCK))
             .zip(self.partials.par_iter_mut())
-            .for_each(|(((p, t), g), acc)| {
-                let mut a = [0.0; 4];
-                for ((pi, &ti), &gi) in p.iter_mut().zip(t).zip(g) {
+            .for_each(|(((((p, u), w), t), g), acc)| {
+                let mut a = [0.0; 8];
+                for ((((pi, ui), &wi), &ti), &gi) in p.iter_mut().zip(u).zip(w).zip(t).zip(g) {
+                    *ui -= tau * wi;
                     let old = *pi;
+                    let gap = gi - delta;
                     let new = if is_free(old, plim) {
                         let v = old - tau * ti;
                         if v <= 0.0 || v >= plim {
                             a[2] += 1.0;
                         }
                         v
-                    } else if (old <= 0.0 && gi < 0.0) || (old >= plim && gi > 0.0) {
+                    } else if (old <= 0.0 && gap < 0.0) || (old >= plim && gap > 0.0) {
                         a[1] += 1.0;
-                        old - tau * gi
+                        old - tau * gap
                     } else {
                         old
                     };
                     let clamped = new.clamp(0.0, plim);
                     *pi = clamped;
                     a[0] += clamped;
+                    if is_free(clamped, plim) {
+                        a[3] += clamped;
+                        a[4] = f64::max(a[4], clamped);
+                        a[6] += 1.0;
+                    } else if clamped >= plim {
+                        a[5] += clamped;
+                    }
                 }
                 *acc = Sums(a);
             });
-        self.partials.iter().fold(Sums::default(), Sums::combine)
+        let mut free_max: f64 = 0.0;
+        let mut s = [0.0; 8];
+        for part in &self.partials {
+            free_max = free_max.max(part.0[4]);
+            s = Sums::combine(Sums(s), part).0;
+        }
+        let stats = FreeStats {
+            free_sum: s[3],
+            free_max,
+            sat_sum: s[5],
+            free_count: s[6],
+        };
+        (s[0], s[1], s[2], stats)
     }
 
-    /// `u ← u − τ w`.
-    fn displacement_pass(&mut self, tau: f64) {
-        self.u
-            .par_chunks_mut(BLOCK)
-            .zip(self.w.par_chunks(BLOCK))
-            .for_each(|(u, w)| u.iter_mut().zip(w).for_each(|(ui, &wi)| *ui -= tau * wi));
-    }
-
-    /// `[Σ_F p, max_F p, Σ_{p ≥ p_lim} p, |F|]`.
-    fn free_pass(&mut self, plim: f64) -> Sums {
+    /// Free-set statistics of the current pressures.
+    fn free_pass(&mut self, plim: f64) -> FreeStats {
         self.partials
             .par_iter_mut()
             .zip(self.p.par_chunks(BLOCK))
             .for_each(|(acc, p)| {
-                let mut a = [0.0; 4];
+                let mut a = [0.0; 8];
                 for &pi in p {
                     if is_free(pi, plim) {
                         a[0] += pi;
@@ -295,14 +313,18 @@ impl Workspace {
                 }
                 *acc = Sums(a);
             });
-        self.partials.iter().fold(Sums::default(), |a, b| {
-            Sums([
-                a.0[0] + b.0[0],
-                a.0[1].max(b.0[1]),
-                a.0[2] + b.0[2],
-                a.0[3] + b.0[3],
-            ])
-        })
+        let mut free_max: f64 = 0.0;
+        let mut s = [0.0; 8];
+        for part in &self.partials {
+            free_max = free_max.max(part.0[1]);
+            s = Sums::combine(Sums(s), part).0;
+        }
+        FreeStats {
+            free_sum: s[0],
+            free_max,
+            sat_sum: s[2],
+            free_count: s[3],
+        }
     }
 
     /// `Σ_F min(s p, p_lim)` and `Σ_{F, s p < p_lim} p`.
@@ -311,7 +333,7 @@ impl Workspace {
             .par_iter_mut()
             .zip(self.p.par_chunks(BLOCK))
             .for_each(|(acc, p)| {
-                let mut a = [0.0; 4];
+                let mut a = [0.0; 8];
                 for &pi in p.iter().filter(|&&pi| is_free(pi, plim)) {
                     if s * pi < plim {
                         a[0] += s * pi;
@@ -338,18 +360,27 @@ impl Workspace {
     }
 
     /// Restores `Σ p = total` (`0 < total < N p_lim`): scales the free pressures, saturating at
-    /// `p_lim` (Newton on the concave, piecewise-linear `s ↦ Σ_F min(s p, p_lim)`); if the free set
-    /// cannot carry the load, shifts all pressures, `p ← clamp(p + c, 0, p_lim)`, with `c` by
-    /// bisection. Returns the new `Σ p`.
+    /// `p_lim` (Newton on the concave, piecewise-linear `s ↦ Σ_F min(s p, p_lim)`, started left
+    /// of the root at `s₀ = need / Σ_F p`, so it increases monotonically); if the free set cannot
+    /// carry the load, shifts all pressures, `p ← clamp(p + c, 0, p_lim)`, with `c` by bisection.
+    /// `stats` are the free-set statistics of the current pressures if known. Returns `Σ p`.
     pub(crate) fn rebalance(&mut self, total: f64, plim: f64) -> f64 {
         let stats = self.free_pass(plim);
-        let [free_sum, free_max, sat_sum, free_count] = stats.0;
+        self.rebalance_with(total, plim, stats)
+    }
+
+    fn rebalance_with(&mut self, total: f64, plim: f64, stats: FreeStats) -> f64 {
+        let FreeStats {
+            free_sum,
+            free_max,
+            sat_sum,
+            free_count,
+        } = stats;
         let need = total - sat_sum;
         let capacity = free_count * plim;
         if free_sum > 0.0 && need > 0.0 && need < capacity {
             let mut s = need / free_sum;
             if s * free_max >= plim {
-                s = 0.0;
                 for _ in 0..100 {
                     let (f, slope) = self.scaled_free_sum(s, plim);
                     if (need - f).abs() <= 1e-14 * need || slope <= 0.0 {
@@ -358,12 +389,19 @@ impl Workspace {
                     s += (need - f) / slope;
                 }
             }
-            self.p.par_chunks_mut(BLOCK).for_each(|p| {
-                for pi in p.iter_mut().filter(|pi| is_free(**pi, plim)) {
-                    *pi = (s * *pi).min(plim);
-                }
-            });
-            return sat_sum + self.scaled_free_sum(1.0, plim).0;
+            self.p
+                .par_chunks_mut(BLOCK)
+                .zip(self.partials.par_iter_mut())
+                .for_each(|(p, acc)| {
+                    let mut sum = 0.0;
+                    for pi in p.iter_mut().filter(|pi| is_free(**pi, plim)) {
+                        *pi = (s * *pi).min(plim);
+                        sum += *pi;
+                    }
+                    acc.0[0] = sum;
+                });
+            let new_free: f64 = self.partials.iter().map(|a| a.0[0]).sum();
+            return sat_sum + new_free;
         }
         let n = self.len() as f64;
         let pmax = self.p.iter().copied().fold(0.0, f64::max);
@@ -397,6 +435,7 @@ pub(crate) fn solve(
 ) -> Result<CgOutcome, FftFailure> {
     let plim = settings.flow_pressure;
     let n = ws.len() as f64;
+    let h = settings.gap_scale;
     op.apply(&ws.p, &mut ws.u)?;
     let mut u_exact = true;
     let mut p_sum: f64 = ws.p.iter().sum();
@@ -405,62 +444,78 @@ pub(crate) fn solve(
     let mut progress_mark = f64::INFINITY;
     let mut last_progress = 0;
     let mut iterations = 0;
+    let mut delta_prev = 0.0;
     loop {
-        let offset = match control {
-            Control::Approach { approach } => approach,
-            Control::Load { .. } => 0.0,
+        let (offset, load_control) = match control {
+            Control::Approach { approach } => (approach, false),
+            Control::Load { .. } => (0.0, true),
         };
-        let stats = ws.gap_pass(offset, plim);
-        let delta = match control {
-            Control::Approach { .. } => 0.0,
-            Control::Load { .. } if stats.free_count > 0.0 => stats.free_sum / stats.free_count,
-            Control::Load { .. } => match (stats.sat_max.is_finite(), stats.zero_min.is_finite()) {
+        let stats = ws.gap_pass(offset, delta_prev, plim);
+        let has_free = stats.free_count > 0.0;
+        // Mean of y = g − δ_prev on F: the correction of δ (load control).
+        let shift = if load_control && has_free {
+            stats.free_y / stats.free_count
+        } else {
+            0.0
+        };
+        let delta = match (load_control, has_free) {
+            (false, _) => 0.0,
+            (true, true) => delta_prev + shift,
+            (true, false) => match (stats.sat_max.is_finite(), stats.zero_min.is_finite()) {
                 (true, true) => 0.5 * (stats.sat_max + stats.zero_min),
                 (true, false) => stats.sat_max,
                 (false, _) => stats.zero_min,
             },
         };
-        let [free_g2, separation, contact, plastic] = ws.residual_pass(delta, plim);
+        // Σ_F (g − δ)² from the shifted sums: no cancellation once δ changes little.
+        let free_g2 = (stats.free_y2 - stats.free_count * shift * shift).max(0.0);
+        let contact = if has_free {
+            (stats.free_max - delta).max(delta - stats.free_min)
+        } else {
+            0.0
+        };
         let force = match control {
             Control::Load { nominal_pressure } => {
                 (p_sum / n - nominal_pressure).abs() / nominal_pressure
             }
             Control::Approach { .. } => 0.0,
         };
-        let h = settings.gap_scale;
         let residuals = Residuals {
-            separation: separation / h,
+            separation: (delta - stats.zero_min).max(0.0) / h,
             contact: contact / h,
-            plastic: plastic / h,
+            plastic: (stats.sat_max - delta).max(0.0) / h,
             force,
         };
-        let outcome = |termination| CgOutcome {
-            termination,
-            iterations,
-            residuals,
-            approach: offset + delta,
-            mean_pressure: p_sum / n,
-        };
         let r = residuals.max();
-        if !r.is_finite() {
-            return Ok(outcome(Termination::Stalled));
-        }
-        if r <= settings.tolerance {
-            if u_exact {
-                return Ok(outcome(Termination::Converged));
-            }
+        let termination = if !r.is_finite() {
+            Some(Termination::Stalled)
+        } else if r <= settings.tolerance && u_exact {
+            Some(Termination::Converged)
+        } else if r <= settings.tolerance {
             op.apply(&ws.p, &mut ws.u)?;
             u_exact = true;
+            delta_prev = delta;
             continue;
-        }
-        if iterations >= settings.max_iterations {
-            return Ok(outcome(Termination::MaxIterations));
-        }
-        if r < 0.9 * progress_mark {
+        } else if iterations >= settings.max_iterations {
+            Some(Termination::MaxIterations)
+        } else if r < 0.9 * progress_mark {
             progress_mark = r;
             last_progress = iterations;
+            None
         } else if iterations - last_progress > settings.stall_iterations {
-            return Ok(outcome(Termination::Stalled));
+            Some(Termination::Stalled)
+        } else {
+            None
+        };
+        if let Some(termination) = termination {
+            ws.shift_gap(delta);
+            return Ok(CgOutcome {
+                termination,
+                iterations,
+                residuals,
+                approach: offset + delta,
+                mean_pressure: p_sum / n,
+            });
         }
 
         let beta = if reset || g_old <= 0.0 {
@@ -469,11 +524,11 @@ pub(crate) fn solve(
             free_g2 / g_old
         };
         g_old = free_g2;
-        ws.direction_pass(beta, plim);
+        ws.direction_pass(beta, delta, plim);
         op.apply(&ws.t, &mut ws.w)?;
-        let Sums([w_sum, wt, t_sum, gt]) = ws.step_pass(plim);
+        let [w_sum, wt, t_sum, gt] = ws.step_pass(delta, plim);
         let rt = match control {
-            Control::Load { .. } if stats.free_count > 0.0 => wt - w_sum / stats.free_count * t_sum,
+            Control::Load { .. } if has_free => wt - w_sum / stats.free_count * t_sum,
             Control::Load { .. } => 0.0,
             Control::Approach { .. } => wt,
         };
@@ -483,24 +538,22 @@ pub(crate) fn solve(
         } else {
             gt / rt
         };
-        let Sums([new_sum, entered, projected, _]) = ws.update_pass(tau, plim);
+        let (new_sum, entered, projected, free_stats) = ws.update_pass(tau, delta, plim);
         iterations += 1;
         reset = breakdown || entered > 0.0;
         p_sum = new_sum;
+        delta_prev = delta;
         let mut nonlinear = entered > 0.0 || projected > 0.0 || breakdown;
         if let Control::Load { nominal_pressure } = control {
             let total = nominal_pressure * n;
             if nonlinear || (p_sum - total).abs() > 1e-13 * total {
-                p_sum = ws.rebalance(total, plim);
+                p_sum = ws.rebalance_with(total, plim, free_stats);
                 nonlinear = true;
             }
         }
         if nonlinear {
             op.apply(&ws.p, &mut ws.u)?;
-            u_exact = true;
-        } else {
-            ws.displacement_pass(tau);
-            u_exact = false;
         }
+        u_exact = nonlinear;
     }
 }

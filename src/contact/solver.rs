@@ -186,20 +186,20 @@ impl ContactSolver {
         let load = Control::Load {
             nominal_pressure: pressure,
         };
+        // Zero load-controlled iterations: only the approach estimate of the start.
+        let estimate = CgSettings {
+            max_iterations: 0,
+            ..settings
+        };
         let (outcome, path) = match self.options.strategy {
             SolveStrategy::ConstrainedCg => (
                 constrained_cg::solve(ws, op, load, &settings)?,
                 SolvePath::ConstrainedCg,
             ),
             SolveStrategy::ApproachSearch => {
-                // Zero load-controlled iterations: only the approach estimate of the start.
-                let estimate = CgSettings {
-                    max_iterations: 0,
-                    ..settings
-                };
-                let first = constrained_cg::solve(ws, op, load, &estimate)?;
+                let start = constrained_cg::solve(ws, op, load, &estimate)?.approach;
                 (
-                    approach_search::solve(ws, op, pressure, first.approach, &settings)?,
+                    approach_search::solve(ws, op, pressure, start, &settings)?,
                     SolvePath::ApproachSearch,
                 )
             }
@@ -208,12 +208,14 @@ impl ContactSolver {
                 if first.termination == Termination::Converged {
                     (first, SolvePath::ConstrainedCg)
                 } else {
+                    // Restart from the uniform pressure: the stalled iterate may be far off.
+                    ws.p.fill(pressure);
+                    let start = constrained_cg::solve(ws, op, load, &estimate)?.approach;
                     let budget = CgSettings {
                         max_iterations: settings.max_iterations.saturating_sub(first.iterations),
                         ..settings
                     };
-                    let mut second =
-                        approach_search::solve(ws, op, pressure, first.approach, &budget)?;
+                    let mut second = approach_search::solve(ws, op, pressure, start, &budget)?;
                     second.iterations += first.iterations;
                     (second, SolvePath::ApproachSearch)
                 }
