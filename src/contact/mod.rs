@@ -1,1 +1,28 @@
 //! Stage 2: elastic–perfectly-plastic half-space contact of two rough surfaces.
+//!
+//! Build a [`CompositeGap`] from two height maps (or one against a flat), a [`ContactMaterial`]
+//! and a [`Boundary`]; a [`ContactSolver`] then solves a list of nominal pressures with
+//! load-controlled constrained conjugate gradients (Polonsky & Keer 1999) under pressure
+//! saturation `0 ≤ p ≤ p_lim` (Almqvist et al. 2007), falling back to an outer search on the
+//! approach when that stalls. Each step reports the true contact area, the stress ratio and the
+//! other [`LoadStep`] quantities; pressure, gap and deformation fields only on request.
+
+mod approach_search;
+mod constrained_cg;
+mod error;
+mod fft2d;
+mod gap;
+mod influence;
+mod load_curve;
+mod material;
+mod options;
+mod solver;
+
+pub use error::ContactError;
+pub use fft2d::{FftFailure, RealFft2d};
+pub use gap::{CompositeGap, GapError, GapSource};
+pub use influence::Boundary;
+pub use load_curve::{ContactFields, LoadCurve, LoadStep};
+pub use material::{BodyElasticity, ContactMaterial, MaterialError};
+pub use options::{FieldRequest, Residuals, SolvePath, SolveStrategy, SolverOptions, Termination};
+pub use solver::{ContactProblem, ContactSolver};

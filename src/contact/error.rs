@@ -1,0 +1,45 @@
+//! Errors of the contact solver.
+
+use super::fft2d::FftFailure;
+use super::gap::GapError;
+use super::material::MaterialError;
+use super::options::{Residuals, Termination};
+
+/// Why a contact problem could not be set up or solved.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ContactError {
+    #[error(transparent)]
+    Material(#[from] MaterialError),
+    #[error(transparent)]
+    Gap(#[from] GapError),
+    #[error(transparent)]
+    Fft(#[from] FftFailure),
+    #[error("solver option {name} = {value} is invalid: {reason}")]
+    BadOption {
+        name: &'static str,
+        value: f64,
+        reason: &'static str,
+    },
+    #[error("load step {step}: nominal pressure must be finite and > 0 Pa, got {pressure} Pa")]
+    BadNominalPressure { step: usize, pressure: f64 },
+    #[error("load step {step}: nominal pressures must be strictly ascending, got {pressure} Pa after {previous} Pa")]
+    NotAscending {
+        step: usize,
+        pressure: f64,
+        previous: f64,
+    },
+    #[error("load step {step}: nominal pressure {pressure} Pa is not below the flow pressure {flow_pressure} Pa (the whole surface would flow)")]
+    AboveFlowPressure {
+        step: usize,
+        pressure: f64,
+        flow_pressure: f64,
+    },
+    #[error("load step {step} at {pressure} Pa did not converge: {termination:?} after {iterations} iterations, residuals {residuals:?}")]
+    NotConverged {
+        step: usize,
+        pressure: f64,
+        termination: Termination,
+        iterations: usize,
+        residuals: Residuals,
+    },
+}

@@ -1,0 +1,60 @@
+//! Results of a load-stepped contact solve: one row per load step, fields on demand.
+
+use ndarray::Array2;
+
+use super::options::{Residuals, SolvePath};
+
+/// Fields of one load step, each `[[iy, ix]]` on the contact grid; `None` unless requested
+/// through [`super::FieldRequest`].
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ContactFields {
+    /// Contact pressure `p` in Pa (`0 ≤ p ≤ p_lim`).
+    pub pressure: Option<Array2<f64>>,
+    /// Gap `g = g₀ + u − δ` in m after loading (`≤ 0` only at saturated points).
+    pub gap: Option<Array2<f64>>,
+    /// Elastic normal deformation of the first body in m: `u · c₁/(c₁ + c₂)`.
+    pub deformation_first: Option<Array2<f64>>,
+    /// Elastic normal deformation of the second body in m: `u · c₂/(c₁ + c₂)`.
+    pub deformation_second: Option<Array2<f64>>,
+    /// Plastic penetration `max(0, −g)` in m where `p = p_lim`, 0 elsewhere.
+    pub plastic_penetration: Option<Array2<f64>>,
+}
+
+/// Results of one converged load step (SI units).
+///
+/// Elastic displacements `u` are absolute for [`super::Boundary::NonPeriodic`] and measured from
+/// the mean displaced plane for [`super::Boundary::Periodic`] (where the mean of `u` is zero); the
+/// approach `δ` follows the same convention and is zero at first contact for non-periodic grids.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadStep {
+    /// Nominal (apparent) pressure `p̄` in Pa.
+    pub nominal_pressure: f64,
+    /// True contact area share `A_true / A_nominal` (points with `p > 0`).
+    pub area_fraction: f64,
+    /// Mean pressure on the true contact area `p̄ / (A_true/A_nominal)` in Pa.
+    pub mean_contact_pressure: f64,
+    /// Stress ratio `θ = mean contact pressure / p_lim` (0 for a purely elastic material).
+    pub stress_ratio: f64,
+    /// Share of the true contact area at the flow pressure (`p = p_lim`).
+    pub plastic_area_share: f64,
+    /// Mean separation `mean(max(g, 0))` over the nominal area in m.
+    pub mean_separation: f64,
+    /// Largest composite elastic deformation `max u` in m.
+    pub max_elastic_deformation: f64,
+    /// Rigid-body approach `δ` in m.
+    pub approach: f64,
+    /// CG iterations of this step.
+    pub iterations: usize,
+    /// Final residuals (all `≤` the tolerance).
+    pub residuals: Residuals,
+    /// Algorithm that produced the step.
+    pub path: SolvePath,
+    /// Fields, if requested.
+    pub fields: Option<ContactFields>,
+}
+
+/// A load curve: one [`LoadStep`] per nominal pressure, in ascending order.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct LoadCurve {
+    pub steps: Vec<LoadStep>,
+}

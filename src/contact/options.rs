@@ -1,0 +1,126 @@
+//! Solver options, termination reasons and residuals.
+
+/// Which fields a load step returns (each costs one `ny × nx` array per step).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FieldRequest {
+    /// Contact pressure `p` in Pa.
+    pub pressure: bool,
+    /// Gap `g` in m after loading (negative where plastic flow removed material).
+    pub gap: bool,
+    /// Elastic normal deformation of each body in m (split of the composite displacement).
+    pub deformation: bool,
+    /// Plastic penetration `max(0, −g)` in m at saturated points.
+    pub plastic_penetration: bool,
+}
+
+impl FieldRequest {
+    /// No fields: only the scalar load-step results.
+    pub const NONE: Self = Self {
+        pressure: false,
+        gap: false,
+        deformation: false,
+        plastic_penetration: false,
+    };
+    /// All fields.
+    pub const ALL: Self = Self {
+        pressure: true,
+        gap: true,
+        deformation: true,
+        plastic_penetration: true,
+    };
+
+    /// `true` if any field is requested.
+    pub fn any(&self) -> bool {
+        self.pressure || self.gap || self.deformation || self.plastic_penetration
+    }
+}
+
+/// How a load step is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SolveStrategy {
+    /// Load-controlled constrained CG first; on `Stalled` / `MaxIterations` the approach search.
+    #[default]
+    Auto,
+    /// Load-controlled constrained conjugate gradients only (Polonsky & Keer 1999).
+    ConstrainedCg,
+    /// Outer search on the rigid-body approach with an inner displacement-controlled solve only.
+    ApproachSearch,
+}
+
+/// Which algorithm produced a load step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SolvePath {
+    /// Load-controlled constrained CG.
+    ConstrainedCg,
+    /// Outer search on the approach (Illinois regula falsi) with inner constrained CG.
+    ApproachSearch,
+}
+
+/// Options of [`super::ContactSolver`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverOptions {
+    /// Relative tolerance `ε` of every convergence condition (see [`Residuals`]).
+    pub tolerance: f64,
+    /// Maximum number of CG iterations per load step (summed over the approach search).
+    pub max_iterations: usize,
+    /// A solve that has not reduced its largest residual below 0.9 × its best value for this
+    /// many iterations is `Stalled`.
+    pub stall_iterations: usize,
+    /// Algorithm choice.
+    pub strategy: SolveStrategy,
+    /// Fields returned with every load step.
+    pub fields: FieldRequest,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-6,
+            max_iterations: 10_000,
+            stall_iterations: 400,
+            strategy: SolveStrategy::Auto,
+            fields: FieldRequest::NONE,
+        }
+    }
+}
+
+/// Why an iterative solve stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Termination {
+    /// Every residual is at most the tolerance.
+    Converged,
+    /// The iteration limit was reached first.
+    MaxIterations,
+    /// No progress within `stall_iterations`.
+    Stalled,
+    /// The approach search could not bracket or reach the target load.
+    ApproachSearchFailed,
+}
+
+/// Convergence residuals of a solve, all dimensionless.
+///
+/// With `h` the gap scale (the composite rms roughness `S_q`, at least the elastic pixel
+/// displacement `p̄ √(dx dy) / E*`), `g` the gap, `p` the pressure, `p̄` the nominal pressure:
+/// * `separation = max over p = 0 of max(0, −g) / h` (no interpenetration outside contact);
+/// * `contact = max over 0 < p < p_lim of |g| / h` (closed gap where the contact is elastic);
+/// * `plastic = max over p = p_lim of max(0, g) / h` (no open gap at a saturated point);
+/// * `force = |mean(p) − p̄| / p̄` (force balance).
+///
+/// A solve is converged when all four are at most the tolerance.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Residuals {
+    pub separation: f64,
+    pub contact: f64,
+    pub plastic: f64,
+    pub force: f64,
+}
+
+impl Residuals {
+    /// The largest of the four residuals.
+    pub fn max(&self) -> f64 {
+        self.separation
+            .max(self.contact)
+            .max(self.plastic)
+            .max(self.force)
+    }
+}

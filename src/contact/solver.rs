@@ -1,0 +1,310 @@
+//! The load-stepped contact solver: problem definition, warm starts, step results.
+
+use ndarray::{Array2, ArrayView2};
+
+use super::approach_search;
+use super::constrained_cg::{self, CgOutcome, CgSettings, Control, Workspace};
+use super::error::ContactError;
+use super::gap::CompositeGap;
+use super::influence::{Boundary, InfluenceOperator};
+use super::load_curve::{ContactFields, LoadCurve, LoadStep};
+use super::material::ContactMaterial;
+use super::options::{SolvePath, SolveStrategy, SolverOptions, Termination};
+
+/// A normal contact problem: initial gap, material pair and lateral boundary condition.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactProblem {
+    gap: CompositeGap,
+    material: ContactMaterial,
+    boundary: Boundary,
+}
+
+impl ContactProblem {
+    /// Builds the problem from a composite gap.
+    pub fn new(gap: CompositeGap, material: ContactMaterial, boundary: Boundary) -> Self {
+        Self {
+            gap,
+            material,
+            boundary,
+        }
+    }
+
+    /// Builds the problem from a gap array in m (`[[iy, ix]]`) and pixel spacings in m.
+    pub fn from_gap_array(
+        gap: ArrayView2<f64>,
+        dx: f64,
+        dy: f64,
+        material: ContactMaterial,
+        boundary: Boundary,
+    ) -> Result<Self, ContactError> {
+        Ok(Self::new(
+            CompositeGap::from_gap_array(gap, dx, dy)?,
+            material,
+            boundary,
+        ))
+    }
+
+    /// The initial gap.
+    pub fn gap(&self) -> &CompositeGap {
+        &self.gap
+    }
+
+    /// The material pair.
+    pub fn material(&self) -> &ContactMaterial {
+        &self.material
+    }
+
+    /// The boundary condition.
+    pub fn boundary(&self) -> Boundary {
+        self.boundary
+    }
+}
+
+/// Reusable solver of one [`ContactProblem`]: holds the FFT plans, the influence kernel and all
+/// work arrays (allocated once), and the pressures of the last converged step for warm starts.
+#[derive(Debug)]
+pub struct ContactSolver {
+    problem: ContactProblem,
+    options: SolverOptions,
+    operator: InfluenceOperator,
+    workspace: Workspace,
+    rms: f64,
+    last_nominal: Option<f64>,
+}
+
+impl ContactSolver {
+    /// Plans the FFTs and builds the influence kernel.
+    pub fn new(problem: ContactProblem, options: SolverOptions) -> Result<Self, ContactError> {
+        if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
+            return Err(ContactError::BadOption {
+                name: "tolerance",
+                value: options.tolerance,
+                reason: "must be finite and > 0",
+            });
+        }
+        if options.max_iterations == 0 {
+            return Err(ContactError::BadOption {
+                name: "max_iterations",
+                value: 0.0,
+                reason: "must be > 0",
+            });
+        }
+        let gap = problem.gap();
+        let operator = InfluenceOperator::new(
+            gap.nx(),
+            gap.ny(),
+            gap.dx(),
+            gap.dy(),
+            problem.material().composite_modulus(),
+            problem.boundary(),
+        )?;
+        let workspace = Workspace::new(gap.gap().iter().copied().collect());
+        let rms = gap.rms();
+        Ok(Self {
+            problem,
+            options,
+            operator,
+            workspace,
+            rms,
+            last_nominal: None,
+        })
+    }
+
+    /// The problem being solved.
+    pub fn problem(&self) -> &ContactProblem {
+        &self.problem
+    }
+
+    /// Forgets the warm start: the next step starts from a uniform pressure.
+    pub fn reset(&mut self) {
+        self.last_nominal = None;
+    }
+
+    /// Solves the nominal pressures `nominal_pressures` (Pa, strictly ascending, each below
+    /// `p_lim`) in order, each warm-started from the previous one. A step that does not converge
+    /// ends the curve with [`ContactError::NotConverged`].
+    pub fn solve_load_steps(
+        &mut self,
+        nominal_pressures: &[f64],
+    ) -> Result<LoadCurve, ContactError> {
+        let mut steps = Vec::with_capacity(nominal_pressures.len());
+        let mut previous: Option<f64> = None;
+        for (step, &pressure) in nominal_pressures.iter().enumerate() {
+            if let Some(prev) = previous {
+                if pressure <= prev {
+                    return Err(ContactError::NotAscending {
+                        step,
+                        pressure,
+                        previous: prev,
+                    });
+                }
+            }
+            steps.push(self.solve_indexed(step, pressure)?);
+            previous = Some(pressure);
+        }
+        Ok(LoadCurve { steps })
+    }
+
+    /// Solves one nominal pressure in Pa, warm-started from the last converged step.
+    pub fn solve(&mut self, nominal_pressure: f64) -> Result<LoadStep, ContactError> {
+        self.solve_indexed(0, nominal_pressure)
+    }
+
+    fn solve_indexed(&mut self, step: usize, pressure: f64) -> Result<LoadStep, ContactError> {
+        let plim = self.problem.material().flow_pressure();
+        if !(pressure.is_finite() && pressure > 0.0) {
+            return Err(ContactError::BadNominalPressure { step, pressure });
+        }
+        if pressure >= plim {
+            return Err(ContactError::AboveFlowPressure {
+                step,
+                pressure,
+                flow_pressure: plim,
+            });
+        }
+        let e_star = self.problem.material().composite_modulus();
+        let gap = self.problem.gap();
+        let pixel_displacement = pressure * (gap.dx() * gap.dy()).sqrt() / e_star;
+        let settings = CgSettings {
+            tolerance: self.options.tolerance,
+            max_iterations: self.options.max_iterations,
+            stall_iterations: self.options.stall_iterations,
+            flow_pressure: plim,
+            gap_scale: self.rms.max(pixel_displacement),
+            default_step: 1.0 / self.operator.self_influence(),
+        };
+        let n = self.workspace.p.len() as f64;
+        match self.last_nominal {
+            Some(_) => {
+                self.workspace.rebalance(pressure * n, plim);
+            }
+            None => self.workspace.p.fill(pressure),
+        }
+        self.last_nominal = None;
+        let ws = &mut self.workspace;
+        let op = &mut self.operator;
+        let load = Control::Load {
+            nominal_pressure: pressure,
+        };
+        // Zero load-controlled iterations: only the approach estimate of the start.
+        let estimate = CgSettings {
+            max_iterations: 0,
+            ..settings
+        };
+        let (outcome, path) = match self.options.strategy {
+            SolveStrategy::ConstrainedCg => (
+                constrained_cg::solve(ws, op, load, &settings)?,
+                SolvePath::ConstrainedCg,
+            ),
+            SolveStrategy::ApproachSearch => {
+                let start = constrained_cg::solve(ws, op, load, &estimate)?.approach;
+                (
+                    approach_search::solve(ws, op, pressure, start, &settings)?,
+                    SolvePath::ApproachSearch,
+                )
+            }
+            SolveStrategy::Auto => {
+                let first = constrained_cg::solve(ws, op, load, &settings)?;
+                if first.termination == Termination::Converged {
+                    (first, SolvePath::ConstrainedCg)
+                } else {
+                    // Restart from the uniform pressure: the stalled iterate may be far off.
+                    ws.p.fill(pressure);
+                    let start = constrained_cg::solve(ws, op, load, &estimate)?.approach;
+                    let budget = CgSettings {
+                        max_iterations: settings.max_iterations.saturating_sub(first.iterations),
+                        ..settings
+                    };
+                    let mut second = approach_search::solve(ws, op, pressure, start, &budget)?;
+                    second.iterations += first.iterations;
+                    (second, SolvePath::ApproachSearch)
+                }
+            }
+        };
+        if outcome.termination != Termination::Converged {
+            return Err(ContactError::NotConverged {
+                step,
+                pressure,
+                termination: outcome.termination,
+                iterations: outcome.iterations,
+                residuals: outcome.residuals,
+            });
+        }
+        self.last_nominal = Some(pressure);
+        Ok(self.step_result(pressure, &outcome, path))
+    }
+
+    fn step_result(&self, pressure: f64, outcome: &CgOutcome, path: SolvePath) -> LoadStep {
+        let ws = &self.workspace;
+        let plim = self.problem.material().flow_pressure();
+        let n = ws.p.len() as f64;
+        let (mut contact, mut saturated, mut separation) = (0usize, 0usize, 0.0);
+        let mut max_u = f64::NEG_INFINITY;
+        for ((&p, &g), &u) in ws.p.iter().zip(&ws.g).zip(&ws.u) {
+            if p > 0.0 {
+                contact += 1;
+            }
+            if p >= plim {
+                saturated += 1;
+            }
+            separation += g.max(0.0);
+            max_u = max_u.max(u);
+        }
+        let area_fraction = contact as f64 / n;
+        let mean_contact_pressure = if contact > 0 {
+            ws.p.iter().sum::<f64>() / contact as f64
+        } else {
+            0.0
+        };
+        LoadStep {
+            nominal_pressure: pressure,
+            area_fraction,
+            mean_contact_pressure,
+            stress_ratio: if plim.is_finite() {
+                mean_contact_pressure / plim
+            } else {
+                0.0
+            },
+            plastic_area_share: if contact > 0 {
+                saturated as f64 / contact as f64
+            } else {
+                0.0
+            },
+            mean_separation: separation / n,
+            max_elastic_deformation: max_u,
+            approach: outcome.approach,
+            iterations: outcome.iterations,
+            residuals: outcome.residuals,
+            path,
+            fields: self.options.fields.any().then(|| self.fields()),
+        }
+    }
+
+    fn fields(&self) -> ContactFields {
+        let request = self.options.fields;
+        let ws = &self.workspace;
+        let shape = (self.problem.gap().ny(), self.problem.gap().nx());
+        let plim = self.problem.material().flow_pressure();
+        let share = self.problem.material().first_body_share();
+        let grid = |f: &dyn Fn(usize) -> f64| {
+            Array2::from_shape_fn(shape, |(iy, ix)| f(iy * shape.1 + ix))
+        };
+        ContactFields {
+            pressure: request.pressure.then(|| grid(&|i| ws.p[i])),
+            gap: request.gap.then(|| grid(&|i| ws.g[i])),
+            deformation_first: request.deformation.then(|| grid(&|i| ws.u[i] * share)),
+            deformation_second: request
+                .deformation
+                .then(|| grid(&|i| ws.u[i] * (1.0 - share))),
+            plastic_penetration: request.plastic_penetration.then(|| {
+                grid(&|i| {
+                    if ws.p[i] >= plim {
+                        (-ws.g[i]).max(0.0)
+                    } else {
+                        0.0
+                    }
+                })
+            }),
+        }
+    }
+}
