@@ -169,6 +169,26 @@ impl FileSpec {
 }
 
 impl MeasuredSource {
+    /// A file levelled by a polynomial of `form_degree` with its missing points filled.
+    pub(super) fn levelled_and_filled(path: PathBuf, form_degree: usize) -> Self {
+        let file_bytes = std::fs::metadata(&path).map_or(0, |m| m.len());
+        Self {
+            path,
+            file_bytes,
+            crop: None,
+            decimate: None,
+            form_degree: Some(form_degree),
+            s_filter: None,
+            l_filter: None,
+            fill: true,
+        }
+    }
+
+    /// The file read.
+    pub(super) fn path(&self) -> &std::path::Path {
+        &self.path
+    }
+
     /// Reads and preprocesses the surface.
     pub(super) fn load(&self) -> Result<HeightMap, NodeError> {
         let fail = |step: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{step}: {e}"));

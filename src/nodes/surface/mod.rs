@@ -9,16 +9,18 @@ use crate::engine::study::{ResolveContext, SpecError};
 use crate::engine::value::Field;
 use crate::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
 use crate::surface::{Boundary, HeightMap};
-use crate::units::Dimension;
 
 mod measured;
 mod metrics;
 mod synthetic;
+mod twin;
 
 pub use measured::FileSpec;
 pub use synthetic::{AnisotropySpec, SyntheticSpec};
+pub use twin::TwinSpec;
 
 use measured::MeasuredSource;
+use twin::TwinSource;
 
 pub(crate) const KIND: &str = "surface";
 pub(crate) const TABLE: &str = "surfaces";
@@ -37,6 +39,8 @@ pub enum SurfaceSpec {
     Synthetic(SyntheticSpec),
     /// A measured topography file, optionally cropped, levelled and filtered.
     File(FileSpec),
+    /// A synthetic twin of measured surfaces at a new Sq.
+    Twin(TwinSpec),
 }
 
 impl SurfaceSpec {
@@ -44,6 +48,7 @@ impl SurfaceSpec {
         match self {
             SurfaceSpec::Synthetic(s) => s.instantiate(ctx),
             SurfaceSpec::File(f) => f.instantiate(ctx),
+            SurfaceSpec::Twin(t) => t.instantiate(ctx),
         }
     }
 }
@@ -59,16 +64,21 @@ pub struct SurfaceTask {
 pub(crate) enum SurfaceSource {
     Synthetic(SyntheticSurfaceSpec),
     Measured(MeasuredSource),
+    Twin(TwinSource),
 }
 
 impl SurfaceTask {
-    /// Generates or reads the heights, and says whether the map is periodic.
-    fn heights(&self) -> Result<(HeightMap, Boundary), NodeError> {
+    /// Generates or reads the heights; says whether the map is periodic and adds any metrics of
+    /// the source itself (a twin's fitted statistics).
+    fn heights(&self) -> Result<(HeightMap, Boundary, Vec<Field>), NodeError> {
         match &self.source {
             SurfaceSource::Synthetic(spec) => generate_synthetic_surface(spec)
-                .map(|m| (m, Boundary::Periodic))
+                .map(|m| (m, Boundary::Periodic, Vec::new()))
                 .map_err(|e| NodeError::new(e.to_string())),
-            SurfaceSource::Measured(m) => m.load().map(|map| (map, Boundary::Open)),
+            SurfaceSource::Measured(m) => m.load().map(|map| (map, Boundary::Open, Vec::new())),
+            SurfaceSource::Twin(t) => t
+                .generate()
+                .map(|(map, extra)| (map, Boundary::Periodic, extra)),
         }
     }
 }
@@ -95,12 +105,14 @@ impl NodeTask for SurfaceTask {
             // heights + complex half spectrum + statistics work arrays ≈ 6 f64 per point.
             SurfaceSource::Synthetic(s) => (s.nx as u64) * (s.ny as u64) * 8 * 6,
             SurfaceSource::Measured(m) => m.memory_estimate(),
+            SurfaceSource::Twin(t) => t.memory_estimate(),
         }
     }
 
     fn compute(&self, _inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
-        let (map, boundary) = self.heights()?;
-        let report = metrics::surface_report(&map, boundary)?;
+        let (map, boundary, source_metrics) = self.heights()?;
+        let mut report = metrics::surface_report(&map, boundary)?;
+        report.metrics.extend(source_metrics);
         let heights = map.into_heights().into_dyn();
         Ok(Artifact {
             metrics: report.metrics,
