@@ -254,8 +254,18 @@ pub fn parse_quantity_as(text: &str, expected: Dimension) -> Result<f64, UnitErr
 /// Formats an SI value with its unit for messages and metadata ("1.19e-6 m").
 pub fn format_si(value: f64, dimension: Dimension) -> String {
     match dimension.si_symbol() {
-        "" => format!("{value}"),
-        s => format!("{value} {s}"),
+        "" => format_number(value),
+        s => format!("{} {s}", format_number(value)),
+    }
+}
+
+/// Shortest round-trip form, in scientific notation outside [1e-4, 1e6) ("2e7", "0.5", "1.19e-6").
+pub fn format_number(value: f64) -> String {
+    let magnitude = value.abs();
+    if value != 0.0 && !(1e-4..1e6).contains(&magnitude) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
     }
 }
 

@@ -257,7 +257,11 @@ nodes:
 fn a_failing_node_fails_only_itself_and_is_a_row_with_its_message() {
     let dir = tempdir("failing");
     // A file whose content is not a topography: planning hashes it, computing it fails.
-    std::fs::write(dir.join("broken.x3p"), b"PK\x03\x04 this is not a zip archive").unwrap();
+    std::fs::write(
+        dir.join("broken.x3p"),
+        b"PK\x03\x04 this is not a zip archive",
+    )
+    .unwrap();
     let text = r#"
 study: failing
 nodes:
@@ -281,7 +285,7 @@ nodes:
         .unwrap()
         .str()
         .unwrap()
-        .into_iter()
+        .iter()
         .map(|s| s.unwrap().to_string())
         .collect();
     let message: Vec<_> = surfaces
@@ -289,7 +293,7 @@ nodes:
         .unwrap()
         .str()
         .unwrap()
-        .into_iter()
+        .iter()
         .map(|s| s.unwrap().to_string())
         .collect();
     let bad = status.iter().position(|s| s == "failed").unwrap();

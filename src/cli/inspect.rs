@@ -22,8 +22,8 @@ pub struct InspectArgs {
 }
 
 pub fn inspect(args: InspectArgs) -> Result<ExitCode> {
-    let bytes =
-        std::fs::read(&args.file).with_context(|| format!("cannot read {}", args.file.display()))?;
+    let bytes = std::fs::read(&args.file)
+        .with_context(|| format!("cannot read {}", args.file.display()))?;
     let format = detect_format(&args.file, &bytes).map(|f| f.name());
     let topo = parse_topography(&args.file, &bytes)?;
     println!("file:      {}", args.file.display());
@@ -44,7 +44,9 @@ pub fn inspect(args: InspectArgs) -> Result<ExitCode> {
                 write_png(map, out)?;
                 println!("image:     {}", out.display());
             }
-            TopographyData::Line(_) => anyhow::bail!("--png needs an areal topography, not a line scan"),
+            TopographyData::Line(_) => {
+                anyhow::bail!("--png needs an areal topography, not a line scan")
+            }
         }
     }
     Ok(ExitCode::SUCCESS)
@@ -54,7 +56,11 @@ fn describe_map(map: &HeightMap) -> Result<()> {
     let (lx, ly) = map.size();
     println!("kind:      areal map");
     println!("grid:      {} × {} points (nx × ny)", map.nx(), map.ny());
-    println!("spacing:   dx = {:.6e} m, dy = {:.6e} m", map.dx(), map.dy());
+    println!(
+        "spacing:   dx = {:.6e} m, dy = {:.6e} m",
+        map.dx(),
+        map.dy()
+    );
     println!("size:      {lx:.6e} m × {ly:.6e} m");
     println!("units:     heights and lengths in metres (converted from the file's units)");
     let a = amplitude_statistics(map, Boundary::Open)?;
@@ -76,7 +82,8 @@ fn describe_map(map: &HeightMap) -> Result<()> {
     println!("  Sdq = {} (central differences)", opt(a.sdq));
     println!(
         "  Sdr = {} %",
-        a.sdr_percent.map_or(String::from("undefined"), |v| format!("{v:.5}"))
+        a.sdr_percent
+            .map_or(String::from("undefined"), |v| format!("{v:.5}"))
     );
     Ok(())
 }
@@ -84,13 +91,18 @@ fn describe_map(map: &HeightMap) -> Result<()> {
 fn describe_line(line: &LineScan) {
     let valid: Vec<f64> = line.z.iter().copied().filter(|z| !z.is_nan()).collect();
     println!("kind:      line scan (profile)");
-    println!("points:    {} ({} missing)", line.z.len(), line.z.len() - valid.len());
+    println!(
+        "points:    {} ({} missing)",
+        line.z.len(),
+        line.z.len() - valid.len()
+    );
     if let (Some(first), Some(last)) = (line.x.first(), line.x.last()) {
         println!("length:    {:.6e} m", last - first);
     }
     if !valid.is_empty() {
         let mean = valid.iter().sum::<f64>() / valid.len() as f64;
-        let rq = (valid.iter().map(|z| (z - mean).powi(2)).sum::<f64>() / valid.len() as f64).sqrt();
+        let rq =
+            (valid.iter().map(|z| (z - mean).powi(2)).sum::<f64>() / valid.len() as f64).sqrt();
         println!("Rq (point average, no levelling) = {rq:.9e} m");
     }
 }
@@ -100,7 +112,9 @@ fn write_png(map: &HeightMap, out: &Path) -> Result<()> {
     let (lo, hi) = z
         .iter()
         .filter(|v| !v.is_nan())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
     let span = if hi > lo { hi - lo } else { 1.0 };
     let mut rgb = Vec::with_capacity(map.nx() * map.ny() * 3);
     for v in z.iter() {
@@ -111,7 +125,8 @@ fn write_png(map: &HeightMap, out: &Path) -> Result<()> {
             rgb.extend_from_slice(&[g, g, g]);
         }
     }
-    let file = std::fs::File::create(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let file =
+        std::fs::File::create(out).with_context(|| format!("cannot create {}", out.display()))?;
     let mut encoder = png::Encoder::new(BufWriter::new(file), map.nx() as u32, map.ny() as u32);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);

@@ -86,7 +86,7 @@ impl fmt::Display for ParamValue {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ParamValue::Int(i) => write!(f, "{i}"),
-            ParamValue::Number(x) => write!(f, "{x}"),
+            ParamValue::Number(x) => f.write_str(&crate::units::format_number(*x)),
             ParamValue::Quantity(q) => f.write_str(&format_si(q.si, q.dimension)),
             ParamValue::Text(s) => write!(f, "'{s}'"),
             ParamValue::Bool(b) => write!(f, "{b}"),

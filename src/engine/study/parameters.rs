@@ -22,7 +22,7 @@ pub struct ParameterSpace {
     pub product: IndexMap<String, Located<Axis>>,
     /// Groups of axes of equal length that advance together; each group is one product axis.
     #[serde(default)]
-    pub zip: Vec<IndexMap<String, Located<Axis>>>,
+    pub zip: Vec<Located<IndexMap<String, Located<Axis>>>>,
     /// Seeded Latin-hypercube samples over ranges; one product axis.
     #[serde(default)]
     pub latin_hypercube: Option<Located<LatinHypercube>>,
@@ -162,16 +162,18 @@ struct Group {
     rows: Vec<Vec<ParamValue>>,
 }
 
-fn zip_group(group: &IndexMap<String, Located<Axis>>) -> Result<Group, ParameterError> {
+fn zip_group(group: &Located<IndexMap<String, Located<Axis>>>) -> Result<Group, ParameterError> {
     let mut columns = Vec::new();
-    for (name, axis) in group {
+    for (name, axis) in &group.value {
         columns.push((name.clone(), axis.location, axis_values(name, axis)?));
     }
     let Some(first) = columns.first() else {
         return Err(ParameterError {
-            location: SourceLocation::default(),
+            location: group.location,
             parameter: String::from("zip"),
-            message: String::from("a zip group needs at least one axis: `zip: [{a: [...], b: [...]}]`"),
+            message: String::from(
+                "a zip group needs at least one axis: `zip: [{a: [...], b: [...]}]`",
+            ),
         });
     };
     let len = first.2.len();
@@ -272,7 +274,9 @@ fn range(args: &[ParamValue]) -> Result<Vec<ParamValue>, String> {
         // i128: the span of two i64 values cannot overflow.
         let count = (i128::from(*b) - i128::from(*a)) / i128::from(step) + 1;
         if count > MAX_SCENARIOS as i128 {
-            return Err(format!("range has {count} values, more than {MAX_SCENARIOS}"));
+            return Err(format!(
+                "range has {count} values, more than {MAX_SCENARIOS}"
+            ));
         }
         return Ok((0..count as i64)
             .map(|i| ParamValue::Int(a + i * step))
@@ -295,15 +299,16 @@ fn range(args: &[ParamValue]) -> Result<Vec<ParamValue>, String> {
             ))
         }
     };
-    if !(step > 0.0) || last < first {
+    if step.is_nan() || step <= 0.0 || last < first {
         return Err(String::from("range needs last ≥ first and step > 0"));
     }
-    let count = ((last - first) / step * (1.0 + 1e-12)).floor() as usize + 1;
-    if count > MAX_SCENARIOS {
+    let intervals = ((last - first) / step * (1.0 + 1e-12)).floor();
+    if !intervals.is_finite() || intervals >= MAX_SCENARIOS as f64 {
         return Err(format!(
-            "range has {count} values, more than {MAX_SCENARIOS}"
+            "range has more than {MAX_SCENARIOS} values; use a larger step"
         ));
     }
+    let count = intervals as usize + 1;
     Ok((0..count)
         .map(|i| quantity(first + i as f64 * step, dim))
         .collect())
@@ -354,7 +359,9 @@ fn endpoints(a: &ParamValue, b: &ParamValue) -> Result<(f64, f64, Dimension), St
             if (y.si - x.si).is_finite() {
                 Ok((x.si, y.si, x.dimension))
             } else {
-                Err(format!("end values {a} and {b} span more than the floating-point range"))
+                Err(format!(
+                    "end values {a} and {b} span more than the floating-point range"
+                ))
             }
         }
         (Some(x), Some(y)) => Err(format!(

@@ -17,8 +17,8 @@ use crate::engine::node::NodeError;
 use crate::engine::value::Field;
 use crate::friction::SummitStatistics as GwSummits;
 use crate::surface::spectral::{
-    autocorrelation, hurst_exponent, radial_psd, spectral_moments, texture_direction,
-    AcfBoundary, HurstFitOptions, MomentMethod, Window, ISO_ACF_THRESHOLD,
+    autocorrelation, hurst_exponent, radial_psd, spectral_moments, texture_direction, AcfBoundary,
+    HurstFitOptions, MomentMethod, Window, ISO_ACF_THRESHOLD,
 };
 use crate::surface::{amplitude_statistics, find_summits, Boundary, HeightMap, SummitOptions};
 use crate::units::Dimension;
@@ -38,7 +38,10 @@ fn num(name: &str, v: f64) -> Field {
 }
 
 /// Computes every metric and table of `map`.
-pub(super) fn surface_report(map: &HeightMap, boundary: Boundary) -> Result<SurfaceReport, NodeError> {
+pub(super) fn surface_report(
+    map: &HeightMap,
+    boundary: Boundary,
+) -> Result<SurfaceReport, NodeError> {
     let a = amplitude_statistics(map, boundary)
         .map_err(|e| NodeError::new(format!("statistics: {e}")))?;
     let mut metrics = vec![
@@ -185,8 +188,16 @@ fn summit_metrics(
     let mut t = Table::default();
     t.push_int("ix", found.summits.iter().map(|x| x.ix as i64).collect());
     t.push_int("iy", found.summits.iter().map(|x| x.iy as i64).collect());
-    t.push_float("x", Dimension::Length, found.summits.iter().map(|x| x.x).collect());
-    t.push_float("y", Dimension::Length, found.summits.iter().map(|x| x.y).collect());
+    t.push_float(
+        "x",
+        Dimension::Length,
+        found.summits.iter().map(|x| x.x).collect(),
+    );
+    t.push_float(
+        "y",
+        Dimension::Length,
+        found.summits.iter().map(|x| x.y).collect(),
+    );
     t.push_float(
         "height",
         Dimension::Length,

@@ -169,10 +169,9 @@ impl SyntheticSpec {
         }) = spec.validate()
         {
             let location = match name {
-                "short_wavelength_cutoff" => self
-                    .short_wavelength_cutoff
-                    .as_ref()
-                    .map(Param::location),
+                "short_wavelength_cutoff" => {
+                    self.short_wavelength_cutoff.as_ref().map(Param::location)
+                }
                 "correlation_length" => Some(self.correlation_length.location()),
                 "hurst" => Some(self.hurst.location()),
                 "sq" => Some(self.sq.location()),

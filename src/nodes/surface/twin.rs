@@ -14,11 +14,11 @@ use serde::Deserialize;
 use crate::engine::node::NodeError;
 use crate::engine::study::{Param, ResolveContext, SpecError};
 use crate::engine::value::Field;
+use crate::surface::spectral::ISO_ACF_THRESHOLD;
 use crate::surface::twins::{
     fit_twin_model, measure_texture, synthetic_twin, TextureOptions, TwinGrid,
 };
 use crate::surface::HeightMap;
-use crate::surface::spectral::ISO_ACF_THRESHOLD;
 use crate::units::{Dimension, Length, Quantity};
 
 use super::measured::MeasuredSource;
@@ -85,7 +85,9 @@ impl TwinSpec {
             params.push(Field::text(format!("twin_of_{i}_blake3"), hash));
             measured.push(MeasuredSource::levelled_and_filled(path, form_degree));
         }
-        let sq = ctx.resolve_checked(&self.sq, "twin.sq", positive_length)?.si();
+        let sq = ctx
+            .resolve_checked(&self.sq, "twin.sq", positive_length)?
+            .si();
         let side = |n: &usize| {
             if *n >= 2 {
                 Ok(())
@@ -95,8 +97,12 @@ impl TwinSpec {
         };
         let nx = ctx.resolve_checked(&self.grid[0], "twin.grid[0]", side)?;
         let ny = ctx.resolve_checked(&self.grid[1], "twin.grid[1]", side)?;
-        let lx = ctx.resolve_checked(&self.size[0], "twin.size[0]", positive_length)?.si();
-        let ly = ctx.resolve_checked(&self.size[1], "twin.size[1]", positive_length)?.si();
+        let lx = ctx
+            .resolve_checked(&self.size[0], "twin.size[0]", positive_length)?
+            .si();
+        let ly = ctx
+            .resolve_checked(&self.size[1], "twin.size[1]", positive_length)?
+            .si();
         let cutoff = match &self.short_wavelength_cutoff {
             Some(p) => Some(
                 ctx.resolve_checked(p, "twin.short_wavelength_cutoff", positive_length)?
@@ -114,7 +120,11 @@ impl TwinSpec {
             Field::int("seed", seed as i64),
         ]);
         if let Some(c) = cutoff {
-            params.push(Field::float("short_wavelength_cutoff", c, Dimension::Length));
+            params.push(Field::float(
+                "short_wavelength_cutoff",
+                c,
+                Dimension::Length,
+            ));
         }
         Ok(SurfaceTask {
             params,
@@ -144,14 +154,23 @@ impl TwinSource {
                 .map_err(|e| NodeError::new(format!("measuring {}: {e}", m.path().display())))?;
             textures.push(texture);
         }
-        let model = fit_twin_model(&textures).map_err(|e| NodeError::new(format!("twin fit: {e}")))?;
+        let model =
+            fit_twin_model(&textures).map_err(|e| NodeError::new(format!("twin fit: {e}")))?;
         let twin = synthetic_twin(&model, self.sq, &self.grid, ISO_ACF_THRESHOLD)
             .map_err(|e| NodeError::new(format!("twin: {e}")))?;
         let p = &twin.prediction;
         let warnings: Vec<String> = p.warnings.iter().map(|w| format!("{w:?}")).collect();
         let metrics = vec![
-            Field::float("twin_correlation_length_x", p.correlation_length_x, Dimension::Length),
-            Field::float("twin_correlation_length_y", p.correlation_length_y, Dimension::Length),
+            Field::float(
+                "twin_correlation_length_x",
+                p.correlation_length_x,
+                Dimension::Length,
+            ),
+            Field::float(
+                "twin_correlation_length_y",
+                p.correlation_length_y,
+                Dimension::Length,
+            ),
             Field::float("twin_hurst", p.hurst, Dimension::Dimensionless),
             Field::text("twin_warnings", warnings.join("; ")),
         ];

@@ -5,24 +5,24 @@
 //! file extension, and wraps every failure in a [`ReadError`] that names the file.
 
 pub mod al3d;
+mod byte_cursor;
 mod error;
 pub mod gsf;
 pub mod gwy;
 pub mod metropro;
 pub mod nanoscope;
-pub mod opd;
-mod topography;
-pub mod zon;
-mod byte_cursor;
 mod npy;
+pub mod opd;
 mod plu;
 mod sdf;
 mod sur;
 mod text;
 mod text_header;
 mod text_units;
+mod topography;
 mod x3p;
 mod x3p_xml;
+pub mod zon;
 
 pub use error::{ParseError, ReadError};
 pub use topography::{LineScan, Topography, TopographyData};
