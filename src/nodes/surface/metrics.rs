@@ -5,7 +5,9 @@
 //! * Spectral parameters need a complete map: for a map with missing points they are left out
 //!   (null cells) unless the study fills the points (`fill_missing: true`). Periodic (synthetic)
 //!   maps use no window, the periodic ACF and spectrum moments; measured maps use a Hann window,
-//!   the zero-padded ACF and finite-difference moments (see `surface::spectral`).
+//!   the zero-padded ACF and finite-difference moments (see `surface::spectral`). The Hurst
+//!   exponent (PSD slope over wavelengths of 4–16 pixels) is reported only where that band is
+//!   self-affine: 0 < H ≤ 1 and r² ≥ 0.9.
 //! * Greenwood–Williamson summit statistics (η, R, σ_s, y_s, β) from the isotropic profile moments
 //!   (Nayak/McCool, `friction::SummitStatistics`); omitted when α ≤ 0.8968, where they are undefined.
 //! * Identified summits (8-neighbour maxima): count, density, mean radius, and one row each.
@@ -22,6 +24,9 @@ use crate::surface::spectral::{
 };
 use crate::surface::{amplitude_statistics, find_summits, Boundary, HeightMap, SummitOptions};
 use crate::units::Dimension;
+
+/// Below this coefficient of determination the PSD band is not a power law: no Hurst exponent.
+const MIN_HURST_FIT_R_SQUARED: f64 = 0.9;
 
 /// The table row and long tables of one surface.
 pub(super) struct SurfaceReport {
@@ -133,6 +138,8 @@ fn spectral_metrics(
             Dimension::Angle,
         ));
     }
+    // The fit is reported only where the PSD in the band is self-affine (0 < H ≤ 1 and
+    // r² ≥ 0.9); a band inside the roll-off plateau would give a meaningless exponent.
     if let Ok(fit) = hurst_exponent(
         map,
         HurstFitOptions {
@@ -141,12 +148,14 @@ fn spectral_metrics(
             window,
         },
     ) {
-        metrics.extend([
-            num("hurst_fit", fit.hurst),
-            num("hurst_fit_q_min_rad_per_m", fit.q_min),
-            num("hurst_fit_q_max_rad_per_m", fit.q_max),
-            num("hurst_fit_r_squared", fit.r_squared),
-        ]);
+        if fit.hurst > 0.0 && fit.hurst <= 1.0 && fit.r_squared >= MIN_HURST_FIT_R_SQUARED {
+            metrics.extend([
+                num("hurst_fit", fit.hurst),
+                num("hurst_fit_q_min_rad_per_m", fit.q_min),
+                num("hurst_fit_q_max_rad_per_m", fit.q_max),
+                num("hurst_fit_r_squared", fit.r_squared),
+            ]);
+        }
     }
     let radial = acf.radial();
     let mut acf_table = Table::default();

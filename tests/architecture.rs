@@ -1,0 +1,70 @@
+//! The architecture invariants of ARCHITECTURE.md, checked on the source text so a violation
+//! fails the tests instead of waiting for a review.
+
+use std::path::{Path, PathBuf};
+
+fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            out.extend(rust_files(&path));
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+    out
+}
+
+fn violations(module: &str, forbidden: &[&str]) -> Vec<String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("src")
+        .join(module);
+    let mut found = Vec::new();
+    for file in rust_files(&root) {
+        let text = std::fs::read_to_string(&file).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            for f in forbidden {
+                if line.contains(f) {
+                    found.push(format!("{}:{}: {}", file.display(), n + 1, line.trim()));
+                }
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn numerics_know_nothing_of_the_engine_yaml_or_cli() {
+    let forbidden = [
+        "crate::engine",
+        "crate::nodes",
+        "crate::units",
+        "serde_saphyr",
+        "polars",
+        "println!",
+        "eprintln!",
+    ];
+    for module in ["surface", "contact", "friction"] {
+        let v = violations(module, &forbidden);
+        assert!(
+            v.is_empty(),
+            "{module} must stay a plain numerics library:\n{}",
+            v.join("\n")
+        );
+    }
+}
+
+#[test]
+fn the_engine_knows_no_tribology_and_never_prints() {
+    let forbidden = [
+        "crate::surface",
+        "crate::contact",
+        "crate::friction",
+        "crate::nodes",
+        "println!",
+        "eprintln!",
+    ];
+    let v = violations("engine", &forbidden);
+    assert!(v.is_empty(), "engine must stay generic:\n{}", v.join("\n"));
+}
