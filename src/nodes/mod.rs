@@ -4,6 +4,7 @@
 //! parameters, a version, a compute function) and a table. This is the only module that knows
 //! both the engine and the numerics.
 
+mod contact;
 mod surface;
 
 use std::sync::Arc;
@@ -13,6 +14,7 @@ use serde::Deserialize;
 use crate::engine::node::{NodeSpec, NodeTask, UpstreamRef};
 use crate::engine::study::{ResolveContext, SpecError};
 
+pub use contact::{ContactSpec, ContactTask, ElasticBody, CONTACT_KIND_VERSION};
 pub use surface::{
     AnisotropySpec, FileSpec, SurfaceSpec, SurfaceTask, SyntheticSpec, SURFACE_KIND_VERSION,
 };
@@ -23,34 +25,40 @@ pub use surface::{
 pub enum TribologyNode {
     /// Stage 1: a synthetic or measured rough surface.
     Surface(SurfaceSpec),
+    /// Stage 2: elastic–perfectly-plastic contact of one or two surfaces.
+    Contact(ContactSpec),
 }
 
 impl NodeSpec for TribologyNode {
     fn all_tables() -> &'static [&'static str] {
-        &[surface::TABLE]
+        &[surface::TABLE, contact::TABLE]
     }
 
     fn kind(&self) -> &'static str {
         match self {
             TribologyNode::Surface(_) => surface::KIND,
+            TribologyNode::Contact(_) => contact::KIND,
         }
     }
 
     fn table(&self) -> &'static str {
         match self {
             TribologyNode::Surface(_) => surface::TABLE,
+            TribologyNode::Contact(_) => contact::TABLE,
         }
     }
 
     fn upstream(&self) -> Vec<UpstreamRef<'_>> {
         match self {
             TribologyNode::Surface(_) => Vec::new(),
+            TribologyNode::Contact(c) => c.upstream(),
         }
     }
 
     fn instantiate(&self, ctx: &ResolveContext<'_>) -> Result<Arc<dyn NodeTask>, SpecError> {
         match self {
             TribologyNode::Surface(spec) => Ok(Arc::new(spec.instantiate(ctx)?)),
+            TribologyNode::Contact(spec) => Ok(Arc::new(spec.instantiate(ctx)?)),
         }
     }
 }

@@ -1,0 +1,473 @@
+//! The `contact` node kind: elastic–perfectly-plastic half-space contact of one or two upstream
+//! surfaces (`contact::ContactSolver`), load-stepped to the last nominal pressure. Table
+//! `contacts` (the final step) and `contacts_load_curve` (one row per step); with
+//! `fields: true` the final step's pressure, gap, deformation and plastic-penetration maps are
+//! stored as arrays in the cache.
+
+use ndarray::Ix2;
+use serde::Deserialize;
+
+use crate::contact::{
+    BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
+    FieldRequest, SolverOptions,
+};
+use crate::engine::artifact::{Artifact, Table};
+use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
+use crate::engine::study::{Param, ResolveContext, SpannedName, SpecError};
+use crate::engine::value::{Field, Value};
+use crate::surface::HeightMap;
+use crate::units::{format_number, Dimension, Pressure, Quantity};
+
+pub(crate) const KIND: &str = "contact";
+pub(crate) const TABLE: &str = "contacts";
+
+/// Implementation version of the `contact` kind; bump whenever its numerics change.
+pub const CONTACT_KIND_VERSION: u32 = 1;
+
+/// `contact: {...}`.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Name of the upstream surface node of the lower body.
+    pub lower: SpannedName,
+    /// Name of the upstream surface node of the upper body; omitted: a rigid flat.
+    #[serde(default)]
+    pub upper: Option<SpannedName>,
+    /// Elastic constants of the lower body.
+    pub lower_material: ElasticBody,
+    /// Elastic constants of the upper body (required with `upper`).
+    #[serde(default)]
+    pub upper_material: Option<ElasticBody>,
+    /// Plastic flow pressure p_lim of the softer body (pressure > 0); omitted: purely elastic.
+    #[serde(default)]
+    pub flow_pressure: Option<Param<Quantity<Pressure>>>,
+    /// Nominal pressures of the load steps, ascending; the last one is the stop criterion.
+    pub nominal_pressures: Vec<Param<Quantity<Pressure>>>,
+    /// Periodic surfaces (default) or isolated ones (DC-FFT, zero padding).
+    #[serde(default)]
+    pub periodic: Option<Param<bool>>,
+    /// Relative tolerance on every complementarity residual and the force balance (default 1e-6).
+    #[serde(default)]
+    pub tolerance: Option<Param<f64>>,
+    /// Store the final step's pressure, gap, deformation and plastic-penetration maps.
+    #[serde(default)]
+    pub fields: Option<Param<bool>>,
+}
+
+/// Isotropic elastic constants of one body.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ElasticBody {
+    /// Young's modulus (or indentation modulus E_IT), pressure > 0.
+    pub youngs_modulus: Param<Quantity<Pressure>>,
+    /// Poisson's ratio in [0, 0.5).
+    pub poisson_ratio: Param<f64>,
+}
+
+impl ElasticBody {
+    fn resolve(&self, ctx: &ResolveContext<'_>, prefix: &str) -> Result<(f64, f64), SpecError> {
+        let e = ctx
+            .resolve_checked(
+                &self.youngs_modulus,
+                &format!("{prefix}.youngs_modulus"),
+                |q| {
+                    if q.si() > 0.0 {
+                        Ok(())
+                    } else {
+                        Err(String::from("is out of range: must be > 0 Pa"))
+                    }
+                },
+            )?
+            .si();
+        let nu = ctx.resolve_checked(
+            &self.poisson_ratio,
+            &format!("{prefix}.poisson_ratio"),
+            |v| {
+                if (0.0..0.5).contains(v) {
+                    Ok(())
+                } else {
+                    Err(String::from(
+                        "is out of range: Poisson's ratio must be in [0, 0.5)",
+                    ))
+                }
+            },
+        )?;
+        Ok((e, nu))
+    }
+}
+
+impl ContactSpec {
+    pub(crate) fn upstream(&self) -> Vec<UpstreamRef<'_>> {
+        let mut refs = vec![UpstreamRef {
+            role: "lower",
+            node: &self.lower,
+        }];
+        if let Some(upper) = &self.upper {
+            refs.push(UpstreamRef {
+                role: "upper",
+                node: upper,
+            });
+        }
+        refs
+    }
+
+    pub(crate) fn instantiate(&self, ctx: &ResolveContext<'_>) -> Result<ContactTask, SpecError> {
+        let err = |location, field: &str, message: String| SpecError {
+            location,
+            field: field.to_string(),
+            message,
+        };
+        for (i, name) in std::iter::once(&self.lower).chain(&self.upper).enumerate() {
+            if let Some(up) = ctx.upstream(i) {
+                if up.kind() != super::surface::KIND {
+                    return Err(err(
+                        name.location,
+                        if i == 0 { "lower" } else { "upper" },
+                        format!(
+                            "'{}' is a {} node; contact needs surface nodes",
+                            name.value,
+                            up.kind()
+                        ),
+                    ));
+                }
+            }
+        }
+        let (e1, nu1) = self.lower_material.resolve(ctx, "lower_material")?;
+        let mut params = vec![
+            Field::float("lower_youngs_modulus", e1, Dimension::Pressure),
+            Field::float("lower_poisson_ratio", nu1, Dimension::Dimensionless),
+        ];
+        let upper = match (&self.upper, &self.upper_material) {
+            (Some(_), Some(m)) => {
+                let (e2, nu2) = m.resolve(ctx, "upper_material")?;
+                params.push(Field::float(
+                    "upper_youngs_modulus",
+                    e2,
+                    Dimension::Pressure,
+                ));
+                params.push(Field::float(
+                    "upper_poisson_ratio",
+                    nu2,
+                    Dimension::Dimensionless,
+                ));
+                Some((e2, nu2))
+            }
+            (Some(u), None) => {
+                return Err(err(
+                    u.location,
+                    "upper_material",
+                    String::from(
+                        "an upper surface needs `upper_material: {youngs_modulus, poisson_ratio}`",
+                    ),
+                ))
+            }
+            (None, Some(_)) => return Err(err(
+                self.lower.location,
+                "upper_material",
+                String::from(
+                    "is given but there is no `upper` surface (the counter-body is a rigid flat)",
+                ),
+            )),
+            (None, None) => None,
+        };
+        let flow_pressure = match &self.flow_pressure {
+            Some(p) => {
+                let v = ctx
+                    .resolve_checked(p, "flow_pressure", |q| {
+                        if q.si() > 0.0 {
+                            Ok(())
+                        } else {
+                            Err(String::from("is out of range: must be > 0 Pa"))
+                        }
+                    })?
+                    .si();
+                params.push(Field::float("flow_pressure", v, Dimension::Pressure));
+                v
+            }
+            None => f64::INFINITY,
+        };
+        let location = self.lower.location;
+        if self.nominal_pressures.is_empty() {
+            return Err(err(
+                location,
+                "nominal_pressures",
+                String::from("needs at least one pressure"),
+            ));
+        }
+        let mut pressures = Vec::with_capacity(self.nominal_pressures.len());
+        for (i, p) in self.nominal_pressures.iter().enumerate() {
+            let v = ctx.resolve(p, &format!("nominal_pressures[{i}]"))?.si();
+            let previous = pressures.last().copied().unwrap_or(0.0);
+            if !(v > previous && v < flow_pressure) {
+                return Err(err(
+                    p.location(),
+                    &format!("nominal_pressures[{i}]"),
+                    format!(
+                        "{} Pa is out of range: pressures must ascend, be > 0 and stay below the flow pressure",
+                        format_number(v)
+                    ),
+                ));
+            }
+            pressures.push(v);
+        }
+        params.push(Field::text(
+            "nominal_pressures_Pa",
+            pressures
+                .iter()
+                .map(|p| format_number(*p))
+                .collect::<Vec<_>>()
+                .join(","),
+        ));
+        let periodic = match &self.periodic {
+            Some(p) => ctx.resolve(p, "periodic")?,
+            None => true,
+        };
+        let tolerance = match &self.tolerance {
+            Some(p) => ctx.resolve_checked(p, "tolerance", |t| {
+                if *t > 0.0 && *t < 1.0 {
+                    Ok(())
+                } else {
+                    Err(String::from("is out of range: must be in (0, 1)"))
+                }
+            })?,
+            None => SolverOptions::default().tolerance,
+        };
+        let fields = match &self.fields {
+            Some(p) => ctx.resolve(p, "fields")?,
+            None => false,
+        };
+        params.push(Field::bool("periodic", periodic));
+        params.push(Field::float(
+            "tolerance",
+            tolerance,
+            Dimension::Dimensionless,
+        ));
+        params.push(Field::bool("fields", fields));
+        Ok(ContactTask {
+            params,
+            lower: (e1, nu1),
+            upper,
+            flow_pressure,
+            pressures,
+            periodic,
+            tolerance,
+            fields,
+        })
+    }
+}
+
+/// A resolved contact node.
+#[derive(Debug, Clone)]
+pub struct ContactTask {
+    params: Vec<Field>,
+    lower: (f64, f64),
+    upper: Option<(f64, f64)>,
+    flow_pressure: f64,
+    pressures: Vec<f64>,
+    periodic: bool,
+    tolerance: f64,
+    fields: bool,
+}
+
+fn height_map(input: &Artifact, role: &str) -> Result<HeightMap, NodeError> {
+    let fail = |m: String| NodeError::new(format!("{role} surface: {m}"));
+    let heights = input
+        .arrays
+        .get(super::surface::HEIGHTS)
+        .ok_or_else(|| fail(String::from("no height array")))?
+        .clone()
+        .into_dimensionality::<Ix2>()
+        .map_err(|e| fail(e.to_string()))?;
+    let spacing = |name: &str| match input.metric(name).map(|f| &f.value) {
+        Some(Value::Float(v)) => Ok(*v),
+        _ => Err(fail(format!("no {name}"))),
+    };
+    HeightMap::new(heights, spacing("dx")?, spacing("dy")?).map_err(|e| fail(e.to_string()))
+}
+
+impl NodeTask for ContactTask {
+    fn kind(&self) -> &'static str {
+        KIND
+    }
+
+    fn version(&self) -> u32 {
+        CONTACT_KIND_VERSION
+    }
+
+    fn table(&self) -> &'static str {
+        TABLE
+    }
+
+    fn params(&self) -> &[Field] {
+        &self.params
+    }
+
+    fn memory_estimate(&self) -> u64 {
+        // Unknown before the upstream surfaces exist: a 2048² non-periodic solve needs ~1 GiB.
+        1 << 30
+    }
+
+    fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
+        let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
+        let lower = height_map(
+            inputs
+                .first()
+                .ok_or_else(|| NodeError::new("no lower surface"))?,
+            "lower",
+        )?;
+        let (gap, upper_body) = match (self.upper, inputs.get(1)) {
+            (Some((e2, nu2)), Some(input)) => {
+                let upper = height_map(input, "upper")?;
+                let gap =
+                    CompositeGap::from_surfaces(&lower, &upper).map_err(|e| fail("gap", &e))?;
+                (
+                    gap,
+                    BodyElasticity::Isotropic {
+                        youngs_modulus: e2,
+                        poisson_ratio: nu2,
+                    },
+                )
+            }
+            _ => (
+                CompositeGap::against_flat(&lower).map_err(|e| fail("gap", &e))?,
+                BodyElasticity::Rigid,
+            ),
+        };
+        let lower_body = BodyElasticity::Isotropic {
+            youngs_modulus: self.lower.0,
+            poisson_ratio: self.lower.1,
+        };
+        let material = ContactMaterial::new(lower_body, upper_body, self.flow_pressure)
+            .map_err(|e| fail("material", &e))?;
+        let boundary = if self.periodic {
+            Boundary::Periodic
+        } else {
+            Boundary::NonPeriodic
+        };
+        let problem = ContactProblem::new(gap, material, boundary);
+        let options = SolverOptions {
+            tolerance: self.tolerance,
+            fields: if self.fields {
+                FieldRequest::ALL
+            } else {
+                FieldRequest::NONE
+            },
+            ..SolverOptions::default()
+        };
+        let mut solver = ContactSolver::new(problem, options).map_err(|e| fail("solver", &e))?;
+        let curve = solver
+            .solve_load_steps(&self.pressures)
+            .map_err(|e| fail("contact solve", &e))?;
+        let last = curve
+            .steps
+            .last()
+            .ok_or_else(|| NodeError::new("no load step was solved"))?;
+        let metrics = vec![
+            Field::float(
+                "composite_modulus",
+                material.composite_modulus(),
+                Dimension::Pressure,
+            ),
+            Field::float(
+                "nominal_pressure",
+                last.nominal_pressure,
+                Dimension::Pressure,
+            ),
+            Field::float(
+                "area_fraction",
+                last.area_fraction,
+                Dimension::Dimensionless,
+            ),
+            Field::float(
+                "mean_contact_pressure",
+                last.mean_contact_pressure,
+                Dimension::Pressure,
+            ),
+            Field::float("stress_ratio", last.stress_ratio, Dimension::Dimensionless),
+            Field::float(
+                "plastic_area_share",
+                last.plastic_area_share,
+                Dimension::Dimensionless,
+            ),
+            Field::float("mean_separation", last.mean_separation, Dimension::Length),
+            Field::float(
+                "max_elastic_deformation",
+                last.max_elastic_deformation,
+                Dimension::Length,
+            ),
+            Field::float("approach", last.approach, Dimension::Length),
+            Field::int("iterations", last.iterations as i64),
+            Field::float("residual", last.residuals.max(), Dimension::Dimensionless),
+        ];
+        let column = |f: fn(&crate::contact::LoadStep) -> f64| curve.steps.iter().map(f).collect();
+        let mut t = Table::default();
+        t.push_int("step", (0..curve.steps.len() as i64).collect());
+        t.push_float(
+            "nominal_pressure",
+            Dimension::Pressure,
+            column(|s| s.nominal_pressure),
+        );
+        t.push_float(
+            "area_fraction",
+            Dimension::Dimensionless,
+            column(|s| s.area_fraction),
+        );
+        t.push_float(
+            "mean_contact_pressure",
+            Dimension::Pressure,
+            column(|s| s.mean_contact_pressure),
+        );
+        t.push_float(
+            "stress_ratio",
+            Dimension::Dimensionless,
+            column(|s| s.stress_ratio),
+        );
+        t.push_float(
+            "plastic_area_share",
+            Dimension::Dimensionless,
+            column(|s| s.plastic_area_share),
+        );
+        t.push_float(
+            "mean_separation",
+            Dimension::Length,
+            column(|s| s.mean_separation),
+        );
+        t.push_float(
+            "max_elastic_deformation",
+            Dimension::Length,
+            column(|s| s.max_elastic_deformation),
+        );
+        t.push_float("approach", Dimension::Length, column(|s| s.approach));
+        t.push_int(
+            "iterations",
+            curve.steps.iter().map(|s| s.iterations as i64).collect(),
+        );
+        t.push_float(
+            "residual",
+            Dimension::Dimensionless,
+            column(|s| s.residuals.max()),
+        );
+        let mut artifact = Artifact {
+            metrics,
+            ..Artifact::default()
+        };
+        artifact.tables.insert(String::from("load_curve"), t);
+        if let Some(f) = &last.fields {
+            let named = [
+                ("pressure", &f.pressure),
+                ("gap", &f.gap),
+                ("deformation_lower", &f.deformation_first),
+                ("deformation_upper", &f.deformation_second),
+                ("plastic_penetration", &f.plastic_penetration),
+            ];
+            for (name, array) in named {
+                if let Some(a) = array {
+                    artifact
+                        .arrays
+                        .insert(name.to_string(), a.clone().into_dyn());
+                }
+            }
+        }
+        Ok(artifact)
+    }
+}
