@@ -4,7 +4,7 @@
 //! Proc. R. Soc. A 295 (1966) 300). F_0 is the upper tail probability, F_1(0) = 1/√(2π).
 
 use super::error::{require_non_negative, FrictionError};
-use super::quadrature::{breakpoints, integrate, Grading, Piece, QuadratureOutcome};
+use super::quadrature::{breakpoints, integrate, pieces_graded_at_start, QuadratureOutcome};
 
 /// 1/√(2π).
 pub(crate) const INV_SQRT_2PI: f64 = 0.398_942_280_401_432_7;
@@ -57,20 +57,7 @@ pub fn gw_function(n: f64, t: f64) -> Result<QuadratureOutcome, FrictionError> {
     let u_max = t.max(0.0) + GAUSSIAN_CUT - t;
     let features: Vec<f64> = GAUSSIAN_FEATURES.iter().map(|g| g - t).collect();
     let points = breakpoints(0.0, u_max, &features);
-    let pieces: Vec<Piece<'_>> = points
-        .windows(2)
-        .enumerate()
-        .map(|(i, w)| Piece {
-            a: w[0],
-            b: w[1],
-            grading: if i == 0 {
-                Grading::LeftEnd
-            } else {
-                Grading::Uniform
-            },
-            f: &integrand,
-        })
-        .collect();
+    let pieces = pieces_graded_at_start(&points, &integrand);
     let outcome = integrate(&pieces, INTEGRAL_REL_TOL, 0.0);
     if outcome.converged {
         Ok(outcome)

@@ -62,6 +62,28 @@ pub(crate) struct Piece<'a> {
     pub(crate) f: &'a dyn Fn(f64) -> f64,
 }
 
+/// The pieces between consecutive `points`, all integrating `f`; the first is graded towards its
+/// left end, where integrands x^b with b < 1 (or the start of a Gaussian tail) are not smooth.
+pub(crate) fn pieces_graded_at_start<'a>(
+    points: &[f64],
+    f: &'a dyn Fn(f64) -> f64,
+) -> Vec<Piece<'a>> {
+    points
+        .windows(2)
+        .enumerate()
+        .map(|(i, w)| Piece {
+            a: w[0],
+            b: w[1],
+            grading: if i == 0 {
+                Grading::LeftEnd
+            } else {
+                Grading::Uniform
+            },
+            f,
+        })
+        .collect()
+}
+
 /// Outcome of an adaptive integration.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QuadratureOutcome {

@@ -33,7 +33,9 @@ use super::gw_functions::{
     normal_pdf, upper_tail_probability, GAUSSIAN_CUT, GAUSSIAN_FEATURES, INTEGRAL_REL_TOL,
 };
 use super::material::{AdhesionParameters, CriticalValues, Material};
-use super::quadrature::{breakpoints, integrate, Grading, Piece, QuadratureOutcome};
+use super::quadrature::{
+    breakpoints, integrate, pieces_graded_at_start, Grading, Piece, QuadratureOutcome,
+};
 use super::summit_statistics::SummitStatistics;
 
 /// Model options beyond the physical inputs.
@@ -184,20 +186,7 @@ impl StatisticalModel {
         candidates.extend(GAUSSIAN_FEATURES.iter().map(|g| (g * s - d_star) / wc));
         let points = breakpoints(0.0, x_max, &candidates);
         let integrand = |x: f64| law(x) * normal_pdf(d_star + wc * x, s) * wc;
-        let pieces: Vec<Piece<'_>> = points
-            .windows(2)
-            .enumerate()
-            .map(|(i, w)| Piece {
-                a: w[0],
-                b: w[1],
-                grading: if i == 0 {
-                    Grading::LeftEnd
-                } else {
-                    Grading::Uniform
-                },
-                f: &integrand,
-            })
-            .collect();
+        let pieces = pieces_graded_at_start(&points, &integrand);
         integrate(&pieces, INTEGRAL_REL_TOL, 0.0)
     }
 
