@@ -56,6 +56,7 @@ fn planning(c: &mut Criterion) {
         study: String::from("bench"),
         study_file_hash: study.file_hash.clone(),
         tool_version: String::from("bench"),
+        overrides: Vec::new(),
     };
     // Fill the cache once.
     let plan = Plan::build(&study).unwrap();

@@ -57,6 +57,7 @@ fn run(dir: &Path, text: &str, cache: &Path, out: &str) -> Run {
         study: study.name().to_string(),
         study_file_hash: study.file_hash.clone(),
         tool_version: String::from("test"),
+        overrides: Vec::new(),
     };
     let files = write_tables(&dir.join(out), &plan, &report, &study.outputs, &meta).unwrap();
     Run {

@@ -12,7 +12,7 @@ use clap::{Parser, Subcommand};
 
 use asperity::engine::cache::Cache;
 use asperity::engine::plan::Plan;
-use asperity::engine::study::Study;
+use asperity::engine::study::{ParameterOverride, Study};
 use asperity::nodes::TribologyNode;
 
 /// Reproducible rough-surface contact and static-friction studies.
@@ -35,6 +35,8 @@ enum Command {
         /// The study file (YAML).
         study: PathBuf,
         #[command(flatten)]
+        set: SetArg,
+        #[command(flatten)]
         cache: CacheArg,
         /// Print the node DAG as Graphviz DOT instead.
         #[arg(long, conflicts_with = "mermaid")]
@@ -47,11 +49,22 @@ enum Command {
     Validate {
         /// The study file (YAML).
         study: PathBuf,
+        #[command(flatten)]
+        set: SetArg,
     },
     /// Print the JSON Schema of study files (for editors with the YAML language server).
     Schema,
     /// Describe a topography file: format, grid, spacing, missing points, statistics.
     Inspect(inspect::InspectArgs),
+}
+
+/// Parameter overrides for this invocation.
+#[derive(Debug, clap::Args)]
+struct SetArg {
+    /// Replace a parameter's axis for this run: `--set n=64`, `--set "sq=[0.38 um, 1.19 um]"`,
+    /// `--set "seed={range: [1, 2]}"` (repeatable; recorded in the tables' metadata).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    overrides: Vec<ParameterOverride>,
 }
 
 /// Where the cache lives.
@@ -95,11 +108,12 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Run(args) => run::run(args),
         Command::Plan {
             study,
+            set,
             cache,
             dot,
             mermaid,
-        } => plan(&study, &cache, dot, mermaid),
-        Command::Validate { study } => validate(&study),
+        } => plan(&study, &set, &cache, dot, mermaid),
+        Command::Validate { study, set } => validate(&study, &set),
         Command::Inspect(args) => inspect::inspect(args),
         Command::Schema => {
             print!("{}", asperity::nodes::study_schema_json());
@@ -108,8 +122,9 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
     }
 }
 
-fn load(study: &std::path::Path) -> Result<(Study<TribologyNode>, Plan)> {
-    let study = Study::<TribologyNode>::load(study)?;
+fn load(study: &std::path::Path, set: &SetArg) -> Result<(Study<TribologyNode>, Plan)> {
+    let mut study = Study::<TribologyNode>::load(study)?;
+    study.apply_overrides(&set.overrides)?;
     let plan = Plan::build(&study)?;
     Ok((study, plan))
 }
@@ -120,8 +135,8 @@ fn warn_unused(plan: &Plan) {
     }
 }
 
-fn validate(path: &std::path::Path) -> Result<ExitCode> {
-    let (study, plan) = load(path)?;
+fn validate(path: &std::path::Path, set: &SetArg) -> Result<ExitCode> {
+    let (study, plan) = load(path, set)?;
     warn_unused(&plan);
     println!(
         "{}: ok — study '{}', {} scenario(s), {} node(s), {} unique node instance(s)",
@@ -134,8 +149,14 @@ fn validate(path: &std::path::Path) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn plan(path: &std::path::Path, cache: &CacheArg, dot: bool, mermaid: bool) -> Result<ExitCode> {
-    let (study, plan) = load(path)?;
+fn plan(
+    path: &std::path::Path,
+    set: &SetArg,
+    cache: &CacheArg,
+    dot: bool,
+    mermaid: bool,
+) -> Result<ExitCode> {
+    let (study, plan) = load(path, set)?;
     let cache = cache.open()?;
     let cached: Vec<bool> = plan
         .nodes

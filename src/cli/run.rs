@@ -16,6 +16,8 @@ use super::CacheArg;
 pub struct RunArgs {
     /// The study file (YAML).
     study: PathBuf,
+    #[command(flatten)]
+    set: super::SetArg,
     /// Output folder for the Parquet tables [default: results/<study>].
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
@@ -40,7 +42,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
             .build_global()
             .context("cannot start the worker threads")?;
     }
-    let (study, plan) = super::load(&args.study)?;
+    let (study, plan) = super::load(&args.study, &args.set)?;
     super::warn_unused(&plan);
     let cache = args.cache.open()?;
     let out = args
@@ -62,6 +64,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         study: study.name().to_string(),
         study_file_hash: study.file_hash.clone(),
         tool_version: asperity::TOOL_VERSION.to_string(),
+        overrides: study.overrides.clone(),
     };
     let files = write_tables(&out, &plan, &report, &study.outputs, &meta)?;
     for (i, o) in report.outcomes.iter().enumerate() {

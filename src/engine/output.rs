@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
+use indexmap::IndexMap;
 use polars::io::parquet::write::KeyValueMetadata;
 use polars::prelude::{
     Column as PlColumn, DataFrame, NamedFrom, ParquetCompression, ParquetWriter, Series,
@@ -27,6 +28,8 @@ pub struct OutputMetadata {
     pub study: String,
     pub study_file_hash: String,
     pub tool_version: String,
+    /// Command-line parameter overrides (`--set name=value`) the run applied, in order.
+    pub overrides: Vec<(String, String)>,
 }
 
 /// Output failures.
@@ -309,6 +312,11 @@ fn write_parquet(
             meta.tool_version.clone(),
         ),
         (String::from("asperity.table"), name.to_string()),
+        (
+            String::from("asperity.overrides"),
+            serde_json::to_string(&meta.overrides.iter().cloned().collect::<IndexMap<_, _>>())
+                .map_err(|e| err(e.to_string()))?,
+        ),
         (
             String::from("asperity.units"),
             serde_json::to_string(&units).map_err(|e| err(e.to_string()))?,

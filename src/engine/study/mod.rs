@@ -3,12 +3,14 @@
 
 mod error;
 mod located;
+mod overrides;
 mod param;
 mod parameters;
 mod raw;
 
 pub use error::StudyError;
 pub use located::{Located, SourceLocation, SpannedName};
+pub use overrides::{OverrideSyntaxError, ParameterOverride};
 pub use param::{did_you_mean, FromParamValue, Param, ResolveContext, SpecError};
 pub use parameters::{Axis, LatinHypercube, ParameterError, ParameterSpace, Scenarios};
 pub use raw::RawValue;
@@ -57,6 +59,8 @@ pub struct Study<N> {
     pub order: Vec<String>,
     /// Tables requested by `outputs` (all when omitted).
     pub outputs: Vec<String>,
+    /// Command-line overrides applied to the parameter axes (`--set name=value`), in order.
+    pub overrides: Vec<(String, String)>,
 }
 
 impl<N: NodeSpec> Study<N> {
@@ -112,6 +116,7 @@ impl<N: NodeSpec> Study<N> {
             file,
             order,
             outputs,
+            overrides: Vec::new(),
         })
     }
 
