@@ -45,7 +45,13 @@
 //! # Determinism
 //! Random numbers come from ChaCha8 (`rand_chacha`, value-stable across platforms and versions
 //! of the same major release), seeded with the little-endian `seed` in the first 8 key bytes;
-//! spectrum row `j` uses ChaCha stream `j`, so the result does not depend on the thread count.
+//! the row of signed wavenumber `ky` uses ChaCha stream `zigzag(ky)` and mode `kx` its `kx`-th
+//! pair of deviates, so the result does not depend on the thread count, and **the same seed gives
+//! the same Fourier modes on every grid of the same size**: a surface on a coarse grid is exactly
+//! the fine-grid surface without the modes the coarse grid cannot carry. With a
+//! `short_wavelength_cutoff` the coarse grid resolves (λs > 2·dx of the coarse grid, so every
+//! mode lies strictly inside its Nyquist band), coarse and fine grids sample one and the same
+//! surface — what a resolution-convergence study needs.
 //! The random stream is bit-identical everywhere; the heights are bit-identical for the same
 //! build and platform, and across platforms equal up to floating-point round-off of the
 //! platform's `ln`/`sin`/`cos` and FFT SIMD kernels (relative ~1e-15).
@@ -274,7 +280,7 @@ pub fn generate_synthetic_surface(
     let mut modes = vec![Complex64::new(0.0, 0.0); ny * nxh];
     modes.par_chunks_mut(nxh).enumerate().for_each(|(j, row)| {
         let mut rng = base.clone();
-        rng.set_stream(j as u64);
+        rng.set_stream(mode_stream(j, ny));
         for (i, mode) in row.iter_mut().enumerate() {
             let (g1, g2) = standard_normal_pair(&mut rng);
             let amplitude = spec.mode_shape(i, j).sqrt();
@@ -319,6 +325,18 @@ pub fn model_autocorrelation(spec: &SyntheticSurfaceSpec) -> Result<Array2<f64>,
         return Err(SyntheticError::NoSpectralContent);
     }
     Ok(acf / zero_lag)
+}
+
+/// The ChaCha stream of spectrum row `j`: the signed wavenumber `ky` (`j` below `ny/2`, `j − ny`
+/// above) in zigzag order (0, −1, 1, −2, … → 0, 1, 2, 3, …). Mode `(kx, ky)` thus draws its
+/// deviates from stream `ky` at position `kx` whatever the grid, and a coarser grid of the same
+/// periodic size carries exactly the modes of a finer one that it can represent.
+fn mode_stream(j: usize, ny: usize) -> u64 {
+    if 2 * j <= ny {
+        2 * j as u64
+    } else {
+        2 * (ny - j) as u64 - 1
+    }
 }
 
 /// `true` for the modes equal to their own conjugate: `kx ∈ {0, nx/2}` and `ky ∈ {0, ny/2}`.

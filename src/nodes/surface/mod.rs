@@ -29,7 +29,7 @@ pub(crate) const HEIGHTS: &str = "heights";
 
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
 /// computed statistics change, so stale cache entries are never reused.
-pub const SURFACE_KIND_VERSION: u32 = 3;
+pub const SURFACE_KIND_VERSION: u32 = 4;
 
 /// `surface:` — where the heights come from.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
