@@ -1,0 +1,94 @@
+//! The studies shipped in `studies/` run, so they never rot: each one with the reduced-grid
+//! overrides its header documents (the line after "used in CI"), through the real binary, and
+//! every node of every scenario must succeed. The quickstart runs as shipped.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use polars::prelude::{ParquetReader, SerReader};
+
+fn studies_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("studies")
+}
+
+/// The `--set` arguments of the command on the line after the header line that mentions CI.
+/// A study without one runs as shipped.
+fn ci_overrides(study: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(study).unwrap();
+    let lines: Vec<&str> = text.lines().take_while(|l| l.starts_with('#')).collect();
+    let Some(i) = lines.iter().position(|l| l.contains("used in CI")) else {
+        return Vec::new();
+    };
+    let command = lines
+        .get(i + 1)
+        .unwrap_or_else(|| panic!("{}: no command after the CI line", study.display()));
+    let args = command
+        .split(" --set ")
+        .skip(1)
+        .map(|a| a.trim().trim_matches('"').to_string())
+        .collect::<Vec<_>>();
+    assert!(
+        !args.is_empty(),
+        "{}: the CI command sets nothing: {command}",
+        study.display()
+    );
+    args
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "asperity-shipped-{name}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn statuses(file: &Path) -> Vec<String> {
+    let df = ParquetReader::new(std::fs::File::open(file).unwrap())
+        .finish()
+        .unwrap();
+    df.column("status")
+        .unwrap()
+        .str()
+        .unwrap()
+        .iter()
+        .map(|s| s.unwrap_or("null").to_string())
+        .collect()
+}
+
+#[test]
+fn every_shipped_study_runs_on_its_reduced_grid() {
+    let mut studies: Vec<PathBuf> = std::fs::read_dir(studies_dir())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "yaml"))
+        .collect();
+    studies.sort();
+    assert!(studies.len() >= 4, "studies found: {studies:?}");
+    for study in studies {
+        let name = study.file_stem().unwrap().to_string_lossy().to_string();
+        let dir = scratch(&name);
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_asperity"));
+        cmd.arg("run").arg(&study).arg("--quiet");
+        for set in ci_overrides(&study) {
+            cmd.arg("--set").arg(set);
+        }
+        cmd.arg("--cache").arg(dir.join("cache"));
+        cmd.arg("--out").arg(dir.join("out"));
+        let output = cmd.output().unwrap();
+        assert!(
+            output.status.success(),
+            "{name} failed:\n{}\n{}",
+            String::from_utf8_lossy(&output.stdout),
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let scenarios = statuses(&dir.join("out/scenarios.parquet"));
+        assert!(
+            scenarios.iter().all(|s| s == "ok"),
+            "{name}: scenario statuses {scenarios:?}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
