@@ -7,11 +7,12 @@
 //! differences are ~1e-12); spacings relative 1e-6 (several files store them as float32,
 //! whose rounding, ~6e-8, is well inside); SDF ramps absolute 1e-13 m as sdfio asserts.
 
+mod common;
 mod readers_a_common;
 
 use asperity::surface::io::{detect_format, read_topography, Format, TopographyData};
 use readers_a_common::{
-    assert_rel, data_dir, fixture, plain_stats, read_areal, rms_gradient, rq_profiles_along_x,
+    assert_rel, fixture, plain_stats, read_areal, rms_gradient, rq_profiles_along_x,
 };
 
 const RTOL: f64 = 1e-6;
@@ -263,7 +264,9 @@ const REFERENCES: &[Reference] = &[
 
 #[test]
 fn every_areal_file_reproduces_its_reference_values() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     for r in REFERENCES {
         let path = dir.join(r.file);
         let bytes = std::fs::read(&path).expect("reference file must exist");
@@ -292,7 +295,9 @@ fn every_areal_file_reproduces_its_reference_values() {
 /// rms gradient, which also checks that dx and dy are not swapped (x3p-2 has dx ≠ dy).
 #[test]
 fn upstream_asserted_profile_and_gradient_values() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     let cases: &[(&str, Option<f64>, Option<f64>)] = &[
         (
             "x3p/x3p-2.x3p",
@@ -350,7 +355,7 @@ fn sdf_ramps_and_binary_fixtures() {
     assert_mm11_ramp(&iso1, "iso1 ascii");
     let binary = read_areal(&fixture("mm11_iso2_binary_f64.sdf"));
     assert_mm11_ramp(&binary, "iso2 binary");
-    if let Some(dir) = data_dir() {
+    if let Some(dir) = common::data_dir() {
         let iso2 = read_areal(&dir.join("sdf/mm11_iso2_ascii_binary64.sdf"));
         assert_mm11_ramp(&iso2, "iso2 ascii");
         // The binary fixture holds the same doubles: bit-identical heights.
@@ -398,7 +403,9 @@ fn x3p_fixture_with_mask_subfolder_and_integer_heights() {
 /// The Dektak stylus CSV is a non-uniform line scan (x rounded to 0.1 µm).
 #[test]
 fn dektak_csv_is_a_non_uniform_line_scan() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     let path = dir.join("csv/dektak-1.csv");
     let t = read_topography(&path).expect("dektak must read");
     let TopographyData::Line(line) = t.data else {
@@ -426,7 +433,7 @@ fn dektak_csv_is_a_non_uniform_line_scan() {
 fn npy_round_trip_of_a_real_map() {
     // Writes x3p-2 (or the SDF fixture when the shared data is absent) as big-endian f8 npy
     // and reads it back: same heights, spacing flagged as assumed.
-    let source = data_dir()
+    let source = common::data_dir()
         .map(|d| d.join("x3p/x3p-2.x3p"))
         .unwrap_or_else(|| fixture("sdf-1.sdf"));
     let map = read_areal(&source);

@@ -12,12 +12,13 @@
 //!   boundary is not detectable; for them (and for every random flip) the test asserts only
 //!   that no panic happens.
 
+mod common;
 mod readers_a_common;
 
 use std::path::{Path, PathBuf};
 
 use asperity::surface::io::parse_topography;
-use readers_a_common::{data_dir, fixture};
+use readers_a_common::fixture;
 
 /// How much of a file must be present for a reader to notice a cut.
 fn detectable_length(path: &Path, bytes: &[u8]) -> usize {
@@ -61,7 +62,7 @@ fn sample_files() -> Vec<PathBuf> {
     .iter()
     .map(|f| fixture(f))
     .collect();
-    if let Some(dir) = data_dir() {
+    if let Some(dir) = common::data_dir() {
         for sub in [
             "x3p",
             "x3p/x3ptools-2024",

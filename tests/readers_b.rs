@@ -5,33 +5,15 @@
 //! Data folder: `$ASPERITY_TEST_DATA`, else `CARGO_MANIFEST_DIR/../shared/data/topography`.
 //! When it is missing the data tests fail if `CI` is set and are skipped (with a note) otherwise.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
 
 use asperity::surface::io::{
     gsf, gwy, nanoscope, parse_topography, read_topography, ParseError, ReadError, Topography,
     TopographyData,
 };
 use asperity::surface::HeightMap;
-
-fn data_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("ASPERITY_TEST_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/topography"));
-    if dir.is_dir() {
-        return Some(dir);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "topography test data not found at {} (set ASPERITY_TEST_DATA)",
-        dir.display()
-    );
-    println!(
-        "note: skipping, topography test data not found at {}",
-        dir.display()
-    );
-    None
-}
-
 fn areal(t: &Topography) -> &HeightMap {
     match &t.data {
         TopographyData::Areal(m) => m,
@@ -116,7 +98,9 @@ struct Reference {
 const RTOL: f64 = 1e-6;
 
 fn check(reference: &Reference) {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     let path = dir.join(reference.file);
     let t = read_topography(&path).unwrap_or_else(|e| panic!("{e}"));
     let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
@@ -277,7 +261,9 @@ fn zon_reproduces_reference() {
 
 #[test]
 fn metadata_names_instruments() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     let read = |f: &str| read_topography(&dir.join(f)).unwrap_or_else(|e| panic!("{e}"));
     let di = read("di/di-5.di");
     assert_eq!(
@@ -310,7 +296,9 @@ fn metadata_names_instruments() {
 
 #[test]
 fn nanoscope_lists_and_selects_channels() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     let bytes = std::fs::read(dir.join("di/di-5.di")).unwrap_or_else(|e| panic!("{e}"));
     let names = nanoscope::channel_names(&bytes).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(names, ["ZSensor", "PeakForceError"]);
@@ -326,7 +314,9 @@ fn nanoscope_lists_and_selects_channels() {
 
 #[test]
 fn gwy_lists_channels() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     let bytes = std::fs::read(dir.join("gwy/file_square.gwy")).unwrap_or_else(|e| panic!("{e}"));
     let names = gwy::channel_names(&bytes).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(names, ["Left_Top_Right_Bottom"]);
@@ -419,7 +409,9 @@ fn unknown_content_is_unknown_format() {
 
 #[test]
 fn metropro_invalid_phase_becomes_nan() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     let path = dir.join("metropro-dat/metropro-1.dat");
     let mut bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
     // Phase array after the 834-byte header and 640 × 480 × 2 B of intensity; the point
@@ -437,7 +429,9 @@ fn metropro_invalid_phase_becomes_nan() {
 
 #[test]
 fn metropro_inverted_flag_flips_heights() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     let path = dir.join("metropro-dat/metropro-1.dat");
     let mut bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
     let plain = parse_topography(&path, &bytes).unwrap_or_else(|e| panic!("{e}"));

@@ -4,6 +4,8 @@
 //! Data folder as in `readers_b.rs`: `$ASPERITY_TEST_DATA`, else
 //! `CARGO_MANIFEST_DIR/../shared/data/topography`; missing → fail under `CI`, skip otherwise.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use asperity::surface::io::{parse_topography, ReadError, TopographyData};
@@ -16,26 +18,6 @@ const FILES: [&str; 6] = [
     "al3d/al3d-1.al3d",
     "zon/test_1.zon",
 ];
-
-fn data_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("ASPERITY_TEST_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/topography"));
-    if dir.is_dir() {
-        return Some(dir);
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "topography test data not found at {} (set ASPERITY_TEST_DATA)",
-        dir.display()
-    );
-    println!(
-        "note: skipping, topography test data not found at {}",
-        dir.display()
-    );
-    None
-}
-
 fn load(dir: &Path, file: &str) -> (PathBuf, Vec<u8>) {
     let path = dir.join(file);
     let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -59,7 +41,9 @@ fn check_outcome(path: &Path, bytes: &[u8], what: &str) {
 
 #[test]
 fn truncated_files_give_errors_naming_the_file() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     for file in FILES {
         let (path, bytes) = load(&dir, file);
         let n = bytes.len();
@@ -115,7 +99,9 @@ fn positions(seed: u64, count: usize, bound: usize) -> Vec<usize> {
 
 #[test]
 fn flipped_bytes_never_panic() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     for (k, file) in FILES.iter().enumerate() {
         let (path, mut bytes) = load(&dir, file);
         let n = bytes.len();
@@ -153,7 +139,9 @@ fn expect_error(path: &Path, bytes: &[u8], at: usize, value: &[u8], expected: &s
 
 #[test]
 fn lying_headers_fail_before_allocating() {
-    let Some(dir) = data_dir() else { return };
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     // MetroPro: 65535 × 65535 phase array (cn_width, cn_height at bytes 68, 70, big-endian).
     let (path, bytes) = load(&dir, "metropro-dat/metropro-1.dat");
     expect_error(

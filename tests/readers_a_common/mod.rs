@@ -1,4 +1,4 @@
-//! Shared helpers of the reader tests: locating the shared data folder and plain statistics.
+//! Shared helpers of the reader tests: fixtures and plain statistics.
 
 #![allow(dead_code)] // each test crate uses a different subset of these helpers
 
@@ -6,33 +6,6 @@ use std::path::{Path, PathBuf};
 
 use asperity::surface::io::{read_topography, Topography, TopographyData};
 use asperity::surface::HeightMap;
-
-/// The shared measured-topography folder: `$ASPERITY_TEST_DATA`, else
-/// `CARGO_MANIFEST_DIR/../shared/data/topography` (the main checkout), else
-/// `CARGO_MANIFEST_DIR/../../shared/data/topography` (a worktree one level deeper).
-/// `None` (with a printed note) when absent; a panic when absent under CI (env `CI` set),
-/// where the data must be present.
-pub fn data_dir() -> Option<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let candidates = std::env::var_os("ASPERITY_TEST_DATA")
-        .map(PathBuf::from)
-        .into_iter()
-        .chain([
-            root.join("../shared/data/topography"),
-            root.join("../../shared/data/topography"),
-        ]);
-    for dir in candidates {
-        if dir.join("SOURCES.md").is_file() {
-            return Some(dir);
-        }
-    }
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "shared topography data not found (set ASPERITY_TEST_DATA or place it at ../shared/data/topography)"
-    );
-    println!("note: shared topography data not found; skipping tests that need it");
-    None
-}
 
 /// Path of a fixture in `tests/data/`.
 pub fn fixture(name: &str) -> PathBuf {

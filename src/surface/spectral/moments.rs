@@ -55,6 +55,23 @@ pub struct SpectralMoments {
     pub method: MomentMethod,
 }
 
+impl SpectralMoments {
+    /// Assembles the three directions from the common m0 and each direction's `(m2, m4)`.
+    fn assemble(
+        m0: f64,
+        [x, y, isotropic]: [(f64, f64); 3],
+        method: MomentMethod,
+    ) -> SpectralMoments {
+        let profile = |(m2, m4): (f64, f64)| ProfileMoments { m0, m2, m4 };
+        SpectralMoments {
+            x: profile(x),
+            y: profile(y),
+            isotropic: profile(isotropic),
+            method,
+        }
+    }
+}
+
 /// Computes m0, m2, m4 of a complete height map.
 pub fn spectral_moments(
     map: &HeightMap,
@@ -84,24 +101,11 @@ fn from_spectrum(map: &HeightMap) -> Result<SpectralMoments, SpectralError> {
         }
     }
     let [m0, m2x, m4x, m2y, m4y, q2, q4] = sums.map(|s| s / area);
-    Ok(SpectralMoments {
-        x: ProfileMoments {
-            m0,
-            m2: m2x,
-            m4: m4x,
-        },
-        y: ProfileMoments {
-            m0,
-            m2: m2y,
-            m4: m4y,
-        },
-        isotropic: ProfileMoments {
-            m0,
-            m2: q2 / 2.0,
-            m4: 3.0 / 8.0 * q4,
-        },
-        method: MomentMethod::Spectrum,
-    })
+    Ok(SpectralMoments::assemble(
+        m0,
+        [(m2x, m4x), (m2y, m4y), (q2 / 2.0, 3.0 / 8.0 * q4)],
+        MomentMethod::Spectrum,
+    ))
 }
 
 fn from_differences(map: &HeightMap) -> Result<SpectralMoments, SpectralError> {
@@ -144,24 +148,11 @@ fn from_differences(map: &HeightMap) -> Result<SpectralMoments, SpectralError> {
     } else {
         0.0
     };
-    Ok(SpectralMoments {
-        x: ProfileMoments {
-            m0,
-            m2: m2x,
-            m4: m4x,
-        },
-        y: ProfileMoments {
-            m0,
-            m2: m2y,
-            m4: m4y,
-        },
-        isotropic: ProfileMoments {
-            m0,
-            m2: (m2x + m2y) / 2.0,
-            m4: m4_iso,
-        },
-        method: MomentMethod::FiniteDifference,
-    })
+    Ok(SpectralMoments::assemble(
+        m0,
+        [(m2x, m4x), (m2y, m4y), ((m2x + m2y) / 2.0, m4_iso)],
+        MomentMethod::FiniteDifference,
+    ))
 }
 
 /// Unscaled sums over row `j` of a row-major `[ny, nx]` grid: `Σ Δx²`, `Σ Δy²` (to row
