@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 
 use asperity::engine::execute::{execute, ExecuteOptions, NodeStatus};
-use asperity::engine::output::{write_tables, OutputMetadata};
+use asperity::engine::output::{write_summaries, write_tables, OutputMetadata};
 
 use super::progress::BarProgress;
 use super::CacheArg;
@@ -66,7 +66,14 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         tool_version: asperity::TOOL_VERSION.to_string(),
         overrides: study.overrides.clone(),
     };
-    let files = write_tables(&out, &plan, &report, &study.outputs, &meta)?;
+    let mut files = write_tables(&out, &plan, &report, &study.outputs, &meta)?;
+    files.extend(write_summaries(
+        &out,
+        &plan,
+        &report,
+        &study.file.summaries,
+        &meta,
+    )?);
     for (i, o) in report.outcomes.iter().enumerate() {
         if let Some(o) = o {
             if let NodeStatus::Failed(m) = &o.status {

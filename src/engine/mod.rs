@@ -13,4 +13,5 @@ pub mod npy;
 pub mod output;
 pub mod plan;
 pub mod study;
+pub mod summary;
 pub mod value;

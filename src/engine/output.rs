@@ -18,7 +18,8 @@ use polars::prelude::{
 use crate::engine::artifact::{ColumnData, Table};
 use crate::engine::execute::{NodeOutcome, RunReport};
 use crate::engine::plan::Plan;
-use crate::engine::study::SCENARIOS_TABLE;
+use crate::engine::study::{Located, SCENARIOS_TABLE};
+use crate::engine::summary::{summary_columns, SummarySpec};
 use crate::engine::value::{column_name, Field, ParamValue, Value};
 use crate::units::Dimension;
 
@@ -63,6 +64,33 @@ pub fn write_tables(
         for (name, t) in long {
             written.push(write_parquet(dir, &format!("{table}_{name}"), t, meta)?);
         }
+    }
+    Ok(written)
+}
+
+/// Writes one `summary_<name>` table per study summary into `dir`; returns the files written.
+pub fn write_summaries(
+    dir: &Path,
+    plan: &Plan,
+    report: &RunReport,
+    summaries: &IndexMap<String, Located<SummarySpec>>,
+    meta: &OutputMetadata,
+) -> Result<Vec<PathBuf>, OutputError> {
+    let mut written = Vec::new();
+    for (name, spec) in summaries {
+        let table = format!("summary_{name}");
+        let columns =
+            summary_columns(name, &spec.value, plan, report).map_err(|e| OutputError::Write {
+                path: dir.join(format!("{table}.parquet")),
+                message: e.to_string(),
+            })?;
+        let rows = columns.first().map_or(0, |c| c.2.len());
+        written.push(write_parquet(
+            dir,
+            &table,
+            RowTable { columns, rows },
+            meta,
+        )?);
     }
     Ok(written)
 }

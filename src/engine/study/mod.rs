@@ -22,6 +22,7 @@ use petgraph::graph::DiGraph;
 use serde::Deserialize;
 
 use crate::engine::node::NodeSpec;
+use crate::engine::summary::{split_metric, SummarySpec};
 
 /// Name of the scenarios table, always available in `outputs`.
 pub const SCENARIOS_TABLE: &str = "scenarios";
@@ -45,6 +46,10 @@ pub struct StudyFile<N> {
     /// Tables to write (default: all). Only the nodes these tables need are computed.
     #[serde(default)]
     pub outputs: Option<Located<Vec<Located<String>>>>,
+    /// Grouped summaries of node metrics over scenarios (mean, standard deviation, count): each
+    /// becomes a table `summary_<name>`.
+    #[serde(default)]
+    pub summaries: IndexMap<String, Located<SummarySpec>>,
 }
 
 /// A parsed and statically checked study.
@@ -108,7 +113,12 @@ impl<N: NodeSpec> Study<N> {
             ));
         }
         let order = check_graph(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?;
-        let outputs = check_outputs(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?;
+        let mut outputs = check_outputs(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?;
+        for table in check_summaries(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))? {
+            if !outputs.contains(&table) {
+                outputs.push(table);
+            }
+        }
         Ok(Self {
             file_hash: blake3::hash(source.as_bytes()).to_hex().to_string(),
             path: path.to_path_buf(),
@@ -238,4 +248,82 @@ fn check_outputs<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckE
         ));
     }
     Ok(result)
+}
+
+/// Checks the `summaries` section; returns the tables of the nodes it uses (they must be
+/// computed, so they are written too).
+fn check_summaries<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckError> {
+    let p = &file.parameters;
+    let parameters: Vec<&str> = p
+        .product
+        .keys()
+        .chain(p.zip.iter().flat_map(|g| g.value.keys()))
+        .chain(p.latin_hypercube.iter().flat_map(|l| l.value.ranges.keys()))
+        .map(String::as_str)
+        .collect();
+    let nodes: Vec<&str> = file.nodes.keys().map(String::as_str).collect();
+    let mut tables = Vec::new();
+    for (name, summary) in &file.summaries {
+        let context = format!("summaries.{name}");
+        if !valid_node_name(name) {
+            return Err((
+                summary.location,
+                context,
+                String::from("summary names start with a letter and contain only letters, digits, '_' and '-' (the table is summary_<name>)"),
+            ));
+        }
+        for by in &summary.value.by {
+            if !parameters.contains(&by.value.as_str()) {
+                return Err((
+                    by.location,
+                    format!("{context}.by"),
+                    format!(
+                        "'{}' is not a parameter{}; parameters: {}",
+                        by.value,
+                        did_you_mean(&by.value, parameters.iter().copied()),
+                        if parameters.is_empty() {
+                            String::from("none")
+                        } else {
+                            parameters.join(", ")
+                        }
+                    ),
+                ));
+            }
+        }
+        if summary.value.metrics.is_empty() {
+            return Err((
+                summary.location,
+                format!("{context}.metrics"),
+                String::from("lists no metric; write node.metric, e.g. contact.area_fraction"),
+            ));
+        }
+        for metric in &summary.value.metrics {
+            let Some((node, _)) = split_metric(&metric.value) else {
+                return Err((
+                    metric.location,
+                    format!("{context}.metrics"),
+                    format!(
+                        "'{}' is not node.metric; write e.g. contact.area_fraction",
+                        metric.value
+                    ),
+                ));
+            };
+            let Some(spec) = file.nodes.get(node) else {
+                return Err((
+                    metric.location,
+                    format!("{context}.metrics"),
+                    format!(
+                        "no node '{node}'{}; nodes: {}",
+                        did_you_mean(node, nodes.iter().copied()),
+                        nodes.join(", ")
+                    ),
+                ));
+            };
+            let table = spec.value.table().to_string();
+            if !tables.contains(&table) {
+                tables.push(table);
+            }
+        }
+    }
+    Ok(tables)
 }
