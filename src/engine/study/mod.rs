@@ -213,11 +213,21 @@ fn valid_node_name(name: &str) -> bool {
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
 }
 
+/// The requested tables: `outputs` as written, or when omitted the scenarios table and the table
+/// of every node kind the study uses (never an empty table of a kind it does not use).
 fn check_outputs<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckError> {
     let mut known: Vec<&str> = vec![SCENARIOS_TABLE];
     known.extend(N::all_tables());
+    let used: Vec<&str> = N::all_tables()
+        .iter()
+        .copied()
+        .filter(|t| file.nodes.values().any(|n| n.value.table() == *t))
+        .collect();
     let Some(outputs) = &file.outputs else {
-        return Ok(known.iter().map(|s| s.to_string()).collect());
+        return Ok(std::iter::once(SCENARIOS_TABLE)
+            .chain(used)
+            .map(String::from)
+            .collect());
     };
     let mut result = Vec::new();
     for table in &outputs.value {
@@ -230,6 +240,20 @@ fn check_outputs<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckE
                     table.value,
                     did_you_mean(&table.value, known.iter().copied()),
                     known.join(", ")
+                ),
+            ));
+        }
+        if table.value != SCENARIOS_TABLE && !used.contains(&table.value.as_str()) {
+            return Err((
+                table.location,
+                String::from("outputs"),
+                format!(
+                    "no node of the study writes table '{}'; tables of this study: {}",
+                    table.value,
+                    std::iter::once(SCENARIOS_TABLE)
+                        .chain(used.iter().copied())
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 ),
             ));
         }
