@@ -2,6 +2,7 @@
 
 mod inspect;
 mod progress;
+mod report;
 mod run;
 
 use std::path::PathBuf;
@@ -52,6 +53,8 @@ enum Command {
     Schema,
     /// Describe a topography file: format, grid, spacing, missing points, statistics.
     Inspect(inspect::InspectArgs),
+    /// Write a self-contained HTML report (trends, load curves, maps) of a results folder.
+    Report(report::ReportArgs),
 }
 
 /// Where the cache lives.
@@ -101,6 +104,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         } => plan(&study, &cache, dot, mermaid),
         Command::Validate { study } => validate(&study),
         Command::Inspect(args) => inspect::inspect(args),
+        Command::Report(args) => report::report(args),
         Command::Schema => {
             print!("{}", asperity::nodes::study_schema_json());
             Ok(ExitCode::SUCCESS)
