@@ -160,7 +160,7 @@ impl MapFigure<'_> {
         let mut s = String::new();
         let _ = write!(
             s,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif" font-size="12"><rect width="{width:.0}" height="{height:.0}" fill="white"/><text x="{left}" y="20" font-size="13" font-weight="bold">{}</text>"#,
+            r#"<svg width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif" font-size="12"><rect width="{width:.0}" height="{height:.0}" fill="white"/><text x="{left}" y="20" font-size="13" font-weight="bold">{}</text>"#,
             escape(&self.title)
         );
         let _ = write!(

@@ -1,4 +1,5 @@
-//! Line plots as standalone SVG: axes with nice ticks and grid lines, axis labels with units,
+//! Line plots as inline `<svg>` elements for HTML (no `xmlns`: the HTML parser assigns the SVG
+//! namespace): axes with nice ticks and grid lines, axis labels with units,
 //! lines with markers, vertical error bars (± one standard deviation), optional log axes and a
 //! legend to the right of the plot area. Text is drawn in the viewer's sans-serif font; nothing
 //! external is referenced.
@@ -97,7 +98,7 @@ impl LinePlot {
         let mut s = String::new();
         let _ = write!(
             s,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif" font-size="12">"#
+            r#"<svg width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="sans-serif" font-size="12">"#
         );
         let _ = write!(
             s,

@@ -10,6 +10,9 @@ use polars::prelude::{DataType, ParquetReader, SerReader};
 
 use super::error::ReportError;
 
+/// Unit suffixes recognised when a table has no `asperity.units` metadata.
+const SUFFIX_UNITS: [&str; 8] = ["m", "m^2", "m^-1", "m^-2", "Pa", "N", "N/m", "rad"];
+
 /// The values of one column.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ColumnValues {
@@ -120,9 +123,21 @@ impl ResultTable {
         })
     }
 
-    /// The SI unit of a column (`""` when dimensionless or unknown).
-    pub fn unit(&self, column: &str) -> &str {
-        self.units.get(column).map_or("", String::as_str)
+    /// The SI unit of a column (`""` when dimensionless or unknown): from the `asperity.units`
+    /// metadata, or — for a table rewritten without it — from a unit suffix of the name.
+    pub fn unit<'a>(&'a self, column: &'a str) -> &'a str {
+        if let Some(unit) = self.units.get(column) {
+            return unit;
+        }
+        SUFFIX_UNITS
+            .iter()
+            .find(|u| {
+                column
+                    .strip_suffix(**u)
+                    .is_some_and(|rest| rest.len() > 1 && rest.ends_with('_'))
+            })
+            .copied()
+            .unwrap_or("")
     }
 
     /// Names of the numeric columns.
