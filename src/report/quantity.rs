@@ -88,6 +88,7 @@ pub fn pretty_name(base: &str) -> String {
         "stress_ratio" => String::from("θ (stress ratio)"),
         "mu_s" => String::from("μ_s (static friction coefficient)"),
         "sq" => String::from("Sq"),
+        "hurst" => String::from("Hurst exponent H"),
         "nominal_pressure" => String::from("nominal pressure"),
         "mean_contact_pressure" => String::from("mean contact pressure"),
         other => other.replace('_', " "),
@@ -101,6 +102,7 @@ pub fn short_name(base: &str) -> String {
         "stress_ratio" => String::from("θ"),
         "mu_s" => String::from("μ_s"),
         "sq" => String::from("Sq"),
+        "hurst" => String::from("H"),
         other => other.replace('_', " "),
     }
 }
