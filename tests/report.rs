@@ -231,6 +231,22 @@ fn a_friction_table_is_plotted_and_replicate_axes_can_be_named() {
     assert!(html.contains("A_t,rel vs seed"));
     assert!(html.contains("over sq"));
 
+    // A corrupted cache payload is detected by the cache's checksums and skipped, not drawn.
+    let contact = &texts(&scenarios, "pair_key")[0];
+    let npy = cache
+        .join("entries/contact")
+        .join(&contact[..2])
+        .join(contact)
+        .join("pressure.npy");
+    let mut bytes = std::fs::read(&npy).unwrap();
+    let last = bytes.len() - 1;
+    bytes[last] ^= 0xff;
+    std::fs::write(&npy, bytes).unwrap();
+    let html = report(&cache, &results, &["--scenario", "0"]);
+    assert!(html.contains("pressure.npy: checksum mismatch"));
+    assert!(html.contains("Heights of surface &#39;lower&#39;"));
+    assert!(!html.contains("Contact pressure of"));
+
     let out = Command::new(BIN)
         .args([
             "report",
