@@ -83,7 +83,13 @@ impl LinePlot {
     pub fn to_svg(&self) -> String {
         let legend = self.legend_width();
         let width = LEFT + PLOT_WIDTH + RIGHT + legend;
-        let height = TOP + PLOT_HEIGHT + BOTTOM;
+        // A long legend makes the figure taller rather than running off its bottom.
+        let legend_height = if legend > 0.0 {
+            TOP + 20.0 * self.series.len() as f64 + 10.0
+        } else {
+            0.0
+        };
+        let height = (TOP + PLOT_HEIGHT + BOTTOM).max(legend_height);
         let points = || self.series.iter().flat_map(|s| s.points.iter());
         let x_scale = Scale::covering(points().map(|p| p.x), self.x_log);
         let y_scale = Scale::covering(
