@@ -14,6 +14,7 @@ pub mod contact;
 pub mod engine;
 pub mod friction;
 pub mod nodes;
+pub mod report;
 pub mod surface;
 pub mod units;
 

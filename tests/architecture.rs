@@ -68,3 +68,21 @@ fn the_engine_knows_no_tribology_and_never_prints() {
     let v = violations("engine", &forbidden);
     assert!(v.is_empty(), "engine must stay generic:\n{}", v.join("\n"));
 }
+
+#[test]
+fn the_report_reads_tables_and_the_cache_but_never_prints_or_computes() {
+    let forbidden = [
+        "crate::surface",
+        "crate::contact",
+        "crate::friction",
+        "crate::nodes",
+        "println!",
+        "eprintln!",
+    ];
+    let v = violations("report", &forbidden);
+    assert!(
+        v.is_empty(),
+        "report must only read results and the cache, and never print:\n{}",
+        v.join("\n")
+    );
+}

@@ -2,6 +2,7 @@
 
 mod inspect;
 mod progress;
+mod report;
 mod run;
 
 use std::path::PathBuf;
@@ -56,6 +57,8 @@ enum Command {
     Schema,
     /// Describe a topography file: format, grid, spacing, missing points, statistics.
     Inspect(inspect::InspectArgs),
+    /// Write a self-contained HTML report (trends, load curves, maps) of a results folder.
+    Report(report::ReportArgs),
 }
 
 /// Parameter overrides for this invocation.
@@ -115,6 +118,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         } => plan(&study, &set, &cache, dot, mermaid),
         Command::Validate { study, set } => validate(&study, &set),
         Command::Inspect(args) => inspect::inspect(args),
+        Command::Report(args) => report::report(args),
         Command::Schema => {
             print!("{}", asperity::nodes::study_schema_json());
             Ok(ExitCode::SUCCESS)

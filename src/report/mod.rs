@@ -1,0 +1,237 @@
+//! `asperity report`: one self-contained HTML page from a results folder and the cache.
+//!
+//! The page shows (a) trends of μ_s (`friction.mu_s`), A_t,rel (`contacts.area_fraction`), θ
+//! (`contacts.stress_ratio`) and any requested metric against every swept parameter, as mean ±
+//! sample standard deviation over the replicate axes ([`scenarios`] explains how they are
+//! found), one series per combination of the other swept parameters; (b) load curves from
+//! `contacts_load_curve`; (c) height and contact-pressure maps of chosen scenarios from
+//! verified cache entries. Missing tables, entries or fields are listed on the page, not
+//! errors. This module knows the tribology table and column names but never prints.
+
+mod axis;
+mod colormap;
+mod error;
+mod figure;
+mod html;
+mod map_figure;
+mod maps;
+mod metrics;
+mod quantity;
+mod scenarios;
+mod statistics;
+mod svg_plot;
+mod table;
+mod trends;
+
+use std::path::PathBuf;
+
+use crate::engine::cache::Cache;
+
+pub use error::ReportError;
+
+use figure::Section;
+use html::PageHeader;
+use metrics::{NodeTable, NODE_TABLES};
+use scenarios::ScenarioSet;
+use table::ResultTable;
+
+/// What to put in the report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReportOptions {
+    /// The folder `asperity run` wrote (`results/<study>/`).
+    pub results_dir: PathBuf,
+    /// Extra metrics to plot: `column`, `column` without unit suffix, or `table.column`.
+    pub metrics: Vec<String>,
+    /// The replicate axes; `None`: detected by name (`seed`, …).
+    pub replicates: Option<Vec<String>>,
+    /// How many scenarios get maps when `map_scenarios` is empty.
+    pub map_count: usize,
+    /// Scenario indices (0-based, the `scenario` column) to draw maps for.
+    pub map_scenarios: Vec<usize>,
+}
+
+/// A finished report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// The page.
+    pub html: String,
+    /// Number of figures (plots, maps and table-only entries).
+    pub figures: usize,
+    /// What was skipped and why (also listed on the page).
+    pub skipped: Vec<String>,
+}
+
+/// Builds the report page. `cache`: where maps come from (`None`: no maps).
+pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Report, ReportError> {
+    let dir = &options.results_dir;
+    let scenario_table = ResultTable::read(dir, "scenarios")?
+        .ok_or_else(|| ReportError::NotAResultsDir(dir.clone()))?;
+    let scenarios = ScenarioSet::from_table(&scenario_table, options.replicates.as_deref())?;
+    let mut skipped = Vec::new();
+    let mut tables = Vec::new();
+    for (name, kind) in NODE_TABLES {
+        match ResultTable::read(dir, name)? {
+            None => skipped.push(format!("{name}.parquet: not in the results folder")),
+            Some(table) if table.rows == 0 || table.texts("key").is_none() => {
+                skipped.push(format!("{name}.parquet: no node instances"));
+            }
+            Some(table) => {
+                let index = table.key_index()?;
+                if scenarios.links_into(&index).next().is_none() {
+                    skipped.push(format!("{name}.parquet: no scenario uses its rows"));
+                    continue;
+                }
+                tables.push(NodeTable {
+                    table,
+                    kind: kind.to_string(),
+                    index,
+                });
+            }
+        }
+    }
+    let metrics = metrics::select_metrics(&tables, &scenarios, &options.metrics)?;
+    let mut sections = Vec::new();
+
+    let mut trend = Vec::new();
+    for metric in &metrics {
+        let figures = trends::trend_figures(&scenarios, metric);
+        if figures.is_empty() {
+            skipped.push(format!(
+                "trend of {}.{} of node '{}': no values (failed or not computed)",
+                metric.table, metric.column, metric.node
+            ));
+        }
+        trend.extend(figures);
+    }
+    let mut intro = trend_intro(&scenarios);
+    if metrics.is_empty() {
+        intro.push_str(
+            " No metric to plot: there is no contacts or friction table; name a column with \
+             --metric (e.g. --metric surfaces.sq_m).",
+        );
+    }
+    sections.push(Section {
+        title: String::from("Trends"),
+        intro,
+        figures: trend,
+    });
+
+    let contacts = tables.iter().find(|t| t.kind == "contact");
+    match (contacts, ResultTable::read(dir, "contacts_load_curve")?) {
+        (Some(contacts), Some(curve)) => sections.push(Section {
+            title: String::from("Load curves"),
+            intro: String::from(
+                "True contact area fraction and stress ratio at each load step of the contacts.",
+            ),
+            figures: trends::load_curve_figures(&scenarios, contacts, &curve),
+        }),
+        _ => skipped.push(String::from(
+            "load curves: they need contacts.parquet and contacts_load_curve.parquet",
+        )),
+    }
+
+    let chosen = if options.map_scenarios.is_empty() {
+        maps::default_scenarios(&scenarios, options.map_count)
+    } else {
+        options.map_scenarios.clone()
+    };
+    match cache {
+        Some(cache) if !chosen.is_empty() => sections.push(Section {
+            title: String::from("Maps"),
+            intro: format!(
+                "Scenarios {}: heights of the surfaces and contact pressure of the final load step, \
+                 from verified cache entries; y points up, the colour map is viridis.",
+                chosen
+                    .iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            figures: maps::map_figures(cache, &scenarios, &tables, &chosen, &mut skipped)?,
+        }),
+        Some(_) => {}
+        None => skipped.push(String::from("maps: no cache given")),
+    }
+
+    let study = scenario_table
+        .study
+        .clone()
+        .unwrap_or_else(|| dir.display().to_string());
+    let header = PageHeader {
+        title: format!("asperity report: {study}"),
+        facts: header_facts(options, &scenarios, &tables),
+        skipped: skipped.clone(),
+    };
+    let figures = sections.iter().map(|s| s.figures.len()).sum();
+    Ok(Report {
+        html: html::page(&header, &sections),
+        figures,
+        skipped,
+    })
+}
+
+fn trend_intro(scenarios: &ScenarioSet) -> String {
+    let replicates = scenarios.replicate_names();
+    let how = if scenarios.replicates_named {
+        "named with --replicate"
+    } else {
+        "detected by name: seed, *_seed, seed_*, replicate, realisation, repetition; override with --replicate"
+    };
+    if replicates.is_empty() {
+        format!("No replicate axis varies ({how}); each point is one scenario.")
+    } else {
+        format!(
+            "Each point is the mean over the replicate axes {} ({how}); error bars are ± one sample \
+             standard deviation (n − 1). One series per combination of the other swept parameters; \
+             expand “values” for the numbers.",
+            replicates.join(", ")
+        )
+    }
+}
+
+fn header_facts(
+    options: &ReportOptions,
+    scenarios: &ScenarioSet,
+    tables: &[NodeTable],
+) -> Vec<(String, String)> {
+    let mut facts = vec![
+        (
+            String::from("results"),
+            options.results_dir.display().to_string(),
+        ),
+        (String::from("scenarios"), scenarios.count.to_string()),
+    ];
+    for (label, replicate) in [("swept parameters", false), ("replicate axes", true)] {
+        let text: Vec<String> = scenarios
+            .parameters
+            .iter()
+            .filter(|p| p.replicate == replicate && p.distinct() > 1)
+            .map(|p| {
+                let mut values: Vec<f64> = p.values.iter().flatten().copied().collect();
+                values.sort_by(f64::total_cmp);
+                values.dedup();
+                let shown: Vec<String> = values
+                    .iter()
+                    .map(|&v| p.describe(Some(v)))
+                    .map(|d| {
+                        d.split_once(" = ")
+                            .map_or(d.clone(), |(_, v)| v.to_string())
+                    })
+                    .collect();
+                format!("{}: {}", p.name, shown.join(", "))
+            })
+            .collect();
+        let text = if text.is_empty() {
+            String::from("none")
+        } else {
+            text.join("; ")
+        };
+        facts.push((label.to_string(), text));
+    }
+    let read: Vec<String> = tables
+        .iter()
+        .map(|t| format!("{} ({} rows)", t.table.name, t.table.rows))
+        .collect();
+    facts.push((String::from("node tables"), read.join(", ")));
+    facts
+}
