@@ -5,7 +5,8 @@
 //! (different random realisations); trends average over them (mean ± sample standard
 //! deviation). Unless the user names them, a parameter is a replicate axis when its name is
 //! `seed`, starts with `seed_` or ends with `_seed`, or is `replicate`, `realisation`,
-//! `realization` or `repetition`.
+//! `realization` or `repetition`. A parameter that is a function of an earlier swept parameter
+//! (zipped with it, e.g. a correlation length that follows Sq) is not a separate axis.
 
 use std::collections::BTreeMap;
 
@@ -159,10 +160,30 @@ impl ScenarioSet {
     }
 
     /// Indices of the swept parameters that are not replicate axes (more than one value).
+    /// A parameter whose value is determined by an earlier swept one (a zipped texture value
+    /// that follows Sq, say) is not an axis of its own: it moves with that one.
     pub fn swept(&self) -> Vec<usize> {
-        (0..self.parameters.len())
-            .filter(|&i| !self.parameters[i].replicate && self.parameters[i].distinct() > 1)
-            .collect()
+        let mut axes: Vec<usize> = Vec::new();
+        for j in 0..self.parameters.len() {
+            let p = &self.parameters[j];
+            if p.replicate || p.distinct() < 2 {
+                continue;
+            }
+            if !axes.iter().any(|&i| self.determines(i, j)) {
+                axes.push(j);
+            }
+        }
+        axes
+    }
+
+    /// Whether every two scenarios with equal values of parameter `i` have equal values of `j`.
+    fn determines(&self, i: usize, j: usize) -> bool {
+        let mut seen: BTreeMap<Option<u64>, Option<u64>> = BTreeMap::new();
+        (0..self.count).all(|s| {
+            let vi = self.value(i, s).map(f64::to_bits);
+            let vj = self.value(j, s).map(f64::to_bits);
+            *seen.entry(vi).or_insert(vj) == vj
+        })
     }
 
     /// Names of the replicate axes that vary.
@@ -234,5 +255,38 @@ impl ScenarioSet {
                 .next()
                 .is_some_and(|k| index.contains_key(k))
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parameter(name: &str, values: &[f64]) -> Parameter {
+        Parameter {
+            name: name.to_string(),
+            unit: String::new(),
+            values: values.iter().map(|&v| Some(v)).collect(),
+            categories: Vec::new(),
+            replicate: is_default_replicate(name),
+            display: DisplayUnit::none(),
+        }
+    }
+
+    #[test]
+    fn zipped_parameters_that_follow_an_axis_are_not_axes() {
+        let set = ScenarioSet {
+            count: 6,
+            parameters: vec![
+                parameter("sq", &[1.0, 1.0, 2.0, 2.0, 3.0, 3.0]),
+                parameter("lambda", &[10.0, 10.0, 20.0, 20.0, 30.0, 30.0]),
+                parameter("seed_i", &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]),
+                parameter("load", &[5.0, 9.0, 5.0, 9.0, 5.0, 9.0]),
+            ],
+            nodes: Vec::new(),
+            replicates_named: false,
+        };
+        // `lambda` moves with `sq`; `seed_i` is a replicate axis; `load` is independent.
+        assert_eq!(set.swept(), [0, 3]);
     }
 }
