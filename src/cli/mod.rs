@@ -1,8 +1,10 @@
 //! Command-line arguments and dispatch.
 
+mod cache;
 mod inspect;
 mod progress;
 mod run;
+mod slurm;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -52,6 +54,10 @@ enum Command {
     Schema,
     /// Describe a topography file: format, grid, spacing, missing points, statistics.
     Inspect(inspect::InspectArgs),
+    /// Inspect and maintain the cache: ls, du, verify, gc.
+    Cache(cache::CacheArgs),
+    /// Write (and submit) a Slurm job array running the study's shards, then a collect job.
+    Slurm(slurm::SlurmArgs),
 }
 
 /// Where the cache lives.
@@ -63,12 +69,15 @@ struct CacheArg {
 }
 
 impl CacheArg {
-    fn open(&self) -> Result<Cache> {
-        let dir = self
-            .cache
+    fn dir(&self) -> PathBuf {
+        self.cache
             .clone()
             .or_else(|| std::env::var_os("ASPERITY_CACHE").map(PathBuf::from))
-            .unwrap_or_else(|| PathBuf::from("cache"));
+            .unwrap_or_else(|| PathBuf::from("cache"))
+    }
+
+    fn open(&self) -> Result<Cache> {
+        let dir = self.dir();
         Cache::open(&dir).with_context(|| format!("cannot open the cache at {}", dir.display()))
     }
 }
@@ -101,6 +110,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         } => plan(&study, &cache, dot, mermaid),
         Command::Validate { study } => validate(&study),
         Command::Inspect(args) => inspect::inspect(args),
+        Command::Cache(args) => cache::cache(args),
+        Command::Slurm(args) => slurm::slurm(args),
         Command::Schema => {
             print!("{}", asperity::nodes::study_schema_json());
             Ok(ExitCode::SUCCESS)

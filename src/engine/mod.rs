@@ -6,11 +6,13 @@
 
 pub mod artifact;
 pub mod cache;
+pub mod cache_admin;
 pub mod execute;
 pub mod hash;
 pub mod node;
 pub mod npy;
 pub mod output;
 pub mod plan;
+pub mod shard;
 pub mod study;
 pub mod value;
