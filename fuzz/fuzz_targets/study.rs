@@ -1,0 +1,20 @@
+//! Fuzzes the study parser: arbitrary bytes must give a study or a `StudyError` (never a panic),
+//! and a study that parses must plan to a `Plan` or a `StudyError`.
+#![no_main]
+
+use std::path::Path;
+
+use asperity::engine::plan::Plan;
+use asperity::engine::study::Study;
+use asperity::nodes::TribologyNode;
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    if let Ok(study) = Study::<TribologyNode>::from_source(Path::new("fuzz.yaml"), text.to_string())
+    {
+        let _ = Plan::build(&study);
+    }
+});
