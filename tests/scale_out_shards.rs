@@ -175,3 +175,48 @@ fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
     out.sort();
     out
 }
+
+#[test]
+fn slurm_writes_a_throttled_array_of_shards_and_a_collect_job() {
+    let dir = tempdir("slurm-scripts");
+    let study = write_study(&dir, "arrayed", 5);
+    let jobs = dir.join("jobs");
+    let output = asperity(&["slurm", "--array-size", "8", "--throttle", "2"])
+        .arg(&study)
+        .arg("--cache")
+        .arg(dir.join("cache"))
+        .arg("--dir")
+        .arg(&jobs)
+        .args([
+            "--partition",
+            "short",
+            "--time",
+            "00:30:00",
+            "--cpus-per-task",
+            "2",
+        ])
+        .output()
+        .unwrap();
+    let stdout = ok(&output);
+    // 8 tasks requested, 5 units of work: 5 tasks, indices 0..=4.
+    assert!(stdout.contains("5 shards over 5 units"), "{stdout}");
+    assert!(stdout.contains("--dependency=afterok:"), "{stdout}");
+    let array = std::fs::read_to_string(jobs.join("shards.sbatch")).unwrap();
+    for line in [
+        "#SBATCH --array=0-4%2",
+        "#SBATCH --partition=short",
+        "#SBATCH --time=00:30:00",
+        "#SBATCH --cpus-per-task=2",
+        "--shard \"${SLURM_ARRAY_TASK_ID}/5\"",
+        "--jobs 2",
+    ] {
+        assert!(array.contains(line), "{line} missing in\n{array}");
+    }
+    let collect = std::fs::read_to_string(jobs.join("collect.sbatch")).unwrap();
+    assert!(
+        collect.contains(" --out ") && !collect.contains("--shard"),
+        "{collect}"
+    );
+    assert!(jobs.join("logs").is_dir());
+    let _ = std::fs::remove_dir_all(&dir);
+}
