@@ -1,9 +1,11 @@
 //! Command-line arguments and dispatch.
 
+mod cache;
 mod inspect;
 mod progress;
 mod report;
 mod run;
+mod slurm;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -59,10 +61,14 @@ enum Command {
     Inspect(inspect::InspectArgs),
     /// Write a self-contained HTML report (trends, load curves, maps) of a results folder.
     Report(report::ReportArgs),
+    /// Inspect and maintain the cache: ls, du, verify, gc.
+    Cache(cache::CacheArgs),
+    /// Write (and submit) a Slurm job array running the study's shards, then a collect job.
+    Slurm(slurm::SlurmArgs),
 }
 
 /// Parameter overrides for this invocation.
-#[derive(Debug, clap::Args)]
+#[derive(Debug, Default, clap::Args)]
 struct SetArg {
     /// Replace a parameter's axis for this run: `--set n=64`, `--set "sq=[0.38 um, 1.19 um]"`,
     /// `--set "seed={range: [1, 2]}"` (repeatable; recorded in the tables' metadata).
@@ -79,12 +85,15 @@ struct CacheArg {
 }
 
 impl CacheArg {
-    fn open(&self) -> Result<Cache> {
-        let dir = self
-            .cache
+    fn dir(&self) -> PathBuf {
+        self.cache
             .clone()
             .or_else(|| std::env::var_os("ASPERITY_CACHE").map(PathBuf::from))
-            .unwrap_or_else(|| PathBuf::from("cache"));
+            .unwrap_or_else(|| PathBuf::from("cache"))
+    }
+
+    fn open(&self) -> Result<Cache> {
+        let dir = self.dir();
         Cache::open(&dir).with_context(|| format!("cannot open the cache at {}", dir.display()))
     }
 }
@@ -119,6 +128,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Validate { study, set } => validate(&study, &set),
         Command::Inspect(args) => inspect::inspect(args),
         Command::Report(args) => report::report(args),
+        Command::Cache(args) => cache::cache(args),
+        Command::Slurm(args) => slurm::slurm(args),
         Command::Schema => {
             print!("{}", asperity::nodes::study_schema_json());
             Ok(ExitCode::SUCCESS)

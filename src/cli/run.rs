@@ -5,8 +5,12 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
-use asperity::engine::execute::{execute, ExecuteOptions, NodeStatus};
+use asperity::engine::execute::{
+    execute, execute_nodes, ExecuteOptions, NodeOutcome, NodeStatus, RunReport,
+};
 use asperity::engine::output::{write_summaries, write_tables, OutputMetadata};
+use asperity::engine::plan::Plan;
+use asperity::engine::shard::{Shard, ShardPlan};
 
 use super::progress::BarProgress;
 use super::CacheArg;
@@ -29,6 +33,10 @@ pub struct RunArgs {
     /// Memory budget for nodes running at once, in MiB [default: 60 % of available memory].
     #[arg(long, value_name = "MIB")]
     memory_mib: Option<u64>,
+    /// Compute only shard I of N (0 <= I < N) of the study's nodes, into the shared cache; no
+    /// tables are written (a plain `run` afterwards assembles them from the cache).
+    #[arg(long, value_name = "I/N")]
+    shard: Option<Shard>,
     /// No progress bar.
     #[arg(long, short)]
     quiet: bool,
@@ -58,6 +66,23 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         tool_version: asperity::TOOL_VERSION.to_string(),
     };
     let progress = BarProgress::new(args.quiet);
+    if let Some(shard) = args.shard {
+        let split = ShardPlan::split(&plan, &plan.needed_for(&study.outputs), shard.count);
+        let report = execute_nodes(&plan, &cache, split.nodes(shard), &options, &progress)?;
+        progress.finish();
+        report_failures(&plan, &report);
+        println!(
+            "{} shard {shard}: {} computed, {} reused from cache, {} failed, {} skipped in {:.2} s \
+             (no tables written: run the study without --shard to assemble them)",
+            study.name(),
+            report.computed,
+            report.cached,
+            report.failed,
+            report.skipped,
+            report.wall_seconds
+        );
+        return Ok(exit_code(&report));
+    }
     let report = execute(&plan, &cache, &options, &progress)?;
     progress.finish();
     let meta = OutputMetadata {
@@ -74,18 +99,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         &study.file.summaries,
         &meta,
     )?);
-    for (i, o) in report.outcomes.iter().enumerate() {
-        if let Some(o) = o {
-            if let NodeStatus::Failed(m) = &o.status {
-                eprintln!(
-                    "failed: {} node '{}' ({}): {m}",
-                    plan.nodes[i].task.kind(),
-                    plan.nodes[i].names.join(", "),
-                    plan.nodes[i].key.short()
-                );
-            }
-        }
-    }
+    report_failures(&plan, &report);
     println!(
         "{}: {} computed, {} reused from cache, {} failed, {} skipped{} in {:.2} s",
         study.name(),
@@ -104,11 +118,32 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     for f in files {
         println!("  {}", f.display());
     }
-    Ok(if report.all_ok() {
+    Ok(exit_code(&report))
+}
+
+fn exit_code(report: &RunReport) -> ExitCode {
+    if report.all_ok() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(2)
-    })
+    }
+}
+
+fn report_failures(plan: &Plan, report: &RunReport) {
+    for (i, o) in report.outcomes.iter().enumerate() {
+        if let Some(NodeOutcome {
+            status: NodeStatus::Failed(m),
+            ..
+        }) = o
+        {
+            eprintln!(
+                "failed: {} node '{}' ({}): {m}",
+                plan.nodes[i].task.kind(),
+                plan.nodes[i].names.join(", "),
+                plan.nodes[i].key.short()
+            );
+        }
+    }
 }
 
 /// 60 % of MemAvailable from /proc/meminfo, or 4 GiB when it cannot be read.

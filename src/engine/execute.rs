@@ -4,7 +4,7 @@
 //! within a level they run in parallel on the rayon pool, each first acquiring its memory estimate
 //! from a budget so large nodes do not run all at once. A failing node fails only its dependants.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashSet};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
@@ -15,6 +15,7 @@ use crate::engine::artifact::{Artifact, Table};
 use crate::engine::cache::{Cache, CacheError, Manifest};
 use crate::engine::node::NodeError;
 use crate::engine::plan::{Plan, PlannedNode};
+use crate::engine::shard::upstream_closure;
 use crate::engine::value::Field;
 
 /// Receives progress events; the CLI draws a progress bar, tests ignore them.
@@ -114,6 +115,19 @@ pub fn execute(
     options: &ExecuteOptions,
     progress: &dyn Progress,
 ) -> Result<RunReport, CacheError> {
+    let needed = plan.needed_for(&options.tables);
+    execute_nodes(plan, cache, &needed, options, progress)
+}
+
+/// Runs the given instances (a shard's share) and everything upstream of them;
+/// `options.tables` is not consulted.
+pub fn execute_nodes(
+    plan: &Plan,
+    cache: &Cache,
+    nodes: &[usize],
+    options: &ExecuteOptions,
+    progress: &dyn Progress,
+) -> Result<RunReport, CacheError> {
     let start = Instant::now();
     let stale = cache.clean_stale_tmp()?;
     if stale > 0 {
@@ -121,7 +135,8 @@ pub fn execute(
             "removed {stale} temporary cache folder(s) left by interrupted runs"
         ));
     }
-    let needed = plan.needed_for(&options.tables);
+    let all: HashSet<usize> = (0..plan.nodes.len()).collect();
+    let needed = upstream_closure(plan, nodes, &all);
     let n = plan.nodes.len();
     let mut is_needed = vec![false; n];
     for &i in &needed {

@@ -6,12 +6,14 @@
 
 pub mod artifact;
 pub mod cache;
+pub mod cache_admin;
 pub mod execute;
 pub mod hash;
 pub mod node;
 pub mod npy;
 pub mod output;
 pub mod plan;
+pub mod shard;
 pub mod study;
 pub mod summary;
 pub mod value;

@@ -1,0 +1,172 @@
+//! `asperity cache ls|du|verify|gc`: inspect and maintain a cache folder.
+
+use std::collections::{BTreeMap, HashSet};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+
+use asperity::engine::cache_admin::{
+    collect_garbage, list_entries, parse_age, remove_entry, verify_entry, GcCriteria,
+};
+
+use super::CacheArg;
+
+/// Arguments of `asperity cache`.
+#[derive(Debug, clap::Args)]
+pub struct CacheArgs {
+    #[command(subcommand)]
+    action: CacheAction,
+}
+
+#[derive(Debug, clap::Subcommand)]
+enum CacheAction {
+    /// List entries: kind, key, size, creation time, node parameters.
+    Ls {
+        #[command(flatten)]
+        cache: CacheArg,
+    },
+    /// Sizes per kind and in total.
+    Du {
+        #[command(flatten)]
+        cache: CacheArg,
+    },
+    /// Verify every entry's checksums; exit code 1 when any entry is corrupt.
+    Verify {
+        #[command(flatten)]
+        cache: CacheArg,
+        /// Delete the corrupt entries (they are recomputed when next needed).
+        #[arg(long)]
+        delete: bool,
+    },
+    /// Delete entries no given study can reach and/or older than an age. Criteria combine:
+    /// only entries matching all given criteria are deleted.
+    Gc {
+        #[command(flatten)]
+        cache: CacheArg,
+        /// Studies whose node instances are kept (all of them, whatever their outputs).
+        studies: Vec<PathBuf>,
+        /// Delete only entries created longer ago than this (30d, 12h, 90m, 45s, 2w).
+        #[arg(long, value_name = "AGE", value_parser = parse_age)]
+        older_than: Option<std::time::Duration>,
+        /// Only show what would be deleted.
+        #[arg(long)]
+        dry_run: bool,
+    },
+}
+
+pub fn cache(args: CacheArgs) -> Result<ExitCode> {
+    match args.action {
+        CacheAction::Ls { cache } => {
+            let cache = cache.open()?;
+            let entries = list_entries(&cache)?;
+            println!(
+                "{:<10} {:<64} {:>12} {:>12}  params",
+                "kind", "key", "bytes", "created"
+            );
+            for e in &entries {
+                let params = e.manifest.as_ref().map_or_else(
+                    || String::from("(unreadable manifest)"),
+                    |m| {
+                        m.params
+                            .iter()
+                            .map(|f| format!("{}={}", f.column_name(), f.value))
+                            .collect::<Vec<_>>()
+                            .join(" ")
+                    },
+                );
+                println!(
+                    "{:<10} {:<64} {:>12} {:>12}  {params}",
+                    e.kind, e.key, e.bytes, e.created_unix
+                );
+            }
+            println!("{} entries", entries.len());
+        }
+        CacheAction::Du { cache } => {
+            let cache = cache.open()?;
+            let mut per_kind: BTreeMap<String, (usize, u64)> = BTreeMap::new();
+            for e in list_entries(&cache)? {
+                let slot = per_kind.entry(e.kind).or_default();
+                slot.0 += 1;
+                slot.1 += e.bytes;
+            }
+            let (mut n, mut bytes) = (0, 0);
+            for (kind, (count, size)) in &per_kind {
+                println!("{kind:<10} {count:>8} entries {:>12}", human(*size));
+                n += count;
+                bytes += size;
+            }
+            println!("{:<10} {n:>8} entries {:>12}", "total", human(bytes));
+        }
+        CacheAction::Verify { cache, delete } => {
+            let cache = cache.open()?;
+            let entries = list_entries(&cache)?;
+            let mut corrupt = 0;
+            for e in &entries {
+                if let Err(reason) = verify_entry(&cache, e) {
+                    corrupt += 1;
+                    println!("CORRUPT {} {}: {reason}", e.kind, e.key);
+                    if delete {
+                        remove_entry(&cache, e)?;
+                        println!("  deleted");
+                    }
+                }
+            }
+            println!("{} entries verified, {corrupt} corrupt", entries.len());
+            if corrupt > 0 && !delete {
+                return Ok(ExitCode::from(1));
+            }
+        }
+        CacheAction::Gc {
+            cache,
+            studies,
+            older_than,
+            dry_run,
+        } => {
+            anyhow::ensure!(
+                !studies.is_empty() || older_than.is_some(),
+                "give the studies whose entries to keep and/or --older-than AGE"
+            );
+            let cache = cache.open()?;
+            let mut keep: Option<HashSet<String>> = None;
+            for path in &studies {
+                let (_, plan) = super::load(path, &super::SetArg::default())
+                    .with_context(|| format!("cannot plan {}", path.display()))?;
+                keep.get_or_insert_with(HashSet::new)
+                    .extend(plan.nodes.iter().map(|n| n.key.to_hex()));
+            }
+            let report = collect_garbage(&cache, &GcCriteria { keep, older_than }, dry_run)?;
+            let verb = if dry_run { "would delete" } else { "deleted" };
+            for e in &report.removed {
+                println!("{verb} {} {} ({} bytes)", e.kind, e.key, e.bytes);
+            }
+            println!(
+                "{verb} {} entries ({}), kept {}{}",
+                report.removed.len(),
+                human(report.freed_bytes),
+                report.kept,
+                if report.stale_tmp > 0 {
+                    format!("; removed {} stale temporary folders", report.stale_tmp)
+                } else {
+                    String::new()
+                }
+            );
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn human(bytes: u64) -> String {
+    const UNITS: [&str; 5] = ["B", "KiB", "MiB", "GiB", "TiB"];
+    let mut value = bytes as f64;
+    let mut unit = 0;
+    while value >= 1024.0 && unit + 1 < UNITS.len() {
+        value /= 1024.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{bytes} B")
+    } else {
+        format!("{value:.1} {}", UNITS[unit])
+    }
+}
