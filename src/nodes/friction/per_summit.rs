@@ -210,7 +210,6 @@ pub(super) fn compute(
         Field::int("elastic_summits", elastic as i64),
         Field::int("elastic_plastic_summits", elastic_plastic as i64),
         Field::int("fully_plastic_summits", fully_plastic as i64),
-        Field::text("status", "ok"),
     ]);
     let mut local: Vec<f64> = result.summits.iter().filter_map(|s| s.local_mu).collect();
     local.sort_by(f64::total_cmp);

@@ -158,7 +158,6 @@ pub(super) fn compute(
         Field::float("gw_summit_radius", summits.radius, Dimension::Length),
         Field::float("gw_summit_density", summits.density, Dimension::InverseArea),
         n("gw_beta", summits.beta),
-        Field::text("status", "converged"),
         Field::int("roots_found", last.status.roots_found as i64),
         Field::int("iterations", last.status.brent_iterations as i64),
         n("residual", last.status.relative_residual),
