@@ -253,6 +253,13 @@ fn materials_by_name_with_overrides_and_suggestions() {
     let expected = 1.0 / (0.91 / 210e9 + 0.91 / 205e9);
     // Same formula in a different order of operations: a few ulps.
     assert!((e - expected).abs() < 1e-12 * expected, "{e} vs {expected}");
+    // A name that looks like a number with a unit is still a name in a node field.
+    let plan = Plan::build(&study(
+        &EXPLICIT
+            .replace("PRESSURES", "20 MPa")
+            .replace("upper_material: S235JR", "upper_material: {name: 17-4PH}"),
+    ));
+    assert!(plan.is_ok(), "{:?}", plan.err());
     let message = plan_error(&EXPLICIT.replace("upper_material: S235JR", "upper_material: s253jr"));
     assert!(
         message.contains("unknown material 's253jr' (did you mean 's235jr'?)"),
@@ -266,4 +273,39 @@ fn materials_by_name_with_overrides_and_suggestions() {
         message.contains("upper_material.poisson_ratio"),
         "{message}"
     );
+}
+
+#[test]
+fn materials_can_be_swept_and_give_the_contact_its_flow_pressure() {
+    let text = PER_SUMMIT
+        .replace("FIELDS", "true")
+        .replace(
+            "study: per_summit\n",
+            "study: per_summit\nparameters:\n  product:\n    mat: [s235jr, aisi630]\n",
+        )
+        .replace("lower_material: s235jr", "lower_material: ${mat}");
+    let plan = Plan::build(&study(&text)).unwrap();
+    let flow: Vec<f64> = plan
+        .nodes
+        .iter()
+        .filter(|n| n.task.kind() == "contact")
+        .map(|n| {
+            match n
+                .task
+                .params()
+                .iter()
+                .find(|f| f.name == "flow_pressure")
+                .map(|f| &f.value)
+            {
+                Some(Value::Float(v)) => *v,
+                other => panic!("{other:?}"),
+            }
+        })
+        .collect();
+    // Rule p_lim = H of the built-in material (200 HV and 434 HV).
+    let expected: Vec<f64> = ["s235jr", "17-4ph"]
+        .iter()
+        .map(|n| find_material(n).unwrap().hardness)
+        .collect();
+    assert_eq!(flow, expected);
 }

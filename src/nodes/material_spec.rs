@@ -30,7 +30,7 @@ pub struct MaterialSpec {
 
 #[derive(Debug)]
 enum MaterialSource {
-    Named(Param<MaterialName>),
+    Named(NameSource),
     Mapping(Box<MaterialMapping>),
 }
 
@@ -40,7 +40,7 @@ enum MaterialSource {
 pub struct MaterialMapping {
     /// Built-in material (case-insensitive name or alias) whose values the other fields override.
     #[serde(default)]
-    pub name: Option<Param<MaterialName>>,
+    pub name: Option<NameSpec>,
     /// Young's modulus (or indentation modulus E_IT), pressure > 0; required without `name`.
     #[serde(default)]
     pub youngs_modulus: Option<Param<Quantity<Pressure>>>,
@@ -89,17 +89,20 @@ impl<'de> Visitor<'de> for MaterialVisitor {
         f.write_str("a material name such as 's235jr' or a mapping {name, youngs_modulus, poisson_ratio, hardness, flow_pressure}")
     }
 
-    /// A plain name becomes a `Param<MaterialName>` (so `${param}` works) by reading it back as a
-    /// YAML scalar (a JSON string is valid YAML): its location is that of the whole material.
     fn visit_str<E: de::Error>(self, v: &str) -> Result<Self::Value, E> {
-        let scalar = serde_json::to_string(v).map_err(E::custom)?;
-        let name = serde_saphyr::from_str::<Param<MaterialName>>(&scalar).map_err(E::custom)?;
-        Ok(MaterialSource::Named(name))
+        NameVisitor.visit_str(v).map(MaterialSource::Named)
     }
 
-    /// A material number written unquoted (`1.0037`).
     fn visit_f64<E: de::Error>(self, v: f64) -> Result<Self::Value, E> {
-        self.visit_str(&v.to_string())
+        NameVisitor.visit_f64(v).map(MaterialSource::Named)
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
+        NameVisitor.visit_i64(v).map(MaterialSource::Named)
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
+        NameVisitor.visit_u64(v).map(MaterialSource::Named)
     }
 
     fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Self::Value, A::Error> {
@@ -108,8 +111,91 @@ impl<'de> Visitor<'de> for MaterialVisitor {
     }
 }
 
-/// A material name as written; a number such as `1.0037` (a Werkstoff number written without
-/// quotes) is read as its shortest decimal text, so numbers ending in 0 must be quoted.
+/// A material name: written literally (`s235jr`, `17-4ph`, `1.0037`) or a `${param}` reference.
+#[derive(Debug)]
+pub struct NameSpec {
+    location: SourceLocation,
+    source: NameSource,
+}
+
+#[derive(Debug)]
+enum NameSource {
+    /// As written; never parsed as a quantity (`17-4ph` is not 17 with a unit).
+    Literal(String),
+    /// A study parameter holding the name.
+    Reference(Param<MaterialName>),
+}
+
+struct NameVisitor;
+
+impl<'de> Visitor<'de> for NameVisitor {
+    type Value = NameSource;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a material name such as 's235jr'")
+    }
+
+    /// A `${param}` reference becomes a `Param<MaterialName>` by reading it back as a YAML scalar
+    /// (a JSON string is valid YAML); anything else is the literal name.
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<Self::Value, E> {
+        if v.trim_start().starts_with("${") {
+            let scalar = serde_json::to_string(v).map_err(E::custom)?;
+            serde_saphyr::from_str::<Param<MaterialName>>(&scalar)
+                .map(NameSource::Reference)
+                .map_err(E::custom)
+        } else {
+            Ok(NameSource::Literal(v.to_string()))
+        }
+    }
+
+    /// A material number written unquoted (`1.0037`), as its shortest decimal text.
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Self::Value, E> {
+        Ok(NameSource::Literal(v.to_string()))
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
+        Ok(NameSource::Literal(v.to_string()))
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
+        Ok(NameSource::Literal(v.to_string()))
+    }
+}
+
+impl<'de> Deserialize<'de> for NameSource {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_any(NameVisitor)
+    }
+}
+
+impl<'de> Deserialize<'de> for NameSpec {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let located = Located::<NameSource>::deserialize(deserializer)?;
+        Ok(Self {
+            location: located.location,
+            source: located.value,
+        })
+    }
+}
+
+impl schemars::JsonSchema for NameSpec {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "MaterialName".into()
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let names = all_names().collect::<Vec<_>>().join(", ");
+        schemars::json_schema!({
+            "type": ["string", "number"],
+            "description": format!("A built-in material (case-insensitive): {names}; or a reference '${{param}}'.")
+        })
+    }
+}
+
+/// The value of a material-name parameter: text, or a number such as `1.0037` read as its
+/// shortest decimal text (so numbers ending in 0 must be quoted). In parameter axes a value
+/// starting with a digit and followed by letters (`17-4ph`) is read as a quantity: use a
+/// letter-first alias there (`aisi630`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MaterialName(pub String);
 
@@ -127,20 +213,6 @@ impl FromParamValue for MaterialName {
     }
 }
 
-impl schemars::JsonSchema for MaterialName {
-    fn schema_name() -> std::borrow::Cow<'static, str> {
-        "MaterialName".into()
-    }
-
-    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
-        let names = all_names().collect::<Vec<_>>().join(", ");
-        schemars::json_schema!({
-            "type": ["string", "number"],
-            "description": format!("A built-in material (case-insensitive): {names}.")
-        })
-    }
-}
-
 impl<'de> Deserialize<'de> for MaterialSource {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         deserializer.deserialize_any(MaterialVisitor)
@@ -154,7 +226,7 @@ impl schemars::JsonSchema for MaterialSpec {
 
     fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
         let mapping = generator.subschema_for::<MaterialMapping>();
-        let name = generator.subschema_for::<Param<MaterialName>>();
+        let name = generator.subschema_for::<NameSpec>();
         schemars::json_schema!({
             "description": "A body's material: a built-in name, a built-in name with overrides, or explicit constants.",
             "anyOf": [name, mapping]
@@ -186,31 +258,29 @@ impl MaterialSpec {
         self.location
     }
 
-    /// Errors of fields inside a plain name carry no location of their own: use the material's.
-    fn located(&self, mut e: SpecError) -> SpecError {
-        if !e.location.is_known() {
-            e.location = self.location;
-        }
-        e
-    }
-
     fn lookup(
         &self,
         ctx: &ResolveContext<'_>,
-        name: &Param<MaterialName>,
+        name: &NameSource,
+        location: SourceLocation,
         field: &str,
     ) -> Result<&'static crate::materials::BuiltinMaterial, SpecError> {
-        let MaterialName(text) = ctx.resolve(name, field).map_err(|e| self.located(e))?;
-        find_material(&text).map_err(|UnknownMaterial { name: wanted }| {
-            self.located(SpecError {
-                location: name.location(),
-                field: field.to_string(),
-                message: format!(
-                    "unknown material '{wanted}'{}; built-in materials: {} (or give explicit `{{youngs_modulus, poisson_ratio, hardness}}`)",
-                    did_you_mean(&wanted.trim().to_lowercase(), all_names()),
-                    crate::materials::known_names().join(", ")
-                ),
-            })
+        let text = match name {
+            NameSource::Literal(text) => text.clone(),
+            NameSource::Reference(p) => {
+                ctx.resolve(p, field)
+                    .map_err(|e| SpecError { location, ..e })?
+                    .0
+            }
+        };
+        find_material(&text).map_err(|UnknownMaterial { name: wanted }| SpecError {
+            location,
+            field: field.to_string(),
+            message: format!(
+                "unknown material '{wanted}'{}; built-in materials: {} (or give explicit `{{youngs_modulus, poisson_ratio, hardness}}`)",
+                did_you_mean(&wanted.trim().to_lowercase(), all_names()),
+                crate::materials::known_names().join(", ")
+            ),
         })
     }
 
@@ -222,10 +292,7 @@ impl MaterialSpec {
     ) -> Result<ResolvedMaterial, SpecError> {
         let m = match &self.source {
             MaterialSource::Named(name) => {
-                let b = self.lookup(ctx, name, field).map_err(|mut e| {
-                    e.location = self.location;
-                    e
-                })?;
+                let b = self.lookup(ctx, name, self.location, field)?;
                 return Ok(ResolvedMaterial {
                     name: Some(b.name),
                     youngs_modulus: b.youngs_modulus,
@@ -237,7 +304,9 @@ impl MaterialSpec {
             MaterialSource::Mapping(m) => m,
         };
         let base = match &m.name {
-            Some(name) => Some(self.lookup(ctx, name, &format!("{field}.name"))?),
+            Some(name) => {
+                Some(self.lookup(ctx, &name.source, name.location, &format!("{field}.name"))?)
+            }
             None => None,
         };
         let pressure = |p: &Option<Param<Quantity<Pressure>>>, sub: &str| {
