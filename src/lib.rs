@@ -6,13 +6,14 @@
 //! * [`friction`] — Greenwood–Williamson / Kogut–Etsion static friction models.
 //!
 //! Study engine (knows nothing of tribology beyond the node-kind trait): [`engine`].
-//! Glue between the two: [`nodes`]. Quantities with units at the boundary: [`units`].
+//! Built-in material data: [`materials`]. Glue between the two: [`nodes`]. Quantities with units at the boundary: [`units`].
 //!
 //! See `ARCHITECTURE.md` for the code map and invariants.
 
 pub mod contact;
 pub mod engine;
 pub mod friction;
+pub mod materials;
 pub mod nodes;
 pub mod report;
 pub mod surface;

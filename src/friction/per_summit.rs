@@ -98,7 +98,9 @@ pub struct PerSummitResult {
     pub local_mu_summary: Option<DistributionSummary>,
 }
 
-fn quantile(sorted: &[f64], q: f64) -> f64 {
+/// Quantile `q` in [0, 1] of ascending `sorted` values by linear interpolation between order
+/// statistics (0 for an empty slice).
+pub fn quantile(sorted: &[f64], q: f64) -> f64 {
     let n = sorted.len();
     if n == 0 {
         return 0.0;

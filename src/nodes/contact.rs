@@ -1,12 +1,14 @@
 //! The `contact` node kind: elastic–perfectly-plastic half-space contact of one or two upstream
 //! surfaces (`contact::ContactSolver`), load-stepped to the last nominal pressure. Table
 //! `contacts` (the final step) and `contacts_load_curve` (one row per step); with
-//! `fields: true` the final step's pressure, gap, deformation and plastic-penetration maps are
-//! stored as arrays in the cache.
+//! `fields: true` the final step's pressure, gap, deformation and plastic-penetration maps and the
+//! composite height z₁ + z₂ the contact was solved on are stored as arrays in the cache (the
+//! per-summit `friction` method reads them).
 
 use ndarray::Ix2;
 use serde::Deserialize;
 
+use super::material_spec::MaterialSpec;
 use crate::contact::{
     BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
     FieldRequest, SolverOptions,
@@ -20,9 +22,12 @@ use crate::units::{format_number, Dimension, Pressure, Quantity};
 
 pub(crate) const KIND: &str = "contact";
 pub(crate) const TABLE: &str = "contacts";
+/// Name of the composite height array z₁ + z₂ (m, `[[iy, ix]]`) the contact was solved on,
+/// stored with `fields: true`.
+pub(crate) const COMPOSITE_HEIGHT: &str = "composite_height";
 
 /// Implementation version of the `contact` kind; bump whenever its numerics change.
-pub const CONTACT_KIND_VERSION: u32 = 1;
+pub const CONTACT_KIND_VERSION: u32 = 2;
 
 /// `contact: {...}`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -33,12 +38,14 @@ pub struct ContactSpec {
     /// Name of the upstream surface node of the upper body; omitted: a rigid flat.
     #[serde(default)]
     pub upper: Option<SpannedName>,
-    /// Elastic constants of the lower body.
-    pub lower_material: ElasticBody,
-    /// Elastic constants of the upper body (required with `upper`).
+    /// Material of the lower body: a built-in name, a name with overrides or explicit constants.
+    pub lower_material: MaterialSpec,
+    /// Material of the upper body (required with `upper`).
     #[serde(default)]
-    pub upper_material: Option<ElasticBody>,
-    /// Plastic flow pressure p_lim of the softer body (pressure > 0); omitted: purely elastic.
+    pub upper_material: Option<MaterialSpec>,
+    /// Plastic flow pressure p_lim (pressure > 0); omitted: the lowest flow pressure of the
+    /// bodies' materials (the softer body yields first; built-in materials and materials with a
+    /// hardness have one), else purely elastic.
     #[serde(default)]
     pub flow_pressure: Option<Param<Quantity<Pressure>>>,
     /// Nominal pressures of the load steps, ascending; the last one is the stop criterion.
@@ -52,48 +59,6 @@ pub struct ContactSpec {
     /// Store the final step's pressure, gap, deformation and plastic-penetration maps.
     #[serde(default)]
     pub fields: Option<Param<bool>>,
-}
-
-/// Isotropic elastic constants of one body.
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct ElasticBody {
-    /// Young's modulus (or indentation modulus E_IT), pressure > 0.
-    pub youngs_modulus: Param<Quantity<Pressure>>,
-    /// Poisson's ratio in [0, 0.5).
-    pub poisson_ratio: Param<f64>,
-}
-
-impl ElasticBody {
-    fn resolve(&self, ctx: &ResolveContext<'_>, prefix: &str) -> Result<(f64, f64), SpecError> {
-        let e = ctx
-            .resolve_checked(
-                &self.youngs_modulus,
-                &format!("{prefix}.youngs_modulus"),
-                |q| {
-                    if q.si() > 0.0 {
-                        Ok(())
-                    } else {
-                        Err(String::from("is out of range: must be > 0 Pa"))
-                    }
-                },
-            )?
-            .si();
-        let nu = ctx.resolve_checked(
-            &self.poisson_ratio,
-            &format!("{prefix}.poisson_ratio"),
-            |v| {
-                if (0.0..0.5).contains(v) {
-                    Ok(())
-                } else {
-                    Err(String::from(
-                        "is out of range: Poisson's ratio must be in [0, 0.5)",
-                    ))
-                }
-            },
-        )?;
-        Ok((e, nu))
-    }
 }
 
 impl ContactSpec {
@@ -132,14 +97,21 @@ impl ContactSpec {
                 }
             }
         }
-        let (e1, nu1) = self.lower_material.resolve(ctx, "lower_material")?;
+        let lower = self.lower_material.resolve(ctx, "lower_material")?;
+        let (e1, nu1) = (lower.youngs_modulus, lower.poisson_ratio);
+        let mut material_flow = lower.flow_pressure;
         let mut params = vec![
             Field::float("lower_youngs_modulus", e1, Dimension::Pressure),
             Field::float("lower_poisson_ratio", nu1, Dimension::Dimensionless),
         ];
         let upper = match (&self.upper, &self.upper_material) {
             (Some(_), Some(m)) => {
-                let (e2, nu2) = m.resolve(ctx, "upper_material")?;
+                let upper = m.resolve(ctx, "upper_material")?;
+                let (e2, nu2) = (upper.youngs_modulus, upper.poisson_ratio);
+                material_flow = match (material_flow, upper.flow_pressure) {
+                    (Some(a), Some(b)) => Some(a.min(b)),
+                    (a, b) => a.or(b),
+                };
                 params.push(Field::float(
                     "upper_youngs_modulus",
                     e2,
@@ -157,7 +129,7 @@ impl ContactSpec {
                     u.location,
                     "upper_material",
                     String::from(
-                        "an upper surface needs `upper_material: {youngs_modulus, poisson_ratio}`",
+                        "an upper surface needs `upper_material` (a name such as `s235jr` or `{youngs_modulus, poisson_ratio}`)",
                     ),
                 ))
             }
@@ -170,17 +142,21 @@ impl ContactSpec {
             )),
             (None, None) => None,
         };
-        let flow_pressure = match &self.flow_pressure {
-            Some(p) => {
-                let v = ctx
-                    .resolve_checked(p, "flow_pressure", |q| {
-                        if q.si() > 0.0 {
-                            Ok(())
-                        } else {
-                            Err(String::from("is out of range: must be > 0 Pa"))
-                        }
-                    })?
-                    .si();
+        let explicit_flow = match &self.flow_pressure {
+            Some(p) => Some(
+                ctx.resolve_checked(p, "flow_pressure", |q| {
+                    if q.si() > 0.0 {
+                        Ok(())
+                    } else {
+                        Err(String::from("is out of range: must be > 0 Pa"))
+                    }
+                })?
+                .si(),
+            ),
+            None => None,
+        };
+        let flow_pressure = match explicit_flow.or(material_flow) {
+            Some(v) => {
                 params.push(Field::float("flow_pressure", v, Dimension::Pressure));
                 v
             }
@@ -315,24 +291,28 @@ impl NodeTask for ContactTask {
                 .ok_or_else(|| NodeError::new("no lower surface"))?,
             "lower",
         )?;
-        let (gap, upper_body) = match (self.upper, inputs.get(1)) {
+        let (gap, upper_body, composite) = match (self.upper, inputs.get(1)) {
             (Some((e2, nu2)), Some(input)) => {
                 let upper = height_map(input, "upper")?;
                 let gap =
                     CompositeGap::from_surfaces(&lower, &upper).map_err(|e| fail("gap", &e))?;
+                let composite = self.fields.then(|| lower.heights() + upper.heights());
                 (
                     gap,
                     BodyElasticity::Isotropic {
                         youngs_modulus: e2,
                         poisson_ratio: nu2,
                     },
+                    composite,
                 )
             }
             _ => (
                 CompositeGap::against_flat(&lower).map_err(|e| fail("gap", &e))?,
                 BodyElasticity::Rigid,
+                self.fields.then(|| lower.heights().clone()),
             ),
         };
+        let (dx, dy) = (lower.dx(), lower.dy());
         let lower_body = BodyElasticity::Isotropic {
             youngs_modulus: self.lower.0,
             poisson_ratio: self.lower.1,
@@ -396,6 +376,8 @@ impl NodeTask for ContactTask {
                 Dimension::Length,
             ),
             Field::float("approach", last.approach, Dimension::Length),
+            Field::float("dx", dx, Dimension::Length),
+            Field::float("dy", dy, Dimension::Length),
             Field::int("iterations", last.iterations as i64),
             Field::float("residual", last.residuals.max(), Dimension::Dimensionless),
         ];
@@ -452,6 +434,11 @@ impl NodeTask for ContactTask {
             ..Artifact::default()
         };
         artifact.tables.insert(String::from("load_curve"), t);
+        if let Some(z) = composite {
+            artifact
+                .arrays
+                .insert(String::from(COMPOSITE_HEIGHT), z.into_dyn());
+        }
         if let Some(f) = &last.fields {
             let named = [
                 ("pressure", &f.pressure),

@@ -5,6 +5,8 @@
 //! both the engine and the numerics.
 
 mod contact;
+mod friction;
+mod material_spec;
 mod surface;
 
 use std::sync::Arc;
@@ -14,7 +16,9 @@ use serde::Deserialize;
 use crate::engine::node::{NodeSpec, NodeTask, UpstreamRef};
 use crate::engine::study::{ResolveContext, SpecError};
 
-pub use contact::{ContactSpec, ContactTask, ElasticBody, CONTACT_KIND_VERSION};
+pub use contact::{ContactSpec, ContactTask, CONTACT_KIND_VERSION};
+pub use friction::{FrictionSpec, FrictionTask, FRICTION_KIND_VERSION};
+pub use material_spec::{MaterialMapping, MaterialSpec, ResolvedMaterial};
 pub use surface::{
     AnisotropySpec, FileSpec, SurfaceSpec, SurfaceTask, SyntheticSpec, SURFACE_KIND_VERSION,
 };
@@ -27,17 +31,20 @@ pub enum TribologyNode {
     Surface(SurfaceSpec),
     /// Stage 2: elastic–perfectly-plastic contact of one or two surfaces.
     Contact(ContactSpec),
+    /// Stage 3: static friction coefficient (statistical Kogut–Etsion/CEB or per summit).
+    Friction(FrictionSpec),
 }
 
 impl NodeSpec for TribologyNode {
     fn all_tables() -> &'static [&'static str] {
-        &[surface::TABLE, contact::TABLE]
+        &[surface::TABLE, contact::TABLE, friction::TABLE]
     }
 
     fn kind(&self) -> &'static str {
         match self {
             TribologyNode::Surface(_) => surface::KIND,
             TribologyNode::Contact(_) => contact::KIND,
+            TribologyNode::Friction(_) => friction::KIND,
         }
     }
 
@@ -45,6 +52,7 @@ impl NodeSpec for TribologyNode {
         match self {
             TribologyNode::Surface(_) => surface::TABLE,
             TribologyNode::Contact(_) => contact::TABLE,
+            TribologyNode::Friction(_) => friction::TABLE,
         }
     }
 
@@ -52,6 +60,7 @@ impl NodeSpec for TribologyNode {
         match self {
             TribologyNode::Surface(_) => Vec::new(),
             TribologyNode::Contact(c) => c.upstream(),
+            TribologyNode::Friction(f) => f.upstream(),
         }
     }
 
@@ -59,6 +68,7 @@ impl NodeSpec for TribologyNode {
         match self {
             TribologyNode::Surface(spec) => Ok(Arc::new(spec.instantiate(ctx)?)),
             TribologyNode::Contact(spec) => Ok(Arc::new(spec.instantiate(ctx)?)),
+            TribologyNode::Friction(spec) => Ok(Arc::new(spec.instantiate(ctx)?)),
         }
     }
 }

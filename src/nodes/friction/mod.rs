@@ -1,0 +1,299 @@
+//! The `friction` node kind: the static friction coefficient μ_s of a rough contact (stage 3).
+//!
+//! * `method: statistical` — Kogut–Etsion 2004 (default) or Chang–Etsion–Bogy on Greenwood–
+//!   Williamson summit statistics (`friction::static_friction`): roughness from one or two upstream
+//!   surface nodes (isotropic spectral moments, two surfaces combined by adding moments) or explicit
+//!   `{sigma, radius, density}`; load as nominal pressures or forces, or the final nominal pressure
+//!   of an upstream contact node. Several loads give a μ(F) curve (long table `friction_curve`);
+//!   the row is at the last load.
+//! * `method: per_summit` — the single-asperity laws applied to each summit of the composite
+//!   topography an upstream contact node solved (`fields: true`), with each summit's interference
+//!   from the contact's deformation there (`friction::per_summit_friction`); optional long table
+//!   `friction_summits`.
+//!
+//! Table `friction`, one row per node instance (see `docs/study-format.md`).
+
+use serde::Deserialize;
+
+use crate::engine::artifact::{Artifact, Table};
+use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
+use crate::engine::study::{Param, ResolveContext, SpannedName, SpecError};
+use crate::engine::value::{Field, Value};
+use crate::friction::{
+    AdhesionParameters, AsperityModel, Material, ModelOptions, StaticFrictionForm, SummitStatistics,
+};
+use crate::units::{Area, Force, Length, Pressure, Quantity, SurfaceEnergy};
+
+use super::material_spec::MaterialSpec;
+
+mod per_summit;
+mod setup;
+mod statistical;
+
+pub(crate) const KIND: &str = "friction";
+pub(crate) const TABLE: &str = "friction";
+
+/// Implementation version of the `friction` kind; bump whenever its numerics change.
+pub const FRICTION_KIND_VERSION: u32 = 1;
+
+/// Default adhesion energy Δγ (N/m): "somewhat clean" metal surfaces, the value of the static
+/// friction experiments on 17-4PH compared with the KE model (reference workflow; the range
+/// quoted there is 0.01 N/m contaminated to 1 N/m very clean).
+pub const DEFAULT_ADHESION_ENERGY: f64 = 0.5;
+
+/// Default Lennard-Jones equilibrium distance ε (m): 0.158 nm, iron (KE 2003/2004).
+pub const DEFAULT_EQUILIBRIUM_DISTANCE: f64 = 0.158e-9;
+
+/// `friction: {...}`.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSpec {
+    /// `statistical` (default: GW summit statistics) or `per_summit` (summits of a contact node's
+    /// composite topography with the contact's deformation).
+    #[serde(default)]
+    pub method: Option<FrictionMethod>,
+    /// Single-asperity laws: `kogut_etsion` (default) or `chang_etsion_bogy` (baseline).
+    #[serde(default)]
+    pub model: Option<Param<String>>,
+    /// Statistical: upstream surface node of the lower body (roughness from its spectral moments).
+    #[serde(default)]
+    pub lower: Option<SpannedName>,
+    /// Statistical: upstream surface node of the upper body (moments added to the lower's).
+    #[serde(default)]
+    pub upper: Option<SpannedName>,
+    /// Upstream contact node: required by `per_summit`; for `statistical` its final nominal
+    /// pressure is the default load.
+    #[serde(default)]
+    pub contact: Option<SpannedName>,
+    /// Statistical: explicit summit statistics instead of upstream surfaces.
+    #[serde(default)]
+    pub roughness: Option<RoughnessSpec>,
+    /// Material of the lower body (a built-in name, a name with overrides or explicit constants).
+    pub lower_material: MaterialSpec,
+    /// Material of the upper body; omitted: a rigid counter-body.
+    #[serde(default)]
+    pub upper_material: Option<MaterialSpec>,
+    /// Adhesion energy Δγ (surface energy ≥ 0, e.g. `0.5 N/m`, the default; 0 switches adhesion off).
+    #[serde(default)]
+    pub adhesion_energy: Option<Param<Quantity<SurfaceEnergy>>>,
+    /// Lennard-Jones equilibrium distance ε (length > 0; default 0.158 nm, iron).
+    #[serde(default)]
+    pub equilibrium_distance: Option<Param<Quantity<Length>>>,
+    /// Nominal area A_n (area > 0). Statistical: default the upstream surface's area (required
+    /// with explicit roughness). Per summit: forces are scaled from the section to this area.
+    #[serde(default)]
+    pub nominal_area: Option<Param<Quantity<Area>>>,
+    /// Statistical: nominal pressures (ascending, > 0); F = p · A_n. Several: a μ(F) curve.
+    #[serde(default)]
+    pub nominal_pressures: Option<Vec<Param<Quantity<Pressure>>>>,
+    /// Statistical: external normal loads (ascending, > 0), instead of `nominal_pressures`.
+    #[serde(default)]
+    pub loads: Option<Vec<Param<Quantity<Force>>>>,
+    /// Form of the KE 2004 Q_max polynomial on 1 < x ≤ 6: `literal` (default, as published,
+    /// negative for 4.29 < x ≤ 6) or `clipped` (max(0, ·)).
+    #[serde(default)]
+    pub static_friction_form: Option<Param<String>>,
+    /// Per summit: also write the long table `friction_summits` (one row per summit).
+    #[serde(default)]
+    pub summits_table: Option<Param<bool>>,
+}
+
+/// Which friction method a node uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionMethod {
+    /// Greenwood–Williamson summit statistics with the KE/CEB integrals.
+    Statistical,
+    /// The single-asperity laws per summit of a contact node's solution.
+    PerSummit,
+}
+
+/// Explicit summit statistics of the equivalent rough surface.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RoughnessSpec {
+    /// Standard deviation of surface heights σ (length > 0).
+    pub sigma: Param<Quantity<Length>>,
+    /// Mean summit radius of curvature R (length > 0).
+    pub radius: Param<Quantity<Length>>,
+    /// Summit areal density η in summits per square metre (> 0; e.g. 1e10 = 1e4 per mm²).
+    pub density: Param<f64>,
+}
+
+impl FrictionSpec {
+    pub(crate) fn upstream(&self) -> Vec<UpstreamRef<'_>> {
+        let mut refs = Vec::new();
+        for (role, node) in [
+            ("lower", &self.lower),
+            ("upper", &self.upper),
+            ("contact", &self.contact),
+        ] {
+            if let Some(node) = node {
+                refs.push(UpstreamRef { role, node });
+            }
+        }
+        refs
+    }
+}
+
+/// Where the statistical roughness comes from.
+#[derive(Debug, Clone)]
+pub(crate) enum Roughness {
+    /// Spectral moments of the upstream surface(s) at these input indices.
+    Surfaces { lower: usize, upper: Option<usize> },
+    /// Explicit summit statistics.
+    Explicit(SummitStatistics),
+}
+
+/// The loads of a statistical node.
+#[derive(Debug, Clone)]
+pub(crate) enum Loads {
+    /// Nominal pressures (Pa).
+    Pressures(Vec<f64>),
+    /// External loads (N).
+    Forces(Vec<f64>),
+    /// The final nominal pressure of the contact at this input index.
+    FromContact(usize),
+}
+
+/// Method-specific resolved inputs.
+#[derive(Debug, Clone)]
+pub(crate) enum MethodSetup {
+    Statistical {
+        roughness: Roughness,
+        nominal_area: Option<f64>,
+        loads: Loads,
+    },
+    PerSummit {
+        contact: usize,
+        nominal_area: Option<f64>,
+        periodic: bool,
+        summits_table: bool,
+    },
+}
+
+/// A resolved friction node.
+#[derive(Debug, Clone)]
+pub struct FrictionTask {
+    params: Vec<Field>,
+    model: AsperityModel,
+    material: Material,
+    adhesion: AdhesionParameters,
+    options: ModelOptions,
+    setup: MethodSetup,
+}
+
+pub(crate) fn model_name(model: AsperityModel) -> &'static str {
+    match model {
+        AsperityModel::KogutEtsion => "kogut_etsion",
+        AsperityModel::ChangEtsionBogy => "chang_etsion_bogy",
+    }
+}
+
+pub(crate) fn form_name(form: StaticFrictionForm) -> &'static str {
+    match form {
+        StaticFrictionForm::Literal => "literal",
+        StaticFrictionForm::Clipped => "clipped",
+    }
+}
+
+/// A float metric of an upstream artifact.
+pub(crate) fn float_metric(input: &Artifact, name: &str, role: &str) -> Result<f64, NodeError> {
+    match input.metric(name).map(|f| &f.value) {
+        Some(Value::Float(v)) => Ok(*v),
+        _ => Err(NodeError::new(format!("{role} node: no {name}"))),
+    }
+}
+
+/// `input` at `index`, or an error naming the role.
+pub(crate) fn input<'a>(
+    inputs: &[&'a Artifact],
+    index: usize,
+    role: &str,
+) -> Result<&'a Artifact, NodeError> {
+    inputs
+        .get(index)
+        .copied()
+        .ok_or_else(|| NodeError::new(format!("no {role} input")))
+}
+
+impl FrictionSpec {
+    pub(crate) fn instantiate(&self, ctx: &ResolveContext<'_>) -> Result<FrictionTask, SpecError> {
+        setup::instantiate(self, ctx)
+    }
+}
+
+impl NodeTask for FrictionTask {
+    fn kind(&self) -> &'static str {
+        KIND
+    }
+
+    fn version(&self) -> u32 {
+        FRICTION_KIND_VERSION
+    }
+
+    fn table(&self) -> &'static str {
+        TABLE
+    }
+
+    fn params(&self) -> &[Field] {
+        &self.params
+    }
+
+    fn memory_estimate(&self) -> u64 {
+        match self.setup {
+            // The net-load grid and a few result rows.
+            MethodSetup::Statistical { .. } => 1 << 20,
+            // Copies of the contact's maps (a 2048² map is 32 MiB) plus per-summit rows.
+            MethodSetup::PerSummit { .. } => 1 << 28,
+        }
+    }
+
+    fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
+        let mut metrics = vec![
+            Field::text(
+                "method",
+                match self.setup {
+                    MethodSetup::Statistical { .. } => "statistical",
+                    MethodSetup::PerSummit { .. } => "per_summit",
+                },
+            ),
+            Field::text("model", model_name(self.model)),
+        ];
+        let mut tables = std::collections::BTreeMap::<String, Table>::new();
+        match &self.setup {
+            MethodSetup::Statistical {
+                roughness,
+                nominal_area,
+                loads,
+            } => statistical::compute(
+                self,
+                inputs,
+                roughness,
+                *nominal_area,
+                loads,
+                &mut metrics,
+                &mut tables,
+            )?,
+            MethodSetup::PerSummit {
+                contact,
+                nominal_area,
+                periodic,
+                summits_table,
+            } => per_summit::compute(
+                self,
+                input(inputs, *contact, "contact")?,
+                *nominal_area,
+                *periodic,
+                *summits_table,
+                &mut metrics,
+                &mut tables,
+            )?,
+        }
+        Ok(Artifact {
+            metrics,
+            arrays: Default::default(),
+            tables,
+        })
+    }
+}

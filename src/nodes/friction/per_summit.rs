@@ -1,0 +1,287 @@
+//! `method: per_summit`: the single-asperity laws per summit of the topography a contact node
+//! solved (reference §10, workflow stage 3).
+//!
+//! * **Summits**: 8-neighbour maxima of the contact's composite height z₁ + z₂ (array
+//!   `composite_height`, stored with `fields: true`), periodic neighbourhoods when the contact was
+//!   periodic; radius R = −2/∇²z (`surface::find_summits`).
+//! * **Interference** of a summit at grid point i: where the contact pressure is positive,
+//!   ω = u₁ + u₂ + u_pl, the elastic deformation of both bodies plus the plastic penetration there
+//!   (equal to the rigid overlap δ − g₀ at a contact point). This BEM deformation includes the
+//!   long-range deformation caused by the neighbouring contacts, unlike the isolated-asperity
+//!   assumption of the KE fits (each asperity deformed only by its own load). On periodic grids u is
+//!   measured from the mean displaced plane; a contacting summit whose ω comes out ≤ 0 counts as
+//!   touching without interference (ω = 0). Where the pressure is zero, ω = −max(g, 0) with g
+//!   the gap after loading (the Lennard-Jones adhesion sees that gap).
+//! * **Forces**: `friction::per_summit_friction` (F_n, F_a, F_f = Q_max per summit), force-weighted
+//!   μ_s = ΣF_f / Σ(F_n − F_a); distribution of local μ = F_f/(F_n − F_a) over summits with
+//!   F_n > F_a (median, p10, p90).
+//! * **Homogenization**: the section is a representative sample, so forces scale with area: the
+//!   force columns are the section sums times A_n/A_section (`nominal_area`, default the section);
+//!   μ_s is invariant under that scaling and is the whole-surface estimate.
+//! * **Area**: `real_area`/`area_fraction` are the contact node's (points with p > 0), scaled to A_n.
+//! * **ψ**: the plasticity index of the identified summits, (2E/(πKH))·√(σ_s/R̄) with σ_s the std
+//!   of their heights and R̄ their mean radius.
+
+use std::collections::BTreeMap;
+
+use ndarray::{Array2, Ix2};
+
+use crate::engine::artifact::{Artifact, Table};
+use crate::engine::node::NodeError;
+use crate::engine::value::Field;
+use crate::friction::per_summit::quantile;
+use crate::friction::{per_summit_friction, DeformationState, SummitContact, SummitFriction};
+use crate::surface::{find_summits, Boundary, HeightMap, Summit, SummitOptions};
+use crate::units::Dimension;
+
+use super::{float_metric, FrictionTask};
+
+fn array(contact: &Artifact, name: &str) -> Result<Option<Array2<f64>>, NodeError> {
+    contact
+        .arrays
+        .get(name)
+        .map(|a| {
+            a.clone()
+                .into_dimensionality::<Ix2>()
+                .map_err(|e| NodeError::new(format!("contact array {name}: {e}")))
+        })
+        .transpose()
+}
+
+fn required(contact: &Artifact, name: &str) -> Result<Array2<f64>, NodeError> {
+    array(contact, name)?.ok_or_else(|| {
+        NodeError::new(format!(
+            "the contact node stored no '{name}' array: run it with `fields: true`"
+        ))
+    })
+}
+
+/// The interference ω (m) of the summit at (iy, ix); see the module docs.
+fn interference(fields: &ContactMaps, iy: usize, ix: usize) -> Result<f64, NodeError> {
+    let at = |a: &Array2<f64>| {
+        a.get((iy, ix))
+            .copied()
+            .ok_or_else(|| NodeError::new("a summit lies outside the contact fields"))
+    };
+    if at(&fields.pressure)? > 0.0 {
+        let upper = match &fields.deformation_upper {
+            Some(u) => at(u)?,
+            None => 0.0,
+        };
+        let omega = at(&fields.deformation_lower)? + upper + at(&fields.plastic)?;
+        Ok(omega.max(0.0))
+    } else {
+        Ok(-at(&fields.gap)?.max(0.0))
+    }
+}
+
+struct ContactMaps {
+    pressure: Array2<f64>,
+    gap: Array2<f64>,
+    deformation_lower: Array2<f64>,
+    deformation_upper: Option<Array2<f64>>,
+    plastic: Array2<f64>,
+}
+
+fn state_name(state: DeformationState) -> &'static str {
+    match state {
+        DeformationState::NotInContact => "not_in_contact",
+        DeformationState::Elastic => "elastic",
+        DeformationState::ElasticPlastic => "elastic_plastic",
+        DeformationState::FullyPlastic => "fully_plastic",
+    }
+}
+
+pub(super) fn compute(
+    task: &FrictionTask,
+    contact: &Artifact,
+    nominal_area: Option<f64>,
+    periodic: bool,
+    summits_table: bool,
+    metrics: &mut Vec<Field>,
+    tables: &mut BTreeMap<String, Table>,
+) -> Result<(), NodeError> {
+    let composite = required(contact, crate::nodes::contact::COMPOSITE_HEIGHT)?;
+    let maps = ContactMaps {
+        pressure: required(contact, "pressure")?,
+        gap: required(contact, "gap")?,
+        deformation_lower: required(contact, "deformation_lower")?,
+        deformation_upper: array(contact, "deformation_upper")?,
+        plastic: required(contact, "plastic_penetration")?,
+    };
+    let dx = float_metric(contact, "dx", "contact")?;
+    let dy = float_metric(contact, "dy", "contact")?;
+    let (ny, nx) = composite.dim();
+    let section_area = nx as f64 * dx * ny as f64 * dy;
+    let map = HeightMap::new(composite, dx, dy)
+        .map_err(|e| NodeError::new(format!("composite height: {e}")))?;
+    let found = find_summits(
+        &map,
+        SummitOptions {
+            boundary: if periodic {
+                Boundary::Periodic
+            } else {
+                Boundary::Open
+            },
+            min_height: None,
+            min_prominence: None,
+        },
+    )
+    .map_err(|e| NodeError::new(format!("summits: {e}")))?;
+    let summits: Vec<&Summit> = found
+        .summits
+        .iter()
+        .filter(|s| s.radius.is_finite() && s.radius > 0.0)
+        .collect();
+    let contacts = summits
+        .iter()
+        .map(|s| {
+            Ok(SummitContact {
+                radius: s.radius,
+                interference: interference(&maps, s.iy, s.ix)?,
+            })
+        })
+        .collect::<Result<Vec<_>, NodeError>>()?;
+    let result = per_summit_friction(
+        &contacts,
+        task.model,
+        &task.material,
+        &task.adhesion,
+        &task.options,
+    )
+    .map_err(|e| NodeError::new(format!("per-summit friction: {e}")))?;
+    let mu_s = result.mu_s.ok_or_else(|| {
+        NodeError::new(format!(
+            "no compressive net force on the summits (sum F_n = {} N, sum F_a = {} N): the section carries no friction",
+            result.total_normal_force, result.total_adhesion_force
+        ))
+    })?;
+    let area = nominal_area.unwrap_or(section_area);
+    let scale = area / section_area;
+    let nominal_pressure = float_metric(contact, "nominal_pressure", "contact")?;
+    let area_fraction = float_metric(contact, "area_fraction", "contact")?;
+    let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
+    let [_, elastic, elastic_plastic, fully_plastic] = result.state_counts;
+    let in_contact = elastic + elastic_plastic + fully_plastic;
+    metrics.extend([
+        n("mu_s", mu_s),
+        Field::float(
+            "external_load",
+            scale * (result.total_normal_force - result.total_adhesion_force),
+            Dimension::Force,
+        ),
+        Field::float("nominal_pressure", nominal_pressure, Dimension::Pressure),
+        Field::float(
+            "normal_load",
+            scale * result.total_normal_force,
+            Dimension::Force,
+        ),
+        Field::float(
+            "adhesion_force",
+            scale * result.total_adhesion_force,
+            Dimension::Force,
+        ),
+        Field::float(
+            "friction_force",
+            scale * result.total_friction_force,
+            Dimension::Force,
+        ),
+        Field::float(
+            "contact_normal_load",
+            nominal_pressure * area,
+            Dimension::Force,
+        ),
+    ]);
+    if let (Some(sigma_s), Some(radius)) =
+        (found.statistics.height_std, found.statistics.mean_radius)
+    {
+        metrics.push(n(
+            "plasticity_index",
+            task.material.plasticity_index(sigma_s, radius),
+        ));
+    }
+    metrics.extend([
+        n("contacts", in_contact as f64),
+        Field::float("real_area", area_fraction * area, Dimension::Area),
+        n("area_fraction", area_fraction),
+        Field::float("apparent_area", area, Dimension::Area),
+        Field::float("section_area", section_area, Dimension::Area),
+        Field::int("summit_count", summits.len() as i64),
+        Field::int("elastic_summits", elastic as i64),
+        Field::int("elastic_plastic_summits", elastic_plastic as i64),
+        Field::int("fully_plastic_summits", fully_plastic as i64),
+    ]);
+    let mut local: Vec<f64> = result.summits.iter().filter_map(|s| s.local_mu).collect();
+    local.sort_by(f64::total_cmp);
+    if !local.is_empty() {
+        metrics.extend([
+            n("local_mu_p10", quantile(&local, 0.1)),
+            n("local_mu_median", quantile(&local, 0.5)),
+            n("local_mu_p90", quantile(&local, 0.9)),
+        ]);
+    }
+    if summits_table {
+        tables.insert(
+            String::from("summits"),
+            summits_table_of(&summits, &contacts, &result.summits),
+        );
+    }
+    Ok(())
+}
+
+/// One row per summit: position, geometry, interference, state and forces (section values).
+fn summits_table_of(
+    summits: &[&Summit],
+    contacts: &[SummitContact],
+    forces: &[SummitFriction],
+) -> Table {
+    let rows: Vec<(&Summit, &SummitContact, &SummitFriction)> = summits
+        .iter()
+        .copied()
+        .zip(contacts)
+        .zip(forces)
+        .map(|((s, c), f)| (s, c, f))
+        .collect();
+    let column = |f: &dyn Fn(&(&Summit, &SummitContact, &SummitFriction)) -> f64| {
+        rows.iter().map(f).collect::<Vec<f64>>()
+    };
+    let mut t = Table::default();
+    t.push_int("ix", rows.iter().map(|r| r.0.ix as i64).collect());
+    t.push_int("iy", rows.iter().map(|r| r.0.iy as i64).collect());
+    t.push_float("x", Dimension::Length, column(&|r| r.0.x));
+    t.push_float("y", Dimension::Length, column(&|r| r.0.y));
+    t.push_float("height", Dimension::Length, column(&|r| r.0.height));
+    t.push_float("radius", Dimension::Length, column(&|r| r.0.radius));
+    t.push_float(
+        "interference",
+        Dimension::Length,
+        column(&|r| r.1.interference),
+    );
+    t.push_float(
+        "interference_ratio",
+        Dimension::Dimensionless,
+        column(&|r| r.2.interference_ratio),
+    );
+    t.push_text(
+        "state",
+        rows.iter()
+            .map(|r| state_name(r.2.state).to_string())
+            .collect(),
+    );
+    t.push_float(
+        "normal_force",
+        Dimension::Force,
+        column(&|r| r.2.normal_force),
+    );
+    t.push_float(
+        "adhesion_force",
+        Dimension::Force,
+        column(&|r| r.2.adhesion_force),
+    );
+    t.push_float(
+        "friction_force",
+        Dimension::Force,
+        column(&|r| r.2.friction_force),
+    );
+    t
+}

@@ -1,0 +1,483 @@
+//! Resolution of a `friction` spec into a [`FrictionTask`]: upstream checks, materials, adhesion,
+//! roughness, loads.
+//!
+//! Material rule: the composite modulus is 1/E = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂ (a rigid counter-body
+//! when `upper_material` is omitted); H and ν are those of the softer body (the lower hardness; the
+//! lower body against a rigid one), which must have a hardness.
+
+use crate::engine::study::{ResolveContext, SourceLocation, SpecError};
+use crate::engine::value::{Field, Value};
+use crate::friction::{
+    AdhesionParameters, AsperityModel, Material, ModelOptions, StaticFrictionForm, SummitStatistics,
+};
+use crate::units::{format_number, Dimension};
+
+use super::{
+    form_name, model_name, FrictionMethod, FrictionSpec, FrictionTask, Loads, MethodSetup,
+    Roughness, DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE,
+};
+
+fn spec_error(location: SourceLocation, field: &str, message: impl Into<String>) -> SpecError {
+    SpecError {
+        location,
+        field: field.to_string(),
+        message: message.into(),
+    }
+}
+
+fn positive(v: f64, unit: &str) -> Result<(), String> {
+    if v > 0.0 {
+        Ok(())
+    } else {
+        Err(format!("is out of range: must be > 0 {unit}"))
+    }
+}
+
+/// The value of a parameter of an upstream task.
+fn upstream_param<'a>(ctx: &'a ResolveContext<'_>, index: usize, name: &str) -> Option<&'a Value> {
+    ctx.upstream(index)?
+        .params()
+        .iter()
+        .find(|f| f.name == name)
+        .map(|f| &f.value)
+}
+
+/// Young's modulus (Pa) and Poisson's ratio of one body.
+type Body = (f64, f64);
+
+fn resolve_material(
+    spec: &FrictionSpec,
+    ctx: &ResolveContext<'_>,
+    params: &mut Vec<Field>,
+) -> Result<(Material, Body, Option<Body>), SpecError> {
+    let lower = spec.lower_material.resolve(ctx, "lower_material")?;
+    let upper = match &spec.upper_material {
+        Some(m) => Some(m.resolve(ctx, "upper_material")?),
+        None => None,
+    };
+    let compliance = |e: f64, nu: f64| (1.0 - nu * nu) / e;
+    let mut total = compliance(lower.youngs_modulus, lower.poisson_ratio);
+    let mut softer = (lower.hardness, lower.poisson_ratio, "lower_material");
+    if let Some(u) = &upper {
+        total += compliance(u.youngs_modulus, u.poisson_ratio);
+        if let Some(hu) = u.hardness {
+            if lower.hardness.is_none_or(|hl| hu < hl) {
+                softer = (Some(hu), u.poisson_ratio, "upper_material");
+            }
+        }
+    }
+    let Some(hardness) = softer.0 else {
+        return Err(spec_error(
+            spec.lower_material.location(),
+            softer.2,
+            "the softer body needs a hardness: use a built-in material (e.g. `s235jr`) or add `hardness` (e.g. `{youngs_modulus: 210 GPa, poisson_ratio: 0.3, hardness: 2 GPa}`)",
+        ));
+    };
+    let material = Material::new(1.0 / total, hardness, softer.1)
+        .map_err(|e| spec_error(spec.lower_material.location(), softer.2, e.to_string()))?;
+    params.extend([
+        Field::float(
+            "composite_modulus",
+            material.composite_modulus,
+            Dimension::Pressure,
+        ),
+        Field::float("hardness", material.hardness, Dimension::Pressure),
+        Field::float(
+            "poisson_ratio",
+            material.poisson_ratio,
+            Dimension::Dimensionless,
+        ),
+    ]);
+    Ok((
+        material,
+        (lower.youngs_modulus, lower.poisson_ratio),
+        upper.map(|u| (u.youngs_modulus, u.poisson_ratio)),
+    ))
+}
+
+fn resolve_choice<T: Copy>(
+    ctx: &ResolveContext<'_>,
+    param: &Option<crate::engine::study::Param<String>>,
+    field: &str,
+    choices: &[(&str, T)],
+) -> Result<Option<T>, SpecError> {
+    let Some(p) = param else { return Ok(None) };
+    let names: Vec<&str> = choices.iter().map(|(n, _)| *n).collect();
+    let text = ctx.resolve_checked(p, field, |s: &String| {
+        if names.contains(&s.as_str()) {
+            Ok(())
+        } else {
+            Err(format!("is not one of: {}", names.join(", ")))
+        }
+    })?;
+    Ok(choices.iter().find(|(n, _)| *n == text).map(|(_, v)| *v))
+}
+
+fn resolve_loads(
+    spec: &FrictionSpec,
+    ctx: &ResolveContext<'_>,
+    contact: Option<usize>,
+    location: SourceLocation,
+    params: &mut Vec<Field>,
+) -> Result<Loads, SpecError> {
+    fn ascending(
+        ctx: &ResolveContext<'_>,
+        list: &[crate::engine::study::Param<
+            crate::units::Quantity<impl crate::units::DimensionMarker>,
+        >],
+        field: &str,
+        unit: &str,
+    ) -> Result<Vec<f64>, SpecError> {
+        if list.is_empty() {
+            return Err(spec_error(
+                SourceLocation::default(),
+                field,
+                "needs at least one value",
+            ));
+        }
+        let mut values: Vec<f64> = Vec::with_capacity(list.len());
+        for (i, p) in list.iter().enumerate() {
+            let v = ctx.resolve(p, &format!("{field}[{i}]"))?.si();
+            let previous = values.last().copied().unwrap_or(0.0);
+            if !(v > previous && v.is_finite()) {
+                return Err(spec_error(
+                    p.location(),
+                    &format!("{field}[{i}]"),
+                    format!(
+                        "{} {unit} is out of range: values must ascend and be > 0",
+                        format_number(v)
+                    ),
+                ));
+            }
+            values.push(v);
+        }
+        Ok(values)
+    }
+    let joined = |v: &[f64]| {
+        v.iter()
+            .map(|x| format_number(*x))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    match (&spec.nominal_pressures, &spec.loads, contact) {
+        (Some(_), Some(_), _) => Err(spec_error(
+            location,
+            "loads",
+            "give either `nominal_pressures` or `loads`, not both",
+        )),
+        (Some(p), None, _) => {
+            let v = ascending(ctx, p, "nominal_pressures", "Pa")?;
+            params.push(Field::text("nominal_pressures_Pa", joined(&v)));
+            Ok(Loads::Pressures(v))
+        }
+        (None, Some(f), _) => {
+            let v = ascending(ctx, f, "loads", "N")?;
+            params.push(Field::text("loads_N", joined(&v)));
+            Ok(Loads::Forces(v))
+        }
+        (None, None, Some(c)) => Ok(Loads::FromContact(c)),
+        (None, None, None) => Err(spec_error(
+            location,
+            "nominal_pressures",
+            "a statistical friction node needs `nominal_pressures`, `loads` or an upstream `contact` (whose final nominal pressure is used)",
+        )),
+    }
+}
+
+/// Checks the upstream kinds: `lower`/`upper` surfaces, `contact` a contact node.
+fn check_upstream(spec: &FrictionSpec, ctx: &ResolveContext<'_>) -> Result<(), SpecError> {
+    let expected = [
+        ("lower", &spec.lower, crate::nodes::surface::KIND),
+        ("upper", &spec.upper, crate::nodes::surface::KIND),
+        ("contact", &spec.contact, crate::nodes::contact::KIND),
+    ];
+    let mut index = 0;
+    for (role, name, kind) in expected {
+        let Some(name) = name else { continue };
+        if let Some(up) = ctx.upstream(index) {
+            if up.kind() != kind {
+                return Err(spec_error(
+                    name.location,
+                    role,
+                    format!(
+                        "'{}' is a {} node; `{role}` needs a {kind} node",
+                        name.value,
+                        up.kind()
+                    ),
+                ));
+            }
+        }
+        index += 1;
+    }
+    Ok(())
+}
+
+fn location_of(spec: &FrictionSpec) -> SourceLocation {
+    spec.lower_material.location()
+}
+
+pub(super) fn instantiate(
+    spec: &FrictionSpec,
+    ctx: &ResolveContext<'_>,
+) -> Result<FrictionTask, SpecError> {
+    check_upstream(spec, ctx)?;
+    let location = location_of(spec);
+    let method = spec.method.unwrap_or(FrictionMethod::Statistical);
+    let model = resolve_choice(
+        ctx,
+        &spec.model,
+        "model",
+        &[
+            ("kogut_etsion", AsperityModel::KogutEtsion),
+            ("chang_etsion_bogy", AsperityModel::ChangEtsionBogy),
+        ],
+    )?
+    .unwrap_or(AsperityModel::KogutEtsion);
+    let form = resolve_choice(
+        ctx,
+        &spec.static_friction_form,
+        "static_friction_form",
+        &[
+            ("literal", StaticFrictionForm::Literal),
+            ("clipped", StaticFrictionForm::Clipped),
+        ],
+    )?
+    .unwrap_or_default();
+    let mut params = vec![
+        Field::text(
+            "method",
+            match method {
+                FrictionMethod::Statistical => "statistical",
+                FrictionMethod::PerSummit => "per_summit",
+            },
+        ),
+        Field::text("model", model_name(model)),
+        Field::text("static_friction_form", form_name(form)),
+    ];
+    let (material, lower_body, upper_body) = resolve_material(spec, ctx, &mut params)?;
+    let energy = match &spec.adhesion_energy {
+        Some(p) => ctx
+            .resolve_checked(p, "adhesion_energy", |q| {
+                if q.si() >= 0.0 {
+                    Ok(())
+                } else {
+                    Err(String::from("is out of range: must be >= 0 N/m"))
+                }
+            })?
+            .si(),
+        None => DEFAULT_ADHESION_ENERGY,
+    };
+    let epsilon = match &spec.equilibrium_distance {
+        Some(p) => ctx
+            .resolve_checked(p, "equilibrium_distance", |q| positive(q.si(), "m"))?
+            .si(),
+        None => DEFAULT_EQUILIBRIUM_DISTANCE,
+    };
+    let adhesion = AdhesionParameters::new(energy, epsilon)
+        .map_err(|e| spec_error(location, "adhesion_energy", e.to_string()))?;
+    params.push(Field::float(
+        "adhesion_energy",
+        energy,
+        Dimension::SurfaceEnergy,
+    ));
+    params.push(Field::float(
+        "equilibrium_distance",
+        epsilon,
+        Dimension::Length,
+    ));
+    let nominal_area = match &spec.nominal_area {
+        Some(p) => {
+            let a = ctx
+                .resolve_checked(p, "nominal_area", |q| positive(q.si(), "m^2"))?
+                .si();
+            params.push(Field::float("nominal_area", a, Dimension::Area));
+            Some(a)
+        }
+        None => None,
+    };
+    let surfaces = usize::from(spec.lower.is_some()) + usize::from(spec.upper.is_some());
+    let contact = spec.contact.as_ref().map(|_| surfaces);
+    let setup = match method {
+        FrictionMethod::Statistical => {
+            if spec.summits_table.is_some() {
+                return Err(spec_error(
+                    location,
+                    "summits_table",
+                    "is only available with `method: per_summit`",
+                ));
+            }
+            let roughness = match (&spec.roughness, &spec.lower, &spec.upper) {
+                (Some(_), Some(n), _) | (Some(_), None, Some(n)) => {
+                    return Err(spec_error(
+                        n.location,
+                        "roughness",
+                        "give either explicit `roughness` or upstream surfaces (`lower`, `upper`), not both",
+                    ))
+                }
+                (Some(r), None, None) => {
+                    let sigma = ctx
+                        .resolve_checked(&r.sigma, "roughness.sigma", |q| positive(q.si(), "m"))?
+                        .si();
+                    let radius = ctx
+                        .resolve_checked(&r.radius, "roughness.radius", |q| positive(q.si(), "m"))?
+                        .si();
+                    let density =
+                        ctx.resolve_checked(&r.density, "roughness.density", |v| positive(*v, "per m^2"))?;
+                    let summits = SummitStatistics::from_explicit(sigma, radius, density)
+                        .map_err(|e| spec_error(r.sigma.location(), "roughness", e.to_string()))?;
+                    if nominal_area.is_none() {
+                        return Err(spec_error(
+                            r.sigma.location(),
+                            "nominal_area",
+                            "is required with explicit `roughness` (there is no upstream surface to take it from)",
+                        ));
+                    }
+                    params.extend([
+                        Field::float("sigma", sigma, Dimension::Length),
+                        Field::float("summit_radius", radius, Dimension::Length),
+                        Field::float("summit_density", density, Dimension::InverseArea),
+                    ]);
+                    Roughness::Explicit(summits)
+                }
+                (None, Some(_), upper) => Roughness::Surfaces {
+                    lower: 0,
+                    upper: upper.as_ref().map(|_| 1),
+                },
+                (None, None, Some(n)) => {
+                    return Err(spec_error(
+                        n.location,
+                        "upper",
+                        "is given without `lower` (one surface goes in `lower`)",
+                    ))
+                }
+                (None, None, None) => {
+                    return Err(spec_error(
+                        location,
+                        "roughness",
+                        "a statistical friction node needs upstream surfaces (`lower`, optional `upper`) or explicit `roughness: {sigma, radius, density}`",
+                    ))
+                }
+            };
+            let loads = resolve_loads(spec, ctx, contact, location, &mut params)?;
+            MethodSetup::Statistical {
+                roughness,
+                nominal_area,
+                loads,
+            }
+        }
+        FrictionMethod::PerSummit => per_summit_setup(
+            spec,
+            ctx,
+            location,
+            contact,
+            nominal_area,
+            lower_body,
+            upper_body,
+            &mut params,
+        )?,
+    };
+    Ok(FrictionTask {
+        params,
+        model,
+        material,
+        adhesion,
+        options: ModelOptions {
+            static_friction_form: form,
+            ..ModelOptions::default()
+        },
+        setup,
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn per_summit_setup(
+    spec: &FrictionSpec,
+    ctx: &ResolveContext<'_>,
+    location: SourceLocation,
+    contact: Option<usize>,
+    nominal_area: Option<f64>,
+    lower_body: (f64, f64),
+    upper_body: Option<(f64, f64)>,
+    params: &mut Vec<Field>,
+) -> Result<MethodSetup, SpecError> {
+    let not_here = |field: &str, what: &str| {
+        Err(spec_error(
+            location,
+            field,
+            format!("is not used by `method: per_summit` ({what}); remove it"),
+        ))
+    };
+    if spec.lower.is_some() || spec.upper.is_some() {
+        return not_here(
+            "lower",
+            "summits are found on the composite topography the contact node solved",
+        );
+    }
+    if spec.roughness.is_some() {
+        return not_here(
+            "roughness",
+            "summits come from the contact node's topography",
+        );
+    }
+    if spec.nominal_pressures.is_some() || spec.loads.is_some() {
+        return not_here(
+            "nominal_pressures",
+            "the load is the contact node's final nominal pressure",
+        );
+    }
+    let (Some(index), Some(name)) = (contact, &spec.contact) else {
+        return Err(spec_error(
+            location,
+            "contact",
+            "`method: per_summit` needs an upstream `contact` node (run with `fields: true`)",
+        ));
+    };
+    if let Some(Value::Bool(false)) | None = upstream_param(ctx, index, "fields") {
+        return Err(spec_error(
+            name.location,
+            "contact",
+            format!(
+                "`method: per_summit` needs the deformation fields of contact node '{}': add `fields: true` to it",
+                name.value
+            ),
+        ));
+    }
+    // The deformation was computed with the contact's materials: the friction node's must match.
+    let float = |n: &str| match upstream_param(ctx, index, n) {
+        Some(Value::Float(v)) => Some(*v),
+        _ => None,
+    };
+    let compliance =
+        |body: Option<(f64, f64)>| body.map_or(0.0, |(e, nu): (f64, f64)| (1.0 - nu * nu) / e);
+    let contact_lower = float("lower_youngs_modulus").zip(float("lower_poisson_ratio"));
+    let contact_upper = float("upper_youngs_modulus").zip(float("upper_poisson_ratio"));
+    let ours = compliance(Some(lower_body)) + compliance(upper_body);
+    let theirs = compliance(contact_lower) + compliance(contact_upper);
+    if (ours - theirs).abs() > 1e-9 * theirs.abs() {
+        return Err(spec_error(
+            spec.lower_material.location(),
+            "lower_material",
+            format!(
+                "the composite modulus {} Pa differs from that of contact node '{}' ({} Pa): use the contact node's materials",
+                format_number(1.0 / ours),
+                name.value,
+                format_number(1.0 / theirs)
+            ),
+        ));
+    }
+    let periodic = !matches!(
+        upstream_param(ctx, index, "periodic"),
+        Some(Value::Bool(false))
+    );
+    let summits_table = match &spec.summits_table {
+        Some(p) => ctx.resolve(p, "summits_table")?,
+        None => false,
+    };
+    params.push(Field::bool("summits_table", summits_table));
+    Ok(MethodSetup::PerSummit {
+        contact: index,
+        nominal_area,
+        periodic,
+        summits_table,
+    })
+}

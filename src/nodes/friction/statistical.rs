@@ -1,0 +1,233 @@
+//! `method: statistical`: KE 2004 / CEB static friction on Greenwood–Williamson summit statistics.
+//!
+//! Roughness: explicit, or Nayak/McCool summit statistics from the isotropic profile moments
+//! m0, m2, m4 of the upstream surface(s) (`surfaces` metrics `m0_m^2`, `m2`, `m4_1/m^2`); two
+//! surfaces are combined by adding moments (the equivalent sum surface). Nominal area: explicit or
+//! the lower surface's `nx·dx · ny·dy`. Loads: each nominal pressure times A_n, each force, or the
+//! upstream contact's final nominal pressure times A_n. With several loads the solves share one
+//! net-load grid (`friction::static_friction_curve`); the row is at the **last** load (as the
+//! contact node's row is at its last step) and `friction_curve` has one row per load. A load
+//! the model cannot carry fails the node with the library's message naming the load.
+
+use std::collections::BTreeMap;
+
+use crate::engine::artifact::{Artifact, Table};
+use crate::engine::node::NodeError;
+use crate::engine::value::{Field, Value};
+use crate::friction::{
+    static_friction_curve, SolveSettings, SpectralMoments, StaticFrictionResult, StatisticalModel,
+    SummitStatistics,
+};
+use crate::units::Dimension;
+
+use super::{float_metric, input, FrictionTask, Loads, Roughness};
+
+fn moments(surface: &Artifact, role: &str) -> Result<SpectralMoments, NodeError> {
+    let get = |name: &str| {
+        float_metric(surface, name, role).map_err(|_| {
+            NodeError::new(format!(
+                "{role} surface has no spectral moment {name} (maps with missing points have none: fill them with `fill_missing: true`)"
+            ))
+        })
+    };
+    SpectralMoments::new(get("m0")?, get("m2")?, get("m4")?)
+        .map_err(|e| NodeError::new(format!("{role} surface moments: {e}")))
+}
+
+fn surface_area(surface: &Artifact) -> Result<f64, NodeError> {
+    let int = |name: &str| match surface.metric(name).map(|f| &f.value) {
+        Some(Value::Int(v)) => Ok(*v as f64),
+        _ => Err(NodeError::new(format!("lower surface: no {name}"))),
+    };
+    Ok(int("grid_nx")?
+        * float_metric(surface, "dx", "lower surface")?
+        * int("grid_ny")?
+        * float_metric(surface, "dy", "lower surface")?)
+}
+
+/// The summit statistics and the nominal area of the node.
+fn roughness_and_area(
+    inputs: &[&Artifact],
+    roughness: &Roughness,
+    nominal_area: Option<f64>,
+) -> Result<(SummitStatistics, f64), NodeError> {
+    match roughness {
+        Roughness::Explicit(s) => {
+            let area = nominal_area
+                .ok_or_else(|| NodeError::new("explicit roughness needs a nominal area"))?;
+            Ok((*s, area))
+        }
+        Roughness::Surfaces { lower, upper } => {
+            let lower_surface = input(inputs, *lower, "lower")?;
+            let mut m = moments(lower_surface, "lower")?;
+            if let Some(u) = upper {
+                m = m.combined_with(&moments(input(inputs, *u, "upper")?, "upper")?);
+            }
+            let summits = SummitStatistics::from_spectral_moments(&m)
+                .map_err(|e| NodeError::new(format!("summit statistics: {e}")))?;
+            let area = match nominal_area {
+                Some(a) => a,
+                None => surface_area(lower_surface)?,
+            };
+            Ok((summits, area))
+        }
+    }
+}
+
+pub(super) fn compute(
+    task: &FrictionTask,
+    inputs: &[&Artifact],
+    roughness: &Roughness,
+    nominal_area: Option<f64>,
+    loads: &Loads,
+    metrics: &mut Vec<Field>,
+    tables: &mut BTreeMap<String, Table>,
+) -> Result<(), NodeError> {
+    let (summits, area) = roughness_and_area(inputs, roughness, nominal_area)?;
+    let model = StatisticalModel::new(
+        task.model,
+        summits,
+        task.material,
+        task.adhesion,
+        area,
+        task.options,
+    )
+    .map_err(|e| NodeError::new(format!("friction model: {e}")))?;
+    let forces: Vec<f64> = match loads {
+        Loads::Pressures(p) => p.iter().map(|p| p * area).collect(),
+        Loads::Forces(f) => f.clone(),
+        Loads::FromContact(c) => {
+            vec![float_metric(input(inputs, *c, "contact")?, "nominal_pressure", "contact")? * area]
+        }
+    };
+    let settings = SolveSettings::default();
+    let results = static_friction_curve(&model, &forces, &settings)
+        .map_err(|e| NodeError::new(format!("friction solve: {e}")))?
+        .into_iter()
+        .zip(&forces)
+        .map(|(r, f)| {
+            r.map_err(|e| {
+                NodeError::new(format!(
+                    "friction solve at load {} N (nominal pressure {} Pa): {e}",
+                    crate::units::format_number(*f),
+                    crate::units::format_number(f / area)
+                ))
+            })
+        })
+        .collect::<Result<Vec<StaticFrictionResult>, NodeError>>()?;
+    let last = results
+        .last()
+        .ok_or_else(|| NodeError::new("no load to solve"))?;
+    let mu = |r: &StaticFrictionResult| {
+        r.mu_s.ok_or_else(|| {
+            NodeError::new(format!(
+                "no static friction coefficient at the non-compressive load {} N",
+                r.external_load
+            ))
+        })
+    };
+    let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
+    metrics.extend([
+        n("mu_s", mu(last)?),
+        Field::float("external_load", last.external_load, Dimension::Force),
+        Field::float(
+            "nominal_pressure",
+            last.external_load / area,
+            Dimension::Pressure,
+        ),
+        Field::float("normal_load", last.contact_load, Dimension::Force),
+        Field::float("adhesion_force", last.adhesion_force, Dimension::Force),
+        Field::float(
+            "friction_force",
+            last.static_friction_force,
+            Dimension::Force,
+        ),
+        Field::float(
+            "separation",
+            last.separation_from_heights,
+            Dimension::Length,
+        ),
+        n("d_star", last.d_star),
+        n("plasticity_index", last.plasticity_index),
+        n("contacts", last.contacting_summits),
+        Field::float("real_area", last.real_contact_area, Dimension::Area),
+        n("area_fraction", last.real_contact_area / area),
+        Field::float("apparent_area", area, Dimension::Area),
+        Field::float("gw_sigma", summits.sigma, Dimension::Length),
+        Field::float("gw_sigma_s", summits.sigma_s, Dimension::Length),
+        Field::float("gw_summit_radius", summits.radius, Dimension::Length),
+        Field::float("gw_summit_density", summits.density, Dimension::InverseArea),
+        n("gw_beta", summits.beta),
+        Field::int("roots_found", last.status.roots_found as i64),
+        Field::int("iterations", last.status.brent_iterations as i64),
+        n("residual", last.status.relative_residual),
+        n("integral_error", last.status.max_integral_relative_error),
+    ]);
+    if results.len() > 1 {
+        tables.insert(String::from("curve"), curve_table(&results, area)?);
+    }
+    Ok(())
+}
+
+fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, NodeError> {
+    let column = |f: fn(&StaticFrictionResult) -> f64| results.iter().map(f).collect::<Vec<_>>();
+    let mut t = Table::default();
+    t.push_int("point", (0..results.len() as i64).collect());
+    t.push_float(
+        "external_load",
+        Dimension::Force,
+        column(|r| r.external_load),
+    );
+    t.push_float(
+        "nominal_pressure",
+        Dimension::Pressure,
+        results.iter().map(|r| r.external_load / area).collect(),
+    );
+    let mu: Option<Vec<f64>> = results.iter().map(|r| r.mu_s).collect();
+    let mu = mu.ok_or_else(|| NodeError::new("a curve load is not compressive"))?;
+    t.push_float("mu_s", Dimension::Dimensionless, mu);
+    t.push_float("normal_load", Dimension::Force, column(|r| r.contact_load));
+    t.push_float(
+        "adhesion_force",
+        Dimension::Force,
+        column(|r| r.adhesion_force),
+    );
+    t.push_float(
+        "friction_force",
+        Dimension::Force,
+        column(|r| r.static_friction_force),
+    );
+    t.push_float(
+        "separation",
+        Dimension::Length,
+        column(|r| r.separation_from_heights),
+    );
+    t.push_float(
+        "contacts",
+        Dimension::Dimensionless,
+        column(|r| r.contacting_summits),
+    );
+    t.push_float(
+        "real_area",
+        Dimension::Area,
+        column(|r| r.real_contact_area),
+    );
+    t.push_float(
+        "area_fraction",
+        Dimension::Dimensionless,
+        results.iter().map(|r| r.real_contact_area / area).collect(),
+    );
+    t.push_int(
+        "iterations",
+        results
+            .iter()
+            .map(|r| r.status.brent_iterations as i64)
+            .collect(),
+    );
+    t.push_float(
+        "residual",
+        Dimension::Dimensionless,
+        column(|r| r.status.relative_residual),
+    );
+    Ok(t)
+}
