@@ -1,19 +1,23 @@
 //! Run time against error of the contact solver: one table, grid size × tolerance.
 //!
-//! `cargo bench --bench contact_error` (grids up to 1024²);
-//! `CONTACT_BENCH_LARGE=1 cargo bench --bench contact_error` adds 2048² and 4096².
+//! `cargo bench --bench contact_error` (Hertz up to 512², rough up to 1024²);
+//! `CONTACT_BENCH_LARGE=1 cargo bench --bench contact_error` adds Hertz 1024² and rough 2048²
+//! and 4096²; `CONTACT_BENCH_GRIDS=256,512,1024,2048` picks the rough grids explicitly (the
+//! finest one is the reference). Release profile; medians of several solves on small grids.
 //!
-//! * Hertz: paraboloid on a non-periodic grid with `a = n/4 · dx`; relative errors of the
+//! * `hertz`: paraboloid on a non-periodic grid with `a = n/4 · dx`; relative errors of the
 //!   contact radius `a` (from the contact area), the approach `δ = a²/R` and the mean contact
 //!   pressure (`2p₀/3`) against the closed form. (The peak pressure is checked in
 //!   tests/contact_validation.rs.)
-//! * Rough: self-affine periodic surface (H = 0.8, wavelengths 1 mm … 10 µm, S_q = 1 µm) on a
-//!   1 mm square against a flat, steel–steel (E* = 115 GPa), p_lim = 4 GPa, 20 MPa nominal;
-//!   errors of A/A₀ and θ against a solve of the same surface on the finest grid with tolerance
-//!   1e-9.
+//! * `rough`: self-affine periodic surface (H = 0.8, wavelengths 1 mm … 10 µm, S_q = 1 µm) on a
+//!   1 mm square against a flat, steel–steel (E* = 115 GPa), p_lim = 4 GPa, 20 MPa nominal,
+//!   solved from a cold start; errors of A/A₀ and θ against a solve of the same surface on the
+//!   finest grid with tolerance 1e-9 (`ref`).
+//! * `warm`: the same 20 MPa step warm-started from the converged 15 MPa step (a load curve).
 //!
-//! `t_fft` is one forward + inverse real FFT pair on the grid the solver transforms (2n × 2n for
-//! the non-periodic DC-FFT), `ratio = t_iter / t_fft`.
+//! Columns: CG iterations, FFT pairs per iteration (convolutions of the solve / iterations),
+//! time per solve, time per iteration, `t_fft` = one forward + inverse real FFT pair on the grid
+//! the solver transforms (2n × 2n for the non-periodic DC-FFT), `ratio = t_iter / t_fft`.
 
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -134,10 +138,12 @@ fn options(tolerance: f64) -> SolverOptions {
 }
 
 fn print_row(case: &str, n: usize, tol: f64, step: &LoadStep, t: f64, fft: f64, errors: &str) {
-    let per_iter = t / step.iterations.max(1) as f64;
+    let iterations = step.iterations.max(1) as f64;
+    let per_iter = t / iterations;
     println!(
-        "| {case:<5} | {n:>5}² | {tol:>7.0e} | {:>5} | {:>9.1} | {:>8.2} | {:>7.2} | {:>5.2} | {:?} | {errors} |",
+        "| {case:<5} | {n:>5}² | {tol:>7.0e} | {:>5} | {:>5.2} | {:>10.1} | {:>9.2} | {:>8.2} | {:>5.2} | {:?} | {errors} |",
         step.iterations,
+        step.fft_pairs as f64 / iterations,
         t * 1e3,
         per_iter * 1e3,
         fft * 1e3,
@@ -146,15 +152,61 @@ fn print_row(case: &str, n: usize, tol: f64, step: &LoadStep, t: f64, fft: f64, 
     );
 }
 
+/// Rough grids: `CONTACT_BENCH_GRIDS` if set, else 256²–1024² (to 4096² with `large`).
+fn rough_grids(large: bool) -> Vec<usize> {
+    match std::env::var("CONTACT_BENCH_GRIDS") {
+        Ok(list) => list
+            .split(',')
+            .filter_map(|v| v.trim().parse().ok())
+            .collect(),
+        Err(_) if large => vec![256, 512, 1024, 2048, 4096],
+        Err(_) => vec![256, 512, 1024],
+    }
+}
+
+/// `CONTACT_BENCH_SWEEP=N`: the rough surface on an `N × N` grid loaded cold from 0.5 % to 95 %
+/// of `p_lim` (tolerance 1e-5); one line per load with the path and iterations.
+fn load_sweep(n: usize) {
+    let material = ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, 4e9).unwrap();
+    let gap = CompositeGap::against_flat(&self_affine(n, 1e-3)).unwrap();
+    let problem = ContactProblem::new(gap, material, Boundary::Periodic);
+    let mut solver = ContactSolver::new(problem, options(1e-5)).unwrap();
+    for ratio in [0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.4, 0.6, 0.8, 0.95] {
+        solver.reset();
+        let start = Instant::now();
+        match solver.solve(ratio * 4e9) {
+            Ok(step) => println!(
+                "p/p_lim {ratio:>5}: {:?}, {} iterations, {} FFT pairs, {:.0} ms, A/A₀ = {:.4}, plastic share {:.3}",
+                step.path,
+                step.iterations,
+                step.fft_pairs,
+                start.elapsed().as_secs_f64() * 1e3,
+                step.area_fraction,
+                step.plastic_area_share
+            ),
+            Err(e) => println!("p/p_lim {ratio:>5}: {e}"),
+        }
+    }
+}
+
 fn main() {
+    if let Some(n) = std::env::var("CONTACT_BENCH_SWEEP")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        load_sweep(n);
+        return;
+    }
     let large = std::env::var("CONTACT_BENCH_LARGE").is_ok_and(|v| v == "1");
     let tolerances = [1e-3, 1e-5, 1e-7];
     println!("threads: {}", rayon::current_num_threads());
-    println!("| case  |  grid  |   tol   | iters | t_solve ms | t_iter ms | t_fft ms | ratio | path | errors |");
-    println!("|-------|--------|---------|-------|-----------|----------|---------|-------|------|--------|");
+    println!("| case  |  grid  |   tol   | iters | pairs/it | t_solve ms | t_iter ms | t_fft ms | ratio | path | errors |");
+    println!("|-------|--------|---------|-------|----------|------------|-----------|----------|-------|------|--------|");
 
     // Hertz on a non-periodic grid, a = n/4 pixels.
-    let hertz_grids: &[usize] = if large {
+    let hertz_grids: &[usize] = if std::env::var("CONTACT_BENCH_HERTZ").is_ok_and(|v| v == "0") {
+        &[]
+    } else if large {
         &[64, 128, 256, 512, 1024]
     } else {
         &[64, 128, 256, 512]
@@ -192,12 +244,10 @@ fn main() {
     // Self-affine rough surface, elastic–plastic, periodic.
     let side = 1e-3;
     let material = ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, 4e9).unwrap();
-    let rough_grids: &[usize] = if large {
-        &[256, 512, 1024, 2048, 4096]
-    } else {
-        &[256, 512, 1024]
+    let grids = rough_grids(large);
+    let Some(&finest) = grids.iter().max() else {
+        return;
     };
-    let finest = *rough_grids.last().unwrap();
     let reference = {
         let gap = CompositeGap::against_flat(&self_affine(finest, side)).unwrap();
         let mut solver = ContactSolver::new(
@@ -217,35 +267,37 @@ fn main() {
         );
         step
     };
-    for &n in rough_grids {
+    let errors = |step: &LoadStep| {
+        format!(
+            "A/A₀ {:.2e}, θ {:.2e} (A/A₀ = {:.4}, θ = {:.3})",
+            (step.area_fraction - reference.area_fraction).abs() / reference.area_fraction,
+            (step.stress_ratio - reference.stress_ratio).abs() / reference.stress_ratio,
+            step.area_fraction,
+            step.stress_ratio
+        )
+    };
+    for &n in &grids {
         let gap = CompositeGap::against_flat(&self_affine(n, side)).unwrap();
         let fft = fft_pair_seconds(n);
         for &tol in &tolerances {
             let problem = ContactProblem::new(gap.clone(), material, Boundary::Periodic);
             let mut solver = ContactSolver::new(problem, options(tol)).unwrap();
             let (step, t) = timed_solve(&mut solver, 20e6, reps(n));
-            let errors = format!(
-                "A/A₀ {:.2e}, θ {:.2e} (A/A₀ = {:.4}, θ = {:.3})",
-                (step.area_fraction - reference.area_fraction).abs() / reference.area_fraction,
-                (step.stress_ratio - reference.stress_ratio).abs() / reference.stress_ratio,
-                step.area_fraction,
-                step.stress_ratio
-            );
-            print_row("rough", n, tol, &step, t, fft, &errors);
-        }
-        if n == 1024 {
-            // Warm-started load steps up to 20 MPa, as in a study.
-            let problem = ContactProblem::new(gap.clone(), material, Boundary::Periodic);
-            let mut solver = ContactSolver::new(problem, options(1e-5)).unwrap();
-            let loads = [5e6, 10e6, 15e6, 20e6];
-            let t = Instant::now();
-            let curve = solver.solve_load_steps(&loads).unwrap();
-            let per_step = t.elapsed().as_secs_f64() / loads.len() as f64;
-            let iters: Vec<usize> = curve.steps.iter().map(|s| s.iterations).collect();
-            println!(
-                "load curve 1024², 5–20 MPa in 4 warm-started steps, tol 1e-5: {:.0} ms per step, iterations {iters:?}",
-                per_step * 1e3
-            );
+            print_row("rough", n, tol, &step, t, fft, &errors(&step));
+            // The 20 MPa step of a load curve, warm-started from 15 MPa.
+            let mut times = Vec::new();
+            let mut last = None;
+            for _ in 0..reps(n) {
+                solver.reset();
+                solver.solve(15e6).unwrap();
+                let start = Instant::now();
+                let step = solver.solve(20e6).unwrap();
+                times.push(start.elapsed().as_secs_f64());
+                last = Some(step);
+            }
+            if let Some(step) = last {
+                print_row("warm", n, tol, &step, median(times), fft, &errors(&step));
+            }
         }
     }
 }

@@ -12,6 +12,7 @@
 
 pub mod contact;
 pub mod engine;
+pub mod fft2;
 pub mod friction;
 pub mod materials;
 pub mod nodes;

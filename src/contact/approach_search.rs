@@ -9,9 +9,9 @@
 //! iteration can stall.
 
 use super::constrained_cg::{self, CgOutcome, CgSettings, Control, Workspace};
-use super::fft2d::FftFailure;
 use super::influence::InfluenceOperator;
 use super::options::Termination;
+use crate::fft2::FftFailure;
 
 /// Maximum number of inner solves (bracketing plus regula falsi).
 const MAX_OUTER: usize = 200;
@@ -25,38 +25,42 @@ pub(crate) fn solve(
     start_approach: f64,
     settings: &CgSettings,
 ) -> Result<CgOutcome, FftFailure> {
-    let mut iterations = 0;
+    // (CG iterations, FFT pairs) summed over the inner solves.
+    let mut iterations = (0, 0);
     let inner = |ws: &mut Workspace,
                  op: &mut InfluenceOperator,
                  approach: f64,
-                 iterations: &mut usize|
+                 iterations: &mut (usize, usize)|
      -> Result<Option<(CgOutcome, f64)>, FftFailure> {
         let budget = CgSettings {
-            max_iterations: settings.max_iterations.saturating_sub(*iterations),
+            max_iterations: settings.max_iterations.saturating_sub(iterations.0),
             ..*settings
         };
         let out = constrained_cg::solve(ws, op, Control::Approach { approach }, &budget)?;
-        *iterations += out.iterations;
+        iterations.0 += out.iterations;
+        iterations.1 += out.fft_pairs;
         Ok(match out.termination {
             Termination::Converged => Some((out, out.mean_pressure - nominal_pressure)),
             _ => None,
         })
     };
-    let fail = |termination, iterations, last: Option<CgOutcome>| {
+    let fail = |termination, (iterations, fft_pairs): (usize, usize), last: Option<CgOutcome>| {
         let mean_pressure = last.map_or(0.0, |o| o.mean_pressure);
         let mut residuals = last.map(|o| o.residuals).unwrap_or_default();
         residuals.force = (mean_pressure - nominal_pressure).abs() / nominal_pressure;
         CgOutcome {
             termination,
             iterations,
+            fft_pairs,
             residuals,
             approach: last.map_or(start_approach, |o| o.approach),
             mean_pressure,
         }
     };
-    let finish = |mut out: CgOutcome, iterations| {
+    let finish = |mut out: CgOutcome, (iterations, fft_pairs): (usize, usize)| {
         out.residuals.force = (out.mean_pressure - nominal_pressure).abs() / nominal_pressure;
         out.iterations = iterations;
+        out.fft_pairs = fft_pairs;
         out
     };
     let tolerance = settings.tolerance * nominal_pressure;

@@ -13,17 +13,23 @@
 //! `G = Σ_F g²`, reset to 0 when points entered `F`); step `τ = Σ_F g t / Σ_F (K t − mean_F K t) t`;
 //! `p ← p − τ t`, then projection on the box; points at a bound whose gap has the wrong sign
 //! (`p = 0, g < 0` or `p = p_lim, g > 0`) re-enter with `p ← p − τ g`. Under load control the
-//! load is restored by scaling the free pressures (saturating at `p_lim`). The displacement is
-//! updated as `u ← u − τ K t` when no projection occurred, otherwise recomputed with one FFT pair;
-//! convergence is always confirmed on an exactly recomputed displacement.
+//! load is restored by scaling the free pressures (saturating at `p_lim`).
+//!
+//! Convolutions: one FFT pair `w = K t` per iteration; the displacement is updated by linearity,
+//! `u ← u − τ w`, which is exact for the CG step itself. After a nonlinear correction
+//! (projection, re-entry, load rebalancing) `u = K p` is recomputed with a second FFT pair at the
+//! start of the next iteration, and convergence is only accepted on a displacement recomputed
+//! from the pressures, so every residual is judged on an exact `u`. (Deferring the
+//! recomputation over several iterations saves FFT pairs but, measured on rough elastic–plastic
+//! contact, costs more iterations than it saves, and can stall the iteration.)
 //!
 //! Convergence: all four [`Residuals`] `≤ ε`.
 
 use rayon::prelude::*;
 
-use super::fft2d::FftFailure;
 use super::influence::InfluenceOperator;
 use super::options::{Residuals, Termination};
+use crate::fft2::FftFailure;
 
 /// Block length of the deterministic parallel reductions (independent of the thread count).
 const BLOCK: usize = 1 << 13;
@@ -54,6 +60,8 @@ pub(crate) struct CgSettings {
 pub(crate) struct CgOutcome {
     pub termination: Termination,
     pub iterations: usize,
+    /// Convolutions (one forward and one inverse real 2-D FFT each) of this solve.
+    pub fft_pairs: usize,
     pub residuals: Residuals,
     pub approach: f64,
     pub mean_pressure: f64,
@@ -426,7 +434,8 @@ impl Workspace {
 }
 
 /// Runs the constrained CG from the pressures in `ws.p` (which must satisfy the bounds, and under
-/// load control the load). On return `ws.p`, `ws.u = K p` and `ws.g` hold the last iterate.
+/// load control the load). On return `ws.p`, `ws.u = K p` (recomputed exactly) and `ws.g` hold
+/// the last iterate.
 pub(crate) fn solve(
     ws: &mut Workspace,
     op: &mut InfluenceOperator,
@@ -436,8 +445,12 @@ pub(crate) fn solve(
     let plim = settings.flow_pressure;
     let n = ws.len() as f64;
     let h = settings.gap_scale;
-    op.apply(&ws.p, &mut ws.u)?;
-    let mut u_exact = true;
+    let mut fft_pairs = 0;
+    // `u` was recomputed from `p` at this iterate (not only updated incrementally).
+    let mut u_fresh = false;
+    // `u = K p` must be recomputed before the next gap pass: at the start, after a change of `p`
+    // that `u ← u − τ w` does not account for, and to confirm convergence.
+    let mut recompute = true;
     let mut p_sum: f64 = ws.p.iter().sum();
     let mut g_old = 0.0;
     let mut reset = true;
@@ -446,6 +459,11 @@ pub(crate) fn solve(
     let mut iterations = 0;
     let mut delta_prev = 0.0;
     loop {
+        if recompute {
+            op.apply(&ws.p, &mut ws.u)?;
+            fft_pairs += 1;
+            u_fresh = true;
+        }
         let (offset, load_control) = match control {
             Control::Approach { approach } => (approach, false),
             Control::Load { .. } => (0.0, true),
@@ -489,11 +507,11 @@ pub(crate) fn solve(
         let r = residuals.max();
         let termination = if !r.is_finite() {
             Some(Termination::Stalled)
-        } else if r <= settings.tolerance && u_exact {
+        } else if r <= settings.tolerance && u_fresh {
             Some(Termination::Converged)
         } else if r <= settings.tolerance {
-            op.apply(&ws.p, &mut ws.u)?;
-            u_exact = true;
+            // Confirm (or correct) on the exact displacement of the current pressures.
+            recompute = true;
             delta_prev = delta;
             continue;
         } else if iterations >= settings.max_iterations {
@@ -508,10 +526,16 @@ pub(crate) fn solve(
             None
         };
         if let Some(termination) = termination {
+            if !u_fresh {
+                op.apply(&ws.p, &mut ws.u)?;
+                fft_pairs += 1;
+                ws.gap_pass(offset, delta, plim);
+            }
             ws.shift_gap(delta);
             return Ok(CgOutcome {
                 termination,
                 iterations,
+                fft_pairs,
                 residuals,
                 approach: offset + delta,
                 mean_pressure: p_sum / n,
@@ -526,6 +550,7 @@ pub(crate) fn solve(
         g_old = free_g2;
         ws.direction_pass(beta, delta, plim);
         op.apply(&ws.t, &mut ws.w)?;
+        fft_pairs += 1;
         let [w_sum, wt, t_sum, gt] = ws.step_pass(delta, plim);
         let rt = match control {
             Control::Load { .. } if has_free => wt - w_sum / stats.free_count * t_sum,
@@ -540,6 +565,7 @@ pub(crate) fn solve(
         };
         let (new_sum, entered, projected, free_stats) = ws.update_pass(tau, delta, plim);
         iterations += 1;
+        u_fresh = false;
         reset = breakdown || entered > 0.0;
         p_sum = new_sum;
         delta_prev = delta;
@@ -553,9 +579,6 @@ pub(crate) fn solve(
                 nonlinear = true;
             }
         }
-        if nonlinear {
-            op.apply(&ws.p, &mut ws.u)?;
-        }
-        u_exact = nonlinear;
+        recompute = nonlinear;
     }
 }

@@ -1,9 +1,9 @@
 //! Errors of the contact solver.
 
-use super::fft2d::FftFailure;
 use super::gap::GapError;
 use super::material::MaterialError;
 use super::options::{Residuals, Termination};
+use crate::fft2::FftFailure;
 
 /// Why a contact problem could not be set up or solved.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

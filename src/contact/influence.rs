@@ -2,7 +2,7 @@
 
 use std::f64::consts::PI;
 
-use super::fft2d::{FftFailure, RealFft2d};
+use crate::fft2::{FftFailure, RealFft2d};
 
 /// Lateral boundary condition of the contact domain.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

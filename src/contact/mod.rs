@@ -10,7 +10,6 @@
 mod approach_search;
 mod constrained_cg;
 mod error;
-mod fft2d;
 mod gap;
 mod influence;
 mod load_curve;
@@ -18,8 +17,8 @@ mod material;
 mod options;
 mod solver;
 
+pub use crate::fft2::{FftFailure, RealFft2d};
 pub use error::ContactError;
-pub use fft2d::{FftFailure, RealFft2d};
 pub use gap::{CompositeGap, GapError, GapSource};
 pub use influence::Boundary;
 pub use load_curve::{ContactFields, LoadCurve, LoadStep};

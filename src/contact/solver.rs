@@ -197,11 +197,11 @@ impl ContactSolver {
                 SolvePath::ConstrainedCg,
             ),
             SolveStrategy::ApproachSearch => {
-                let start = constrained_cg::solve(ws, op, load, &estimate)?.approach;
-                (
-                    approach_search::solve(ws, op, pressure, start, &settings)?,
-                    SolvePath::ApproachSearch,
-                )
+                let start = constrained_cg::solve(ws, op, load, &estimate)?;
+                let mut search =
+                    approach_search::solve(ws, op, pressure, start.approach, &settings)?;
+                search.fft_pairs += start.fft_pairs;
+                (search, SolvePath::ApproachSearch)
             }
             SolveStrategy::Auto => {
                 let first = constrained_cg::solve(ws, op, load, &settings)?;
@@ -210,13 +210,15 @@ impl ContactSolver {
                 } else {
                     // Restart from the uniform pressure: the stalled iterate may be far off.
                     ws.p.fill(pressure);
-                    let start = constrained_cg::solve(ws, op, load, &estimate)?.approach;
+                    let start = constrained_cg::solve(ws, op, load, &estimate)?;
                     let budget = CgSettings {
                         max_iterations: settings.max_iterations.saturating_sub(first.iterations),
                         ..settings
                     };
-                    let mut second = approach_search::solve(ws, op, pressure, start, &budget)?;
+                    let mut second =
+                        approach_search::solve(ws, op, pressure, start.approach, &budget)?;
                     second.iterations += first.iterations;
+                    second.fft_pairs += first.fft_pairs + start.fft_pairs;
                     (second, SolvePath::ApproachSearch)
                 }
             }
@@ -274,6 +276,7 @@ impl ContactSolver {
             max_elastic_deformation: max_u,
             approach: outcome.approach,
             iterations: outcome.iterations,
+            fft_pairs: outcome.fft_pairs,
             residuals: outcome.residuals,
             path,
             fields: self.options.fields.any().then(|| self.fields()),

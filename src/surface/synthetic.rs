@@ -64,8 +64,8 @@ use rand_core::{Rng, SeedableRng};
 use rayon::prelude::*;
 use realfft::num_complex::Complex64;
 
-use super::spectral::fft2::{inverse_real_2d, FftFailure};
 use super::{HeightMap, HeightMapError};
+use crate::fft2::{inverse_real_2d, FftFailure};
 
 /// Largest grid accepted (`nx·ny`), 16384² points: ~2 GiB of heights plus spectra.
 pub const MAX_SYNTHETIC_POINTS: usize = 1 << 28;
@@ -292,7 +292,7 @@ pub fn generate_synthetic_surface(
         }
     });
     let mut half =
-        Array2::from_shape_vec((ny, nxh), modes).map_err(|e| FftFailure(e.to_string()))?;
+        Array2::from_shape_vec((ny, nxh), modes).map_err(|e| FftFailure::new(e.to_string()))?;
     enforce_hermitian_columns(&mut half, nx);
 
     let mut z = inverse_real_2d(&half, nx)?;

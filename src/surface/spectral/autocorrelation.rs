@@ -23,8 +23,8 @@ use ndarray::Array2;
 use realfft::num_complex::Complex64;
 
 use super::error::{require_complete, SpectralError};
-use super::fft2::{forward_real_2d, inverse_real_2d};
 use super::psd::Axis;
+use crate::fft2::{forward_real_2d, inverse_real_2d};
 use crate::surface::HeightMap;
 
 /// ISO 25178-2 default threshold `s` for Sal and Str.

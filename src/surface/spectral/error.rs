@@ -1,6 +1,6 @@
 //! Errors of the spectral statistics.
 
-use super::fft2::FftFailure;
+use crate::fft2::FftFailure;
 
 /// Why a spectral statistic could not be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -5,18 +5,17 @@
 pub mod autocorrelation;
 pub mod direction;
 pub mod error;
-pub(crate) mod fft2;
 pub mod hurst;
 pub mod moments;
 pub mod psd;
 
+pub use crate::fft2::FftFailure;
 pub use autocorrelation::{
     autocorrelation, AcfBoundary, AcfTexture, Autocorrelation, CorrelationLengths, RadialAcf,
     ISO_ACF_THRESHOLD,
 };
 pub use direction::{texture_direction, TextureDirection};
 pub use error::SpectralError;
-pub use fft2::FftFailure;
 pub use hurst::{fit_power_law, hurst_exponent, HurstFit, HurstFitOptions};
 pub use moments::{spectral_moments, MomentMethod, ProfileMoments, SpectralMoments};
 pub use psd::{periodogram, profile_psd, radial_psd, Axis, Periodogram, PsdTable, Window};

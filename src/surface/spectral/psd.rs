@@ -20,7 +20,7 @@ use ndarray::Array2;
 use std::f64::consts::PI;
 
 use super::error::{require_complete, SpectralError};
-use super::fft2::forward_real_2d;
+use crate::fft2::forward_real_2d;
 use crate::surface::HeightMap;
 
 /// Window applied to the mean-removed heights before the transform.

@@ -1,40 +1,56 @@
-//! Two-dimensional real-to-complex FFT convolution with plans and buffers allocated once.
+//! Two-dimensional real FFT shared by the numerics (`surface` spectra, `contact` convolutions).
+//!
+//! [`RealFft2d`] transforms an `ny × nx` grid (row-major, `x` fastest): real-to-complex FFTs of
+//! the rows (`realfft`), then complex FFTs (`rustfft`) of the `nx/2 + 1` columns of the half
+//! spectrum. Transforms are unnormalised (`Z(k) = Σ z(r) e^{−i k·r}`; the inverse omits `1/N`),
+//! as in FFTW/rustfft, except [`RealFft2d::round_trip`] and [`RealFft2d::convolve`] which
+//! normalise. [`forward_real_2d`] and [`inverse_real_2d`] wrap it for `ndarray` grids with the
+//! half spectrum in the natural layout `[ky][kx]`.
+//!
+//! Rows and columns are transformed in parallel with rayon; every 1-D transform is computed by
+//! the same code whatever the chunking, so results are bit-identical for any thread count.
 
 use std::sync::Arc;
 
+use ndarray::Array2;
 use rayon::prelude::*;
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
-/// Columns transposed together (a tile of `TILE` complex values per column read).
+/// Columns transformed together: a tile of `TILE` columns of `ny` complex values is transposed,
+/// transformed forward, multiplied and transformed back while it is in cache.
 const TILE: usize = 16;
 
-/// A real 2-D FFT failed (internal error: buffer lengths are fixed at construction).
+/// Work chunks per rayon thread (more chunks than threads balance a shared, loaded machine).
+const CHUNKS_PER_THREAD: usize = 4;
+
+/// A 2-D FFT failed: a buffer length does not match the planned grid.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("internal FFT error: {message}")]
+#[error("FFT failed: {message}")]
 pub struct FftFailure {
     message: String,
 }
 
-impl From<realfft::FftError> for FftFailure {
-    fn from(e: realfft::FftError) -> Self {
+impl FftFailure {
+    pub(crate) fn new(message: impl Into<String>) -> Self {
         Self {
-            message: e.to_string(),
+            message: message.into(),
         }
     }
 }
 
-/// Real 2-D FFT on an `ny × nx` grid (row-major, `x` fastest) used as a convolution engine:
-/// `output = IFFT2(K̂ · FFT2(input))` with a real spectral kernel `K̂`.
+impl From<realfft::FftError> for FftFailure {
+    fn from(e: realfft::FftError) -> Self {
+        Self::new(e.to_string())
+    }
+}
+
+/// Real 2-D FFT of an `ny × nx` grid with plans, buffers and scratch allocated once.
 ///
-/// Rows are transformed with real-to-complex FFTs (`realfft`), columns of the half spectrum
-/// (`nx/2 + 1` of them) with complex FFTs (`rustfft`) after a tiled transpose; the spectrum is
-/// kept in transposed layout `[kx][ky]`, where the kernel is applied. Plans, work buffers and FFT
-/// scratch are allocated once in [`RealFft2d::new`]; a transform allocates nothing. Rows and
-/// columns are split into a fixed number of chunks processed with rayon; every row and column is
-/// transformed by the same code whatever the chunking, so results are bit-identical for any
-/// thread count.
+/// The spectrum is kept in transposed layout `[kx][ky]` (index `kx · ny + ky`, `kx ≤ nx/2`,
+/// `ky` in FFT order: `ky = j` for `j ≤ ny/2`, `j − ny` above), where a convolution kernel is
+/// applied column by column. A transform allocates nothing.
 pub struct RealFft2d {
     nx: usize,
     ny: usize,
@@ -60,15 +76,21 @@ impl std::fmt::Debug for RealFft2d {
     }
 }
 
-/// What the column pass does after the forward column FFT.
+/// What the column pass does.
 #[derive(Clone, Copy)]
 enum ColumnPass<'a> {
-    ForwardOnly,
-    Convolve(Option<&'a [f64]>),
+    /// Transpose the row spectra in and transform forward.
+    Forward,
+    /// Forward, multiply by `factor`, inverse.
+    Scale(f64),
+    /// Forward, multiply by the real kernel (layout `[kx][ky]`), inverse.
+    Kernel(&'a [f64]),
+    /// Inverse only, of the spectrum already in the column buffer.
+    Inverse,
 }
 
 impl RealFft2d {
-    /// Plans the transforms of an `ny × nx` grid (`nx, ny ≥ 1`).
+    /// Plans the transforms of an `ny × nx` grid (sizes below 1 are taken as 1).
     pub fn new(nx: usize, ny: usize) -> Self {
         let nx = nx.max(1);
         let ny = ny.max(1);
@@ -84,7 +106,7 @@ impl RealFft2d {
             .max(c2r.get_scratch_len())
             .max(col_forward.get_inplace_scratch_len())
             .max(col_inverse.get_inplace_scratch_len());
-        let chunks = rayon::current_num_threads().max(1);
+        let chunks = (CHUNKS_PER_THREAD * rayon::current_num_threads()).max(1);
         let rows_per_chunk = ny.div_ceil(chunks).max(1);
         let cols_per_chunk = nxc.div_ceil(chunks).max(1);
         let zero = Complex::new(0.0, 0.0);
@@ -111,29 +133,46 @@ impl RealFft2d {
     }
 
     /// Number of complex spectrum values `(nx/2 + 1) · ny`; a kernel has this length, in the
-    /// transposed layout `[kx][ky]` (index `kx · ny + ky`).
+    /// transposed layout `[kx][ky]`.
     pub fn spectrum_len(&self) -> usize {
         self.nxc * self.ny
     }
 
     /// Forward transform of a full `ny × nx` grid; returns the spectrum in layout `[kx][ky]`.
     pub fn forward(&mut self, input: &[f64]) -> Result<&[Complex<f64>], FftFailure> {
+        self.check_len("input", input.len(), self.nx * self.ny)?;
         self.rows_forward(input, self.nx, self.ny)?;
-        self.columns(ColumnPass::ForwardOnly);
+        self.columns(ColumnPass::Forward);
         Ok(&self.cols)
+    }
+
+    /// Unnormalised inverse transform of a spectrum in layout `[kx][ky]` to a full `ny × nx`
+    /// grid. The imaginary parts a real signal's row spectrum cannot carry (`kx = 0` and, for
+    /// even `nx`, `kx = nx/2` after the column transform) are dropped.
+    pub fn inverse(
+        &mut self,
+        spectrum: &[Complex<f64>],
+        output: &mut [f64],
+    ) -> Result<(), FftFailure> {
+        self.check_len("spectrum", spectrum.len(), self.spectrum_len())?;
+        self.check_len("output", output.len(), self.nx * self.ny)?;
+        self.cols.copy_from_slice(spectrum);
+        self.columns(ColumnPass::Inverse);
+        self.rows_inverse(output, self.nx, self.ny)
     }
 
     /// Forward transform, inverse transform and normalisation `1/(nx·ny)` in place: one FFT pair.
     pub fn round_trip(&mut self, data: &mut [f64]) -> Result<(), FftFailure> {
+        self.check_len("data", data.len(), self.nx * self.ny)?;
         self.rows_forward(data, self.nx, self.ny)?;
-        self.columns(ColumnPass::Convolve(None));
+        self.columns(ColumnPass::Scale(1.0 / (self.nx as f64 * self.ny as f64)));
         self.rows_inverse(data, self.nx, self.ny)
     }
 
     /// Circular convolution of the block `input` (`rows × cols`, row-major, placed in the top-left
     /// corner of the zero-padded grid) with the spectral kernel `kernel` (real, layout
     /// `[kx][ky]`, normalisation included); the top-left `rows × cols` block of the result is
-    /// written to `output`.
+    /// written to `output`. One FFT pair.
     pub fn convolve(
         &mut self,
         input: &[f64],
@@ -142,9 +181,29 @@ impl RealFft2d {
         cols: usize,
         rows: usize,
     ) -> Result<(), FftFailure> {
+        if cols > self.nx || rows > self.ny {
+            return Err(FftFailure::new(format!(
+                "block {cols} × {rows} exceeds the grid {} × {}",
+                self.nx, self.ny
+            )));
+        }
+        self.check_len("input", input.len(), cols * rows)?;
+        self.check_len("output", output.len(), cols * rows)?;
+        self.check_len("kernel", kernel.len(), self.spectrum_len())?;
         self.rows_forward(input, cols, rows)?;
-        self.columns(ColumnPass::Convolve(Some(kernel)));
+        self.columns(ColumnPass::Kernel(kernel));
         self.rows_inverse(output, cols, rows)
+    }
+
+    fn check_len(&self, what: &str, got: usize, expected: usize) -> Result<(), FftFailure> {
+        if got == expected {
+            Ok(())
+        } else {
+            Err(FftFailure::new(format!(
+                "{what} has {got} values, expected {expected} for the {} × {} grid",
+                self.nx, self.ny
+            )))
+        }
     }
 
     fn rows_forward(&mut self, input: &[f64], cols: usize, rows: usize) -> Result<(), FftFailure> {
@@ -157,6 +216,7 @@ impl RealFft2d {
             .enumerate()
             .try_for_each(|(chunk, ((real, spec), scratch))| {
                 let first_row = chunk * rpc;
+                let len = r2c.get_scratch_len();
                 for (k, (real_row, spec_row)) in
                     real.chunks_mut(nx).zip(spec.chunks_mut(nxc)).enumerate()
                 {
@@ -167,7 +227,6 @@ impl RealFft2d {
                     }
                     real_row[..cols].copy_from_slice(&input[iy * cols..(iy + 1) * cols]);
                     real_row[cols..].fill(0.0);
-                    let len = r2c.get_scratch_len();
                     r2c.process_with_scratch(real_row, spec_row, &mut scratch[..len])?;
                 }
                 Ok::<(), realfft::FftError>(())
@@ -177,7 +236,6 @@ impl RealFft2d {
 
     fn columns(&mut self, pass: ColumnPass<'_>) {
         let (ny, nxc, cpc) = (self.ny, self.nxc, self.cols_per_chunk);
-        let norm = 1.0 / (self.nx as f64 * ny as f64);
         let rows = &self.rows;
         let (fwd, inv) = (&self.col_forward, &self.col_inverse);
         self.cols
@@ -186,32 +244,30 @@ impl RealFft2d {
             .enumerate()
             .for_each(|(chunk, (cols, scratch))| {
                 let first_col = chunk * cpc;
-                let ncols = cols.len() / ny;
-                for tile_start in (0..ncols).step_by(TILE) {
-                    let tile_end = (tile_start + TILE).min(ncols);
-                    for iy in 0..ny {
-                        let src =
-                            &rows[iy * nxc + first_col + tile_start..][..tile_end - tile_start];
-                        for (k, v) in src.iter().enumerate() {
-                            cols[(tile_start + k) * ny + iy] = *v;
-                        }
-                    }
-                }
                 let fwd_len = fwd.get_inplace_scratch_len();
                 let inv_len = inv.get_inplace_scratch_len();
-                for (k, col) in cols.chunks_mut(ny).enumerate() {
-                    fwd.process_with_scratch(col, &mut scratch[..fwd_len]);
-                    let kernel_col = match pass {
-                        ColumnPass::ForwardOnly => continue,
-                        ColumnPass::Convolve(kernel) => {
-                            kernel.map(|kern| &kern[(first_col + k) * ny..][..ny])
+                for (t, tile) in cols.chunks_mut(ny * TILE).enumerate() {
+                    let tile_col = first_col + t * TILE;
+                    let width = tile.len() / ny;
+                    if !matches!(pass, ColumnPass::Inverse) {
+                        for iy in 0..ny {
+                            let src = &rows[iy * nxc + tile_col..][..width];
+                            for (k, v) in src.iter().enumerate() {
+                                tile[k * ny + iy] = *v;
+                            }
                         }
-                    };
-                    match kernel_col {
-                        Some(kern) => col.iter_mut().zip(kern).for_each(|(c, &w)| *c *= w),
-                        None => col.iter_mut().for_each(|c| *c *= norm),
+                        fwd.process_with_scratch(tile, &mut scratch[..fwd_len]);
                     }
-                    inv.process_with_scratch(col, &mut scratch[..inv_len]);
+                    match pass {
+                        ColumnPass::Forward => continue,
+                        ColumnPass::Scale(factor) => tile.iter_mut().for_each(|c| *c *= factor),
+                        ColumnPass::Kernel(kernel) => {
+                            let weights = &kernel[tile_col * ny..][..width * ny];
+                            tile.iter_mut().zip(weights).for_each(|(c, &w)| *c *= w);
+                        }
+                        ColumnPass::Inverse => {}
+                    }
+                    inv.process_with_scratch(tile, &mut scratch[..inv_len]);
                 }
             });
     }
@@ -263,6 +319,44 @@ impl RealFft2d {
     }
 }
 
+/// Forward transform of a real `[ny, nx]` grid to its half spectrum `[ny, nx/2 + 1]`
+/// (row `j` holds `ky = j` for `j ≤ ny/2` and `j − ny` above; column `i` holds `kx = i`).
+pub(crate) fn forward_real_2d(z: &Array2<f64>) -> Result<Array2<Complex<f64>>, FftFailure> {
+    let (ny, nx) = z.dim();
+    let standard = z.as_standard_layout();
+    let values = standard
+        .as_slice()
+        .ok_or_else(|| FftFailure::new("height grid is not contiguous"))?;
+    let mut fft = RealFft2d::new(nx, ny);
+    let spectrum = fft.forward(values)?;
+    let nxh = nx / 2 + 1;
+    Ok(Array2::from_shape_fn((ny, nxh), |(j, i)| {
+        spectrum[i * ny + j]
+    }))
+}
+
+/// Inverse of a `[ny, nx/2 + 1]` half spectrum to a real `[ny, nx]` grid, unnormalised (divide
+/// by `nx·ny` to invert [`forward_real_2d`]). The imaginary parts a real signal's row spectrum
+/// cannot carry (the `kx = 0` and, for even `nx`, `kx = nx/2` columns after the y transform) are
+/// dropped; callers that build Hermitian spectra make them zero up to round-off.
+pub(crate) fn inverse_real_2d(
+    half: &Array2<Complex<f64>>,
+    nx: usize,
+) -> Result<Array2<f64>, FftFailure> {
+    let (ny, nxh) = half.dim();
+    if nxh != nx / 2 + 1 || nx == 0 || ny == 0 {
+        return Err(FftFailure::new(format!(
+            "half spectrum is {ny} × {nxh}, expected {} columns for nx = {nx}",
+            nx / 2 + 1
+        )));
+    }
+    let transposed: Vec<Complex<f64>> = half.t().iter().copied().collect();
+    let mut fft = RealFft2d::new(nx, ny);
+    let mut out = vec![0.0; nx * ny];
+    fft.inverse(&transposed, &mut out)?;
+    Array2::from_shape_vec((ny, nx), out).map_err(|e| FftFailure::new(e.to_string()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -275,7 +369,7 @@ mod tests {
 
     #[test]
     fn round_trip_is_identity() {
-        for (nx, ny) in [(8, 8), (9, 6), (16, 5), (1, 4)] {
+        for (nx, ny) in [(8, 8), (9, 6), (16, 5), (1, 4), (40, 70)] {
             let x = signal(nx, ny);
             let mut y = x.clone();
             let mut fft = RealFft2d::new(nx, ny);
@@ -285,6 +379,19 @@ mod tests {
                 assert!((a - b).abs() < 1e-13, "{nx}×{ny}: {a} vs {b}");
             }
         }
+    }
+
+    #[test]
+    fn wrong_lengths_are_errors() {
+        let mut fft = RealFft2d::new(4, 3);
+        assert!(fft.forward(&[0.0; 11]).is_err());
+        assert!(fft.round_trip(&mut [0.0; 13]).is_err());
+        let mut out = [0.0; 6];
+        assert!(fft.convolve(&[0.0; 6], &[0.0; 9], &mut out, 3, 2).is_ok());
+        assert!(fft.convolve(&[0.0; 6], &[0.0; 8], &mut out, 3, 2).is_err());
+        assert!(fft
+            .convolve(&[0.0; 10], &[0.0; 9], &mut [0.0; 10], 5, 2)
+            .is_err());
     }
 
     #[test]
@@ -328,6 +435,40 @@ mod tests {
                     "({ix}, {iy}): {direct} vs {got}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn grid_round_trip_recovers_the_grid() {
+        for (ny, nx) in [(6, 8), (5, 7), (4, 9), (2, 2), (37, 20)] {
+            let z = Array2::from_shape_fn((ny, nx), |(j, i)| {
+                ((i * 7 + j * 3) % 11) as f64 - 0.3 * j as f64
+            });
+            let half = forward_real_2d(&z).unwrap();
+            let back = inverse_real_2d(&half, nx).unwrap() / (nx * ny) as f64;
+            // Round-off of a few FFT passes on O(10) values.
+            for (a, b) in z.iter().zip(back.iter()) {
+                assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+            }
+        }
+        assert!(inverse_real_2d(&Array2::zeros((3, 4)), 8).is_err());
+    }
+
+    #[test]
+    fn forward_matches_direct_dft() {
+        let (ny, nx) = (3, 4);
+        let z = Array2::from_shape_fn((ny, nx), |(j, i)| (i as f64).sin() + (j * j) as f64);
+        let half = forward_real_2d(&z).unwrap();
+        for ((j, i), value) in half.indexed_iter() {
+            let mut direct = Complex::new(0.0, 0.0);
+            for ((y, x), zz) in z.indexed_iter() {
+                let phase = -2.0
+                    * std::f64::consts::PI
+                    * ((i * x) as f64 / nx as f64 + (j * y) as f64 / ny as f64);
+                direct += Complex::from_polar(*zz, phase);
+            }
+            // Direct O(N²) sum vs FFT: round-off only.
+            assert!((direct - value).norm() < 1e-12);
         }
     }
 }
