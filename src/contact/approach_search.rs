@@ -27,6 +27,12 @@ pub(crate) fn solve(
 ) -> Result<CgOutcome, FftFailure> {
     // (CG iterations, FFT pairs) summed over the inner solves.
     let mut iterations = (0, 0);
+    // The mean pressure of an approach-controlled solve is exact only to the precision of its
+    // gaps: a gap error e moves a free point's pressure by ~E*·e/dx, i.e. the mean by up to
+    // p_lim·(e/h)-ish relative to p_lim, not to p̄. To resolve P(δ) = p̄ to ε·p̄ the inner solves
+    // are converged to ε·p̄/p_lim (and never looser than ε).
+    let inner_tolerance = (settings.tolerance * nominal_pressure / settings.flow_pressure)
+        .clamp(1e-13, settings.tolerance);
     let inner = |ws: &mut Workspace,
                  op: &mut InfluenceOperator,
                  approach: f64,
@@ -34,6 +40,7 @@ pub(crate) fn solve(
      -> Result<Option<(CgOutcome, f64)>, FftFailure> {
         let budget = CgSettings {
             max_iterations: settings.max_iterations.saturating_sub(iterations.0),
+            tolerance: inner_tolerance,
             ..*settings
         };
         let out = constrained_cg::solve(ws, op, Control::Approach { approach }, &budget)?;
