@@ -219,6 +219,9 @@ impl ContactSpec {
             Dimension::Dimensionless,
         ));
         params.push(Field::bool("fields", fields));
+        // The surface estimate is ~6 f64 per point; the solver holds ~12 per (padded) point.
+        let surface_bytes = ctx.upstream(0).map_or(1 << 30, |t| t.memory_estimate());
+        let memory_estimate = surface_bytes.saturating_mul(if periodic { 2 } else { 8 });
         Ok(ContactTask {
             params,
             lower: (e1, nu1),
@@ -228,6 +231,7 @@ impl ContactSpec {
             periodic,
             tolerance,
             fields,
+            memory_estimate,
         })
     }
 }
@@ -243,6 +247,8 @@ pub struct ContactTask {
     periodic: bool,
     tolerance: f64,
     fields: bool,
+    /// Peak memory in bytes, scaled from the lower surface's estimate (grid size).
+    memory_estimate: u64,
 }
 
 fn height_map(input: &Artifact, role: &str) -> Result<HeightMap, NodeError> {
@@ -279,8 +285,7 @@ impl NodeTask for ContactTask {
     }
 
     fn memory_estimate(&self) -> u64 {
-        // Unknown before the upstream surfaces exist: a 2048² non-periodic solve needs ~1 GiB.
-        1 << 30
+        self.memory_estimate
     }
 
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
