@@ -178,7 +178,7 @@ impl ContactSolver {
             Some(_) => {
                 self.workspace.rebalance(pressure * n, plim);
             }
-            None => self.workspace.p.fill(pressure),
+            None => self.workspace.start_rigid_plastic(pressure, plim),
         }
         self.last_nominal = None;
         let ws = &mut self.workspace;
@@ -208,8 +208,8 @@ impl ContactSolver {
                 if first.termination == Termination::Converged {
                     (first, SolvePath::ConstrainedCg)
                 } else {
-                    // Restart from the uniform pressure: the stalled iterate may be far off.
-                    ws.p.fill(pressure);
+                    // Restart from the rigid-plastic start: the stalled iterate may be far off.
+                    ws.start_rigid_plastic(pressure, plim);
                     let start = constrained_cg::solve(ws, op, load, &estimate)?;
                     let budget = CgSettings {
                         max_iterations: settings.max_iterations.saturating_sub(first.iterations),
