@@ -34,7 +34,7 @@ pub enum ContactError {
         pressure: f64,
         flow_pressure: f64,
     },
-    #[error("load step {step} at {pressure} Pa did not converge: {termination:?} after {iterations} iterations, residuals {residuals:?}")]
+    #[error("load step {step} at {pressure:e} Pa did not converge ({termination:?} after {iterations} iterations); relative residuals: separation {:.1e}, contact {:.1e}, plastic {:.1e}, force {:.1e}; try a looser `tolerance`, more load steps or a finer grid", residuals.separation, residuals.contact, residuals.plastic, residuals.force)]
     NotConverged {
         step: usize,
         pressure: f64,
