@@ -64,7 +64,11 @@ pub struct SolverOptions {
     /// Maximum number of CG iterations per load step (summed over the approach search).
     pub max_iterations: usize,
     /// A solve that has not reduced its largest residual below 0.9 × its best value for this
-    /// many iterations is `Stalled`.
+    /// many iterations is `Stalled` (default 60: a load-controlled CG that stalls with almost all
+    /// contact points saturated hands over to the approach search early instead of after
+    /// hundreds of idle iterations; on the 256²–512² ground pairs of `studies/convergence.yaml`
+    /// this cut the first load step from ~450 to ~110 iterations and a contact from 4–19 s to
+    /// 0.5–1.9 s, with identical results to 4 digits).
     pub stall_iterations: usize,
     /// Algorithm choice.
     pub strategy: SolveStrategy,
@@ -77,7 +81,7 @@ impl Default for SolverOptions {
         Self {
             tolerance: 1e-6,
             max_iterations: 10_000,
-            stall_iterations: 400,
+            stall_iterations: 60,
             strategy: SolveStrategy::Auto,
             fields: FieldRequest::NONE,
         }
