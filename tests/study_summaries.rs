@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use asperity::engine::cache::Cache;
-use asperity::engine::execute::{execute, ExecuteOptions, NoProgress};
+use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, RunReport};
 use asperity::engine::output::{write_summaries, write_tables, OutputMetadata};
 use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
@@ -58,14 +58,18 @@ fn floats(df: &DataFrame, column: &str) -> Vec<f64> {
         .collect()
 }
 
-#[test]
-fn grouped_statistics_match_the_node_table() {
-    let dir = scratch("grouped");
+struct Run {
+    study: Study<TribologyNode>,
+    plan: Plan,
+    report: RunReport,
+    meta: OutputMetadata,
+}
+
+/// Loads `text` as `dir/study.yaml` and computes what its tables and summaries need.
+fn run(dir: &Path, text: &str) -> Run {
     let path = dir.join("study.yaml");
-    std::fs::write(&path, STUDY).unwrap();
+    std::fs::write(&path, text).unwrap();
     let study = Study::<TribologyNode>::load(&path).unwrap();
-    // The summaries need the surface table even though `outputs` lists only scenarios.
-    assert_eq!(study.outputs, ["scenarios", "surfaces"]);
     let plan = Plan::build(&study).unwrap();
     let cache = Cache::open(&dir.join("cache")).unwrap();
     let options = ExecuteOptions {
@@ -80,6 +84,25 @@ fn grouped_statistics_match_the_node_table() {
         tool_version: String::from("test"),
         overrides: Vec::new(),
     };
+    Run {
+        study,
+        plan,
+        report,
+        meta,
+    }
+}
+
+#[test]
+fn grouped_statistics_match_the_node_table() {
+    let dir = scratch("grouped");
+    let Run {
+        study,
+        plan,
+        report,
+        meta,
+    } = run(&dir, STUDY);
+    // The summaries need the surface table even though `outputs` lists only scenarios.
+    assert_eq!(study.outputs, ["scenarios", "surfaces"]);
     let out = dir.join("out");
     write_tables(&out, &plan, &report, &study.outputs, &meta).unwrap();
     let files = write_summaries(&out, &plan, &report, &study.file.summaries, &meta).unwrap();
@@ -136,23 +159,12 @@ fn grouped_statistics_match_the_node_table() {
 #[test]
 fn a_metric_the_node_does_not_have_is_an_error_with_a_suggestion() {
     let dir = scratch("unknown");
-    let path = dir.join("study.yaml");
-    std::fs::write(&path, STUDY.replace("s.sdq", "s.sdqq")).unwrap();
-    let study = Study::<TribologyNode>::load(&path).unwrap();
-    let plan = Plan::build(&study).unwrap();
-    let cache = Cache::open(&dir.join("cache")).unwrap();
-    let options = ExecuteOptions {
-        tables: study.outputs.clone(),
-        memory_budget: 1 << 30,
-        tool_version: String::from("test"),
-    };
-    let report = execute(&plan, &cache, &options, &NoProgress).unwrap();
-    let meta = OutputMetadata {
-        study: study.name().to_string(),
-        study_file_hash: study.file_hash.clone(),
-        tool_version: String::from("test"),
-        overrides: Vec::new(),
-    };
+    let Run {
+        study,
+        plan,
+        report,
+        meta,
+    } = run(&dir, &STUDY.replace("s.sdq", "s.sdqq"));
     let e = write_summaries(&dir, &plan, &report, &study.file.summaries, &meta)
         .unwrap_err()
         .to_string();
