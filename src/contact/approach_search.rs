@@ -8,9 +8,10 @@
 //! remains usable when almost all contact points are saturated, where the load-controlled
 //! iteration can stall.
 
-use super::constrained_cg::{self, CgOutcome, CgSettings, Control, Workspace};
+use super::constrained_cg::{self, CgOutcome, CgSettings, Control};
 use super::influence::InfluenceOperator;
 use super::options::Termination;
+use super::workspace::Workspace;
 use crate::fft2::FftFailure;
 
 /// Maximum number of inner solves (bracketing plus regula falsi).

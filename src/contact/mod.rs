@@ -12,10 +12,12 @@ mod constrained_cg;
 mod error;
 mod gap;
 mod influence;
+mod load_balance;
 mod load_curve;
 mod material;
 mod options;
 mod solver;
+mod workspace;
 
 pub use crate::fft2::{FftFailure, RealFft2d};
 pub use error::ContactError;

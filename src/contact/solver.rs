@@ -3,13 +3,14 @@
 use ndarray::{Array2, ArrayView2};
 
 use super::approach_search;
-use super::constrained_cg::{self, CgOutcome, CgSettings, Control, Workspace};
+use super::constrained_cg::{self, CgOutcome, CgSettings, Control};
 use super::error::ContactError;
 use super::gap::CompositeGap;
 use super::influence::{Boundary, InfluenceOperator};
 use super::load_curve::{ContactFields, LoadCurve, LoadStep};
 use super::material::ContactMaterial;
 use super::options::{SolvePath, SolveStrategy, SolverOptions, Termination};
+use super::workspace::Workspace;
 
 /// A normal contact problem: initial gap, material pair and lateral boundary condition.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,0 +1,528 @@
+//! Arrays and passes of the constrained conjugate-gradient iteration, organised around the
+//! contact set.
+//!
+//! At the loads of interest the true contact area is a few per cent of the grid (A/A₀ ≈ 0.7 % for
+//! the 20 MPa rough benchmark), so every quantity that lives on the contact set — the free-set
+//! statistics, the conjugate direction, the step sums, the pressure update and the load
+//! rebalancing — is computed over an explicit list of contact points (`p > 0`). Only two things
+//! are dense: the convolutions, and one pass per iteration over the points out of contact, which
+//! checks `g ≥ 0` there (the separation residual and the points that re-enter the contact) and
+//! applies a pending linear displacement update `u ← u − τ w`.
+//!
+//! The grid is cut into blocks of [`BLOCK`] points; each block keeps its own ascending list of
+//! contact points, so every pass runs in parallel over blocks with safe disjoint writes, and every
+//! reduction is combined block by block in a fixed order: results do not depend on the number of
+//! threads. The lists are reused from iteration to iteration (no allocation once they reached
+//! their size).
+
+use rayon::prelude::*;
+
+/// Points per block (independent of the thread count).
+pub(crate) const BLOCK: usize = 1 << 13;
+
+/// Statistics of the gap `v = g₀ + u − offset` on the contact set: on the free set
+/// `F = {0 < p < p_lim}` of `y = v − δ_prev` and of `v`, on the saturated set of `v`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ContactStats {
+    pub free_y: f64,
+    pub free_y2: f64,
+    pub free_count: f64,
+    pub free_max: f64,
+    pub free_min: f64,
+    pub sat_max: f64,
+}
+
+impl ContactStats {
+    const EMPTY: Self = Self {
+        free_y: 0.0,
+        free_y2: 0.0,
+        free_count: 0.0,
+        free_max: f64::NEG_INFINITY,
+        free_min: f64::INFINITY,
+        sat_max: f64::NEG_INFINITY,
+    };
+
+    fn add(&mut self, v: f64, y: f64, p: f64, plim: f64) {
+        if p >= plim {
+            self.sat_max = self.sat_max.max(v);
+        } else {
+            self.free_y += y;
+            self.free_y2 += y * y;
+            self.free_count += 1.0;
+            self.free_max = self.free_max.max(v);
+            self.free_min = self.free_min.min(v);
+        }
+    }
+
+    fn combine(a: Self, b: &Self) -> Self {
+        Self {
+            free_y: a.free_y + b.free_y,
+            free_y2: a.free_y2 + b.free_y2,
+            free_count: a.free_count + b.free_count,
+            free_max: a.free_max.max(b.free_max),
+            free_min: a.free_min.min(b.free_min),
+            sat_max: a.sat_max.max(b.sat_max),
+        }
+    }
+}
+
+/// Free-set statistics of the pressures: `Σ_F p`, `max_F p`, `Σ_{p = p_lim} p`, `|F|`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FreeStats {
+    pub free_sum: f64,
+    pub free_max: f64,
+    pub sat_sum: f64,
+    pub free_count: f64,
+}
+
+impl FreeStats {
+    const EMPTY: Self = Self {
+        free_sum: 0.0,
+        free_max: 0.0,
+        sat_sum: 0.0,
+        free_count: 0.0,
+    };
+
+    fn add(&mut self, p: f64, plim: f64) {
+        if p >= plim {
+            self.sat_sum += p;
+        } else if p > 0.0 {
+            self.free_sum += p;
+            self.free_max = self.free_max.max(p);
+            self.free_count += 1.0;
+        }
+    }
+
+    fn combine(a: Self, b: &Self) -> Self {
+        Self {
+            free_sum: a.free_sum + b.free_sum,
+            free_max: a.free_max.max(b.free_max),
+            sat_sum: a.sat_sum + b.sat_sum,
+            free_count: a.free_count + b.free_count,
+        }
+    }
+}
+
+/// What one pressure update did.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct UpdateOutcome {
+    /// `Σ p` after the update.
+    pub pressure_sum: f64,
+    /// Points at a bound with a wrong-signed gap that re-entered the free set.
+    pub entered: f64,
+    /// Free points the step carried out of the box (projected).
+    pub projected: f64,
+    /// Free-set statistics of the new pressures.
+    pub free: FreeStats,
+    /// Contact statistics of the new iterate with `u − τ w` and `δ_prev = δ` (exact for the next
+    /// iteration when nothing was projected, re-entered or rebalanced).
+    pub next: ContactStats,
+}
+
+/// One block of the grid: its contact list and the partial results of the last pass.
+#[derive(Debug, Clone)]
+struct Block {
+    /// Local indices of the points with `p > 0`, ascending.
+    contact: Vec<u32>,
+    /// Points out of contact whose gap is negative at the current `δ`: local index and `g − δ`.
+    entering: Vec<(u32, f64)>,
+    /// Scratch list for rebuilding `contact`.
+    merged: Vec<u32>,
+    stats: ContactStats,
+    free: FreeStats,
+    sums: [f64; 4],
+    zero_min: f64,
+    entered: f64,
+    projected: f64,
+}
+
+impl Block {
+    fn new() -> Self {
+        Self {
+            contact: Vec::new(),
+            entering: Vec::new(),
+            merged: Vec::new(),
+            stats: ContactStats::EMPTY,
+            free: FreeStats::EMPTY,
+            sums: [0.0; 4],
+            zero_min: f64::INFINITY,
+            entered: 0.0,
+            projected: 0.0,
+        }
+    }
+}
+
+/// The per-block output of a pressure update: new pressures and contact list, statistics.
+struct Settled<'a> {
+    p: &'a mut [f64],
+    t: &'a mut [f64],
+    merged: &'a mut Vec<u32>,
+    stats: ContactStats,
+    free: FreeStats,
+}
+
+impl Settled<'_> {
+    /// Sets `p[l] = clamp(new, 0, p_lim)`; a point left with `p > 0` joins the new contact list
+    /// and the statistics (its next gap `v`), one at 0 leaves the direction.
+    fn set(&mut self, l: usize, new: f64, v: f64, delta: f64, plim: f64) {
+        let clamped = new.clamp(0.0, plim);
+        self.p[l] = clamped;
+        if clamped > 0.0 {
+            self.merged.push(l as u32);
+            self.stats.add(v, v - delta, clamped, plim);
+            self.free.add(clamped, plim);
+        } else {
+            self.t[l] = 0.0;
+        }
+    }
+}
+
+fn is_free(p: f64, flow_pressure: f64) -> bool {
+    p > 0.0 && p < flow_pressure
+}
+
+/// Pressures, displacements, gaps and CG vectors of one grid, allocated once.
+#[derive(Debug)]
+pub(crate) struct Workspace {
+    /// Initial gap `g₀` in m.
+    pub g0: Vec<f64>,
+    /// Pressure in Pa.
+    pub p: Vec<f64>,
+    /// Composite elastic displacement `u = K p` in m.
+    pub u: Vec<f64>,
+    /// Gap `g₀ + u − δ` in m of the last iterate (written when a solve returns).
+    pub g: Vec<f64>,
+    /// Conjugate direction, zero off the free set.
+    pub(super) t: Vec<f64>,
+    /// `w = K t`.
+    pub(super) w: Vec<f64>,
+    blocks: Vec<Block>,
+}
+
+impl Workspace {
+    pub(crate) fn new(g0: Vec<f64>) -> Self {
+        let n = g0.len();
+        let blocks = n.div_ceil(BLOCK).max(1);
+        Self {
+            g0,
+            p: vec![0.0; n],
+            u: vec![0.0; n],
+            g: vec![0.0; n],
+            t: vec![0.0; n],
+            w: vec![0.0; n],
+            blocks: vec![Block::new(); blocks],
+        }
+    }
+
+    pub(super) fn len(&self) -> usize {
+        self.p.len()
+    }
+
+    /// Rebuilds the contact lists from `p` and clears the direction (after `p` was set from
+    /// outside the iteration).
+    pub(super) fn rebuild_contact(&mut self) {
+        self.t.fill(0.0);
+        self.blocks
+            .par_iter_mut()
+            .zip(self.p.par_chunks(BLOCK))
+            .for_each(|(block, p)| {
+                block.contact.clear();
+                block.contact.extend(
+                    p.iter()
+                        .enumerate()
+                        .filter(|(_, &pi)| pi > 0.0)
+                        .map(|(i, _)| i as u32),
+                );
+            });
+    }
+
+    /// [`ContactStats`] of `v = g₀ + u − offset` with `y = v − δ_prev`.
+    pub(super) fn contact_stats(
+        &mut self,
+        offset: f64,
+        delta_prev: f64,
+        plim: f64,
+    ) -> ContactStats {
+        let (g0, u, p) = (&self.g0, &self.u, &self.p);
+        self.blocks
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(b, block)| {
+                let base = b * BLOCK;
+                let mut s = ContactStats::EMPTY;
+                for &l in &block.contact {
+                    let i = base + l as usize;
+                    let v = g0[i] + u[i] - offset;
+                    s.add(v, v - delta_prev, p[i], plim);
+                }
+                block.stats = s;
+            });
+        self.blocks.iter().fold(ContactStats::EMPTY, |a, b| {
+            ContactStats::combine(a, &b.stats)
+        })
+    }
+
+    /// The dense pass over the points out of contact. Applies the pending displacement update
+    /// `u ← u − τ w` (everywhere) if `pending_step = Some(τ)`; returns the smallest gap
+    /// `min_{p = 0} (g₀ + u − offset)` and records the points with `g₀ + u − offset − δ < 0`
+    /// (none for `δ = −∞`).
+    pub(super) fn out_of_contact_pass(
+        &mut self,
+        pending_step: Option<f64>,
+        offset: f64,
+        delta: f64,
+    ) -> f64 {
+        let w = &self.w;
+        self.u
+            .par_chunks_mut(BLOCK)
+            .zip(self.g0.par_chunks(BLOCK))
+            .zip(self.p.par_chunks(BLOCK))
+            .zip(self.blocks.par_iter_mut())
+            .enumerate()
+            .for_each(|(b, (((u, g0), p), block))| {
+                if let Some(tau) = pending_step {
+                    let w = &w[b * BLOCK..][..u.len()];
+                    u.iter_mut().zip(w).for_each(|(ui, &wi)| *ui -= tau * wi);
+                }
+                block.entering.clear();
+                let mut zero_min = f64::INFINITY;
+                for (l, ((&ui, &g0i), &pi)) in u.iter().zip(g0).zip(p).enumerate() {
+                    if pi <= 0.0 {
+                        let v = g0i + ui - offset;
+                        zero_min = zero_min.min(v);
+                        if v - delta < 0.0 {
+                            block.entering.push((l as u32, v - delta));
+                        }
+                    }
+                }
+                block.zero_min = zero_min;
+            });
+        self.blocks
+            .iter()
+            .map(|b| b.zero_min)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// `t ← (v − δ) + β t` on the free set, 0 at saturated points (`t` is 0 off the contact).
+    pub(super) fn direction(&mut self, beta: f64, offset: f64, delta: f64, plim: f64) {
+        let (g0, u, p) = (&self.g0, &self.u, &self.p);
+        self.t
+            .par_chunks_mut(BLOCK)
+            .zip(self.blocks.par_iter())
+            .enumerate()
+            .for_each(|(b, (t, block))| {
+                let base = b * BLOCK;
+                for &l in &block.contact {
+                    let (i, l) = (base + l as usize, l as usize);
+                    t[l] = if p[i] < plim {
+                        (g0[i] + u[i] - offset - delta) + beta * t[l]
+                    } else {
+                        0.0
+                    };
+                }
+            });
+    }
+
+    /// `[Σ_F w, Σ_F w t, Σ_F t, Σ_F (v − δ) t]` with `w = K t`.
+    pub(super) fn step_sums(&mut self, offset: f64, delta: f64, plim: f64) -> [f64; 4] {
+        let (g0, u, p, t, w) = (&self.g0, &self.u, &self.p, &self.t, &self.w);
+        self.blocks
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(b, block)| {
+                let base = b * BLOCK;
+                let mut a = [0.0; 4];
+                for &l in &block.contact {
+                    let i = base + l as usize;
+                    if p[i] < plim {
+                        a[0] += w[i];
+                        a[1] += w[i] * t[i];
+                        a[2] += t[i];
+                        a[3] += (g0[i] + u[i] - offset - delta) * t[i];
+                    }
+                }
+                block.sums = a;
+            });
+        self.blocks.iter().fold([0.0; 4], |mut s, b| {
+            s.iter_mut().zip(b.sums).for_each(|(o, v)| *o += v);
+            s
+        })
+    }
+
+    /// CG update of the contact points `p ← p − τ t` (free) and re-entry `p ← p − τ (v − δ)` at
+    /// saturated points with an open gap and at the recorded out-of-contact points with a
+    /// negative gap; projection on `[0, p_lim]`. Points that drop to 0 leave the contact list,
+    /// re-entered points join it. `u` is not changed (see [`UpdateOutcome::next`]).
+    pub(super) fn update(&mut self, tau: f64, offset: f64, delta: f64, plim: f64) -> UpdateOutcome {
+        let (g0, u, w) = (&self.g0, &self.u, &self.w);
+        self.p
+            .par_chunks_mut(BLOCK)
+            .zip(self.t.par_chunks_mut(BLOCK))
+            .zip(self.blocks.par_iter_mut())
+            .enumerate()
+            .for_each(|(b, ((p, t), block))| {
+                let base = b * BLOCK;
+                let Block {
+                    contact,
+                    entering,
+                    merged,
+                    ..
+                } = block;
+                merged.clear();
+                let mut settled = Settled {
+                    p,
+                    t,
+                    merged,
+                    stats: ContactStats::EMPTY,
+                    free: FreeStats::EMPTY,
+                };
+                let (mut entered, mut projected) = (0.0, 0.0);
+                let next_point = |l: usize| g0[base + l] + u[base + l] - tau * w[base + l] - offset;
+                let mut next_entering = entering.iter().peekable();
+                for &l in contact.iter() {
+                    while let Some(&&(e, gap)) = next_entering.peek() {
+                        if e >= l {
+                            break;
+                        }
+                        entered += 1.0;
+                        let e = e as usize;
+                        settled.set(e, -tau * gap, next_point(e), delta, plim);
+                        next_entering.next();
+                    }
+                    let (l, i) = (l as usize, base + l as usize);
+                    let old = settled.p[l];
+                    let new = if old < plim {
+                        let v = old - tau * settled.t[l];
+                        if v <= 0.0 || v >= plim {
+                            projected += 1.0;
+                        }
+                        v
+                    } else {
+                        let gap = g0[i] + u[i] - offset - delta;
+                        if gap > 0.0 {
+                            entered += 1.0;
+                            old - tau * gap
+                        } else {
+                            old
+                        }
+                    };
+                    settled.set(l, new, next_point(l), delta, plim);
+                }
+                for &(e, gap) in next_entering {
+                    entered += 1.0;
+                    let e = e as usize;
+                    settled.set(e, -tau * gap, next_point(e), delta, plim);
+                }
+                let (stats, free) = (settled.stats, settled.free);
+                std::mem::swap(contact, merged);
+                block.stats = stats;
+                block.free = free;
+                block.entered = entered;
+                block.projected = projected;
+            });
+        let mut out = UpdateOutcome {
+            pressure_sum: 0.0,
+            entered: 0.0,
+            projected: 0.0,
+            free: FreeStats::EMPTY,
+            next: ContactStats::EMPTY,
+        };
+        for b in &self.blocks {
+            out.entered += b.entered;
+            out.projected += b.projected;
+            out.free = FreeStats::combine(out.free, &b.free);
+            out.next = ContactStats::combine(out.next, &b.stats);
+        }
+        out.pressure_sum = out.free.free_sum + out.free.sat_sum;
+        out
+    }
+
+    /// `g ← g₀ + u − approach` everywhere (the gap returned with a solve).
+    pub(super) fn write_gap(&mut self, approach: f64) {
+        self.g
+            .par_chunks_mut(BLOCK)
+            .zip(self.g0.par_chunks(BLOCK))
+            .zip(self.u.par_chunks(BLOCK))
+            .for_each(|((g, g0), u)| {
+                for ((gi, &g0i), &ui) in g.iter_mut().zip(g0).zip(u) {
+                    *gi = g0i + ui - approach;
+                }
+            });
+    }
+
+    /// Free-set statistics of the current pressures (contact lists must be current).
+    pub(super) fn free_stats(&mut self, plim: f64) -> FreeStats {
+        let p = &self.p;
+        self.blocks
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(b, block)| {
+                let base = b * BLOCK;
+                let mut free = FreeStats::EMPTY;
+                for &l in &block.contact {
+                    free.add(p[base + l as usize], plim);
+                }
+                block.free = free;
+            });
+        self.blocks
+            .iter()
+            .fold(FreeStats::EMPTY, |a, b| FreeStats::combine(a, &b.free))
+    }
+
+    /// `(Σ_F min(s p, p_lim), Σ_{F, s p < p_lim} p)`.
+    pub(super) fn scaled_free_sum(&mut self, s: f64, plim: f64) -> (f64, f64) {
+        let p = &self.p;
+        self.blocks
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(b, block)| {
+                let base = b * BLOCK;
+                let mut a = [0.0; 4];
+                for &l in &block.contact {
+                    let pi = p[base + l as usize];
+                    if is_free(pi, plim) {
+                        if s * pi < plim {
+                            a[0] += s * pi;
+                            a[1] += pi;
+                        } else {
+                            a[0] += plim;
+                        }
+                    }
+                }
+                block.sums = a;
+            });
+        self.blocks
+            .iter()
+            .fold((0.0, 0.0), |(f, d), b| (f + b.sums[0], d + b.sums[1]))
+    }
+
+    /// `p ← min(s p, p_lim)` on the free set; returns the new `Σ_F p`.
+    pub(super) fn scale_free(&mut self, s: f64, plim: f64) -> f64 {
+        self.p
+            .par_chunks_mut(BLOCK)
+            .zip(self.blocks.par_iter_mut())
+            .for_each(|(p, block)| {
+                let mut sum = 0.0;
+                for &l in &block.contact {
+                    let pi = &mut p[l as usize];
+                    if is_free(*pi, plim) {
+                        *pi = (s * *pi).min(plim);
+                        sum += *pi;
+                    }
+                }
+                block.sums[0] = sum;
+            });
+        self.blocks.iter().map(|b| b.sums[0]).sum()
+    }
+
+    /// `Σ clamp(p + c, 0, p_lim)` over all points.
+    pub(super) fn shifted_sum(&mut self, c: f64, plim: f64) -> f64 {
+        self.p
+            .par_chunks(BLOCK)
+            .zip(self.blocks.par_iter_mut())
+            .for_each(|(p, block)| {
+                block.sums[0] = p.iter().map(|&pi| (pi + c).clamp(0.0, plim)).sum();
+            });
+        self.blocks.iter().map(|b| b.sums[0]).sum()
+    }
+}
