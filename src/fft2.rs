@@ -277,12 +277,7 @@ impl RealFft2d {
                     let tile_col = first_col + t * TILE;
                     let width = tile.len() / ny;
                     if !matches!(pass, ColumnPass::Inverse) {
-                        for iy in 0..rows {
-                            let src = &spectra[iy * nxc + tile_col..][..width];
-                            for (k, v) in src.iter().enumerate() {
-                                tile[k * ny + iy] = *v;
-                            }
-                        }
+                        transpose(spectra, nxc, rows, tile_col, width, tile, ny);
                         for column in tile.chunks_mut(ny) {
                             column[rows..].fill(Complex::new(0.0, 0.0));
                         }
@@ -325,12 +320,7 @@ impl RealFft2d {
                 for (t, out_tile) in out.chunks_mut(cols * TILE_ROWS).enumerate() {
                     let tile_row = chunk * rpc + t * TILE_ROWS;
                     let height = out_tile.len() / cols;
-                    for kx in 0..nxc {
-                        let src = &spectrum[kx * ny + tile_row..][..height];
-                        for (r, v) in src.iter().enumerate() {
-                            spectra[r * nxc + kx] = *v;
-                        }
-                    }
+                    transpose(spectrum, ny, nxc, tile_row, height, spectra, nxc);
                     for (spec_row, out_row) in
                         spectra.chunks_mut(nxc).zip(out_tile.chunks_mut(cols))
                     {
@@ -351,6 +341,34 @@ impl RealFft2d {
                 Ok::<(), realfft::FftError>(())
             })?;
         Ok(())
+    }
+}
+
+/// Complex values per 64-byte cache line.
+const LINE: usize = 4;
+
+/// `dst[k · dst_stride + i] = src[i · src_stride + first_col + k]` for `i < rows`, `k < width`:
+/// the columns `first_col..first_col + width` of the first `rows` rows of the row-major `src`
+/// become rows of `dst`. Rows are taken `LINE` at a time so that each destination cache line is
+/// written whole (with power-of-two strides the `width` destination lines share a cache set).
+fn transpose(
+    src: &[Complex<f64>],
+    src_stride: usize,
+    rows: usize,
+    first_col: usize,
+    width: usize,
+    dst: &mut [Complex<f64>],
+    dst_stride: usize,
+) {
+    for first_row in (0..rows).step_by(LINE) {
+        let height = LINE.min(rows - first_row);
+        let block = &src[first_row * src_stride + first_col..];
+        for k in 0..width {
+            let line = &mut dst[k * dst_stride + first_row..][..height];
+            for (i, value) in line.iter_mut().enumerate() {
+                *value = block[i * src_stride + k];
+            }
+        }
     }
 }
 
