@@ -542,6 +542,40 @@ mod tests {
     }
 
     #[test]
+    fn results_are_bit_identical_for_any_thread_count() {
+        // The chunking follows the rayon thread count; every 1-D transform must not.
+        let (cols, rows, nx, ny) = (21, 35, 42, 70);
+        let mut input = signal(cols, rows);
+        input[5 * cols..7 * cols].fill(0.0);
+        let kernel: Vec<f64> = signal(nx / 2 + 1, ny);
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut fft = RealFft2d::new(nx, ny);
+                let mut out = vec![0.0; cols * rows];
+                fft.convolve(&input, &kernel, &mut out, cols, rows).unwrap();
+                let mut grid = signal(nx, ny);
+                fft.round_trip(&mut grid).unwrap();
+                out.extend(grid);
+                out.extend(
+                    fft.forward(&signal(nx, ny))
+                        .unwrap()
+                        .iter()
+                        .map(|c| c.re + c.im),
+                );
+                out.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+            })
+        };
+        let one = run(1);
+        for threads in [2, 3] {
+            assert!(one == run(threads), "{threads} threads differ from 1");
+        }
+    }
+
+    #[test]
     fn empty_block_convolves_to_nothing() {
         let mut fft = RealFft2d::new(8, 6);
         let kernel = vec![1.0; fft.spectrum_len()];
