@@ -2,6 +2,15 @@
 
 use super::workspace::{FreeStats, Workspace};
 
+/// Result of a load restoration.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Rebalanced {
+    /// `Σ p` after it.
+    pub pressure_sum: f64,
+    /// The free set could not carry the load: all pressures were shifted.
+    pub shifted: bool,
+}
+
 impl Workspace {
     /// The rigid–perfectly-plastic start for mean pressure `nominal`: the k = ⌊N·p̄/p_lim⌋ points
     /// of smallest initial gap carry p_lim, the next one the remainder, all others nothing. This
@@ -31,10 +40,10 @@ impl Workspace {
     }
 
     /// Restores `Σ p = total` from pressures set outside the iteration (a warm start).
-    pub(crate) fn rebalance(&mut self, total: f64, plim: f64) -> f64 {
+    pub(crate) fn rebalance(&mut self, total: f64, plim: f64) {
         self.rebuild_contact();
         let stats = self.free_stats(plim);
-        self.rebalance_with(total, plim, stats)
+        self.rebalance_with(total, plim, stats);
     }
 
     /// Restores `Σ p = total` (`0 < total < N p_lim`): scales the free pressures, saturating at
@@ -42,8 +51,8 @@ impl Workspace {
     /// of the root at `s₀ = need / Σ_F p`, so it increases monotonically); if the free set cannot
     /// carry the load, shifts all pressures, `p ← clamp(p + c, 0, p_lim)`, with `c` by bisection,
     /// and rebuilds the contact lists. `stats` are the free-set statistics of the current
-    /// pressures. Returns `Σ p`.
-    pub(super) fn rebalance_with(&mut self, total: f64, plim: f64, stats: FreeStats) -> f64 {
+    /// pressures.
+    pub(super) fn rebalance_with(&mut self, total: f64, plim: f64, stats: FreeStats) -> Rebalanced {
         let FreeStats {
             free_sum,
             free_max,
@@ -63,7 +72,10 @@ impl Workspace {
                     s += (need - f) / slope;
                 }
             }
-            return sat_sum + self.scale_free(s, plim);
+            return Rebalanced {
+                pressure_sum: sat_sum + self.scale_free(s, plim),
+                shifted: false,
+            };
         }
         let n = self.len() as f64;
         let pmax = self.p.iter().copied().fold(0.0, f64::max);
@@ -84,6 +96,9 @@ impl Workspace {
             .iter_mut()
             .for_each(|pi| *pi = (*pi + c).clamp(0.0, plim));
         self.rebuild_contact();
-        self.p.iter().sum()
+        Rebalanced {
+            pressure_sum: self.p.iter().sum(),
+            shifted: true,
+        }
     }
 }

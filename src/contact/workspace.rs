@@ -114,9 +114,11 @@ pub(crate) struct UpdateOutcome {
     pub projected: f64,
     /// Free-set statistics of the new pressures.
     pub free: FreeStats,
-    /// Contact statistics of the new iterate with `u − τ w` and `δ_prev = δ` (exact for the next
-    /// iteration when nothing was projected, re-entered or rebalanced).
-    pub next: ContactStats,
+    /// `Σ_F |τ t|`: the pressure change of the linear CG step.
+    pub step_mass: f64,
+    /// `Σ |p_new − (p − τ t)|`: the pressure change the displacement update `u ← u − τ w` does
+    /// not account for (projections and re-entries).
+    pub correction: f64,
 }
 
 /// One block of the grid: its contact list and the partial results of the last pass.
@@ -128,12 +130,13 @@ struct Block {
     entering: Vec<(u32, f64)>,
     /// Scratch list for rebuilding `contact`.
     merged: Vec<u32>,
+    /// Points out of contact whose direction is not yet cleared (it is kept until the next
+    /// conjugation, as a point that is back in contact by then continues its direction).
+    dropped: Vec<u32>,
     stats: ContactStats,
     free: FreeStats,
     sums: [f64; 4],
     zero_min: f64,
-    entered: f64,
-    projected: f64,
 }
 
 impl Block {
@@ -142,12 +145,11 @@ impl Block {
             contact: Vec::new(),
             entering: Vec::new(),
             merged: Vec::new(),
+            dropped: Vec::new(),
             stats: ContactStats::EMPTY,
             free: FreeStats::EMPTY,
             sums: [0.0; 4],
             zero_min: f64::INFINITY,
-            entered: 0.0,
-            projected: 0.0,
         }
     }
 }
@@ -155,24 +157,25 @@ impl Block {
 /// The per-block output of a pressure update: new pressures and contact list, statistics.
 struct Settled<'a> {
     p: &'a mut [f64],
-    t: &'a mut [f64],
+    t: &'a [f64],
     merged: &'a mut Vec<u32>,
-    stats: ContactStats,
+    dropped: &'a mut Vec<u32>,
     free: FreeStats,
+    correction: f64,
 }
 
 impl Settled<'_> {
-    /// Sets `p[l] = clamp(new, 0, p_lim)`; a point left with `p > 0` joins the new contact list
-    /// and the statistics (its next gap `v`), one at 0 leaves the direction.
-    fn set(&mut self, l: usize, new: f64, v: f64, delta: f64, plim: f64) {
+    /// Sets `p[l] = clamp(new, 0, p_lim)` where the linear CG step predicted `linear`; a point
+    /// left with `p > 0` joins the new contact list, one at 0 is recorded as dropped.
+    fn set(&mut self, l: usize, new: f64, linear: f64, plim: f64) {
         let clamped = new.clamp(0.0, plim);
         self.p[l] = clamped;
+        self.correction += (clamped - linear).abs();
         if clamped > 0.0 {
             self.merged.push(l as u32);
-            self.stats.add(v, v - delta, clamped, plim);
             self.free.add(clamped, plim);
-        } else {
-            self.t[l] = 0.0;
+        } else if self.t[l] != 0.0 {
+            self.dropped.push(l as u32);
         }
     }
 }
@@ -192,7 +195,8 @@ pub(crate) struct Workspace {
     pub u: Vec<f64>,
     /// Gap `g₀ + u − δ` in m of the last iterate (written when a solve returns).
     pub g: Vec<f64>,
-    /// Conjugate direction, zero off the free set.
+    /// Conjugate direction: zero at saturated points and, whenever it is convolved, off the
+    /// contact set.
     pub(super) t: Vec<f64>,
     /// `w = K t`.
     pub(super) w: Vec<f64>,
@@ -218,32 +222,38 @@ impl Workspace {
         self.p.len()
     }
 
-    /// Rebuilds the contact lists from `p` and clears the direction (after `p` was set from
-    /// outside the iteration).
+    /// Rebuilds the contact lists from `p` (after `p` was set or shifted outside the CG step);
+    /// points out of contact with a direction left are recorded to be cleared at the next
+    /// conjugation.
     pub(super) fn rebuild_contact(&mut self) {
-        self.t.fill(0.0);
         self.blocks
             .par_iter_mut()
             .zip(self.p.par_chunks(BLOCK))
-            .for_each(|(block, p)| {
+            .zip(self.t.par_chunks(BLOCK))
+            .for_each(|((block, p), t)| {
                 block.contact.clear();
-                block.contact.extend(
-                    p.iter()
-                        .enumerate()
-                        .filter(|(_, &pi)| pi > 0.0)
-                        .map(|(i, _)| i as u32),
-                );
+                block.dropped.clear();
+                for (l, (&pi, &ti)) in p.iter().zip(t).enumerate() {
+                    if pi > 0.0 {
+                        block.contact.push(l as u32);
+                    } else if ti != 0.0 {
+                        block.dropped.push(l as u32);
+                    }
+                }
             });
     }
 
-    /// [`ContactStats`] of `v = g₀ + u − offset` with `y = v − δ_prev`.
+    /// [`ContactStats`] of `v = g₀ + u − τ w − offset` with `y = v − δ_prev`, where
+    /// `pending_step = Some(τ)` is a displacement update not yet applied (`τ = 0` otherwise).
     pub(super) fn contact_stats(
         &mut self,
+        pending_step: Option<f64>,
         offset: f64,
         delta_prev: f64,
         plim: f64,
     ) -> ContactStats {
-        let (g0, u, p) = (&self.g0, &self.u, &self.p);
+        let (g0, u, p, w) = (&self.g0, &self.u, &self.p, &self.w);
+        let tau = pending_step.unwrap_or(0.0);
         self.blocks
             .par_iter_mut()
             .enumerate()
@@ -252,7 +262,7 @@ impl Workspace {
                 let mut s = ContactStats::EMPTY;
                 for &l in &block.contact {
                     let i = base + l as usize;
-                    let v = g0[i] + u[i] - offset;
+                    let v = g0[i] + (u[i] - tau * w[i]) - offset;
                     s.add(v, v - delta_prev, p[i], plim);
                 }
                 block.stats = s;
@@ -303,12 +313,12 @@ impl Workspace {
             .fold(f64::INFINITY, f64::min)
     }
 
-    /// `t ← (v − δ) + β t` on the free set, 0 at saturated points (`t` is 0 off the contact).
+    /// `t ← (v − δ) + β t` on the free set, 0 at saturated points and off the contact set.
     pub(super) fn direction(&mut self, beta: f64, offset: f64, delta: f64, plim: f64) {
         let (g0, u, p) = (&self.g0, &self.u, &self.p);
         self.t
             .par_chunks_mut(BLOCK)
-            .zip(self.blocks.par_iter())
+            .zip(self.blocks.par_iter_mut())
             .enumerate()
             .for_each(|(b, (t, block))| {
                 let base = b * BLOCK;
@@ -320,6 +330,12 @@ impl Workspace {
                         0.0
                     };
                 }
+                for &l in &block.dropped {
+                    if p[base + l as usize] <= 0.0 {
+                        t[l as usize] = 0.0;
+                    }
+                }
+                block.dropped.clear();
             });
     }
 
@@ -352,12 +368,12 @@ impl Workspace {
     /// CG update of the contact points `p ← p − τ t` (free) and re-entry `p ← p − τ (v − δ)` at
     /// saturated points with an open gap and at the recorded out-of-contact points with a
     /// negative gap; projection on `[0, p_lim]`. Points that drop to 0 leave the contact list,
-    /// re-entered points join it. `u` is not changed (see [`UpdateOutcome::next`]).
+    /// re-entered points join it. `u` is not changed.
     pub(super) fn update(&mut self, tau: f64, offset: f64, delta: f64, plim: f64) -> UpdateOutcome {
-        let (g0, u, w) = (&self.g0, &self.u, &self.w);
+        let (g0, u) = (&self.g0, &self.u);
         self.p
             .par_chunks_mut(BLOCK)
-            .zip(self.t.par_chunks_mut(BLOCK))
+            .zip(self.t.par_chunks(BLOCK))
             .zip(self.blocks.par_iter_mut())
             .enumerate()
             .for_each(|(b, ((p, t), block))| {
@@ -366,6 +382,7 @@ impl Workspace {
                     contact,
                     entering,
                     merged,
+                    dropped,
                     ..
                 } = block;
                 merged.clear();
@@ -373,11 +390,11 @@ impl Workspace {
                     p,
                     t,
                     merged,
-                    stats: ContactStats::EMPTY,
+                    dropped,
                     free: FreeStats::EMPTY,
+                    correction: 0.0,
                 };
-                let (mut entered, mut projected) = (0.0, 0.0);
-                let next_point = |l: usize| g0[base + l] + u[base + l] - tau * w[base + l] - offset;
+                let (mut entered, mut projected, mut step_mass) = (0.0, 0.0, 0.0);
                 let mut next_entering = entering.iter().peekable();
                 for &l in contact.iter() {
                     while let Some(&&(e, gap)) = next_entering.peek() {
@@ -385,53 +402,53 @@ impl Workspace {
                             break;
                         }
                         entered += 1.0;
-                        let e = e as usize;
-                        settled.set(e, -tau * gap, next_point(e), delta, plim);
+                        settled.set(e as usize, -tau * gap, 0.0, plim);
                         next_entering.next();
                     }
                     let (l, i) = (l as usize, base + l as usize);
                     let old = settled.p[l];
-                    let new = if old < plim {
-                        let v = old - tau * settled.t[l];
+                    let (new, linear) = if old < plim {
+                        let step = tau * settled.t[l];
+                        step_mass += step.abs();
+                        let v = old - step;
                         if v <= 0.0 || v >= plim {
                             projected += 1.0;
                         }
-                        v
+                        (v, v)
                     } else {
                         let gap = g0[i] + u[i] - offset - delta;
                         if gap > 0.0 {
                             entered += 1.0;
-                            old - tau * gap
+                            (old - tau * gap, old)
                         } else {
-                            old
+                            (old, old)
                         }
                     };
-                    settled.set(l, new, next_point(l), delta, plim);
+                    settled.set(l, new, linear, plim);
                 }
                 for &(e, gap) in next_entering {
                     entered += 1.0;
-                    let e = e as usize;
-                    settled.set(e, -tau * gap, next_point(e), delta, plim);
+                    settled.set(e as usize, -tau * gap, 0.0, plim);
                 }
-                let (stats, free) = (settled.stats, settled.free);
+                let (free, correction) = (settled.free, settled.correction);
                 std::mem::swap(contact, merged);
-                block.stats = stats;
                 block.free = free;
-                block.entered = entered;
-                block.projected = projected;
+                block.sums = [entered, projected, step_mass, correction];
             });
         let mut out = UpdateOutcome {
             pressure_sum: 0.0,
             entered: 0.0,
             projected: 0.0,
             free: FreeStats::EMPTY,
-            next: ContactStats::EMPTY,
+            step_mass: 0.0,
+            correction: 0.0,
         };
         for b in &self.blocks {
-            out.entered += b.entered;
-            out.projected += b.projected;
+            out.entered += b.sums[0];
+            out.projected += b.sums[1];
+            out.step_mass += b.sums[2];
+            out.correction += b.sums[3];
             out.free = FreeStats::combine(out.free, &b.free);
-            out.next = ContactStats::combine(out.next, &b.stats);
         }
         out.pressure_sum = out.free.free_sum + out.free.sat_sum;
         out
