@@ -532,14 +532,25 @@ impl Workspace {
         self.blocks.iter().map(|b| b.sums[0]).sum()
     }
 
-    /// `Σ clamp(p + c, 0, p_lim)` over all points.
+    /// `Σ clamp(p + c, 0, p_lim)` over all points: the contact points one by one, the points
+    /// out of contact (`p = 0`) together as `n₀ · clamp(c, 0, p_lim)` (contact lists must be
+    /// current).
     pub(super) fn shifted_sum(&mut self, c: f64, plim: f64) -> f64 {
-        self.p
-            .par_chunks(BLOCK)
-            .zip(self.blocks.par_iter_mut())
-            .for_each(|(p, block)| {
-                block.sums[0] = p.iter().map(|&pi| (pi + c).clamp(0.0, plim)).sum();
+        let p = &self.p;
+        self.blocks
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(b, block)| {
+                let base = b * BLOCK;
+                block.sums[0] = block
+                    .contact
+                    .iter()
+                    .map(|&l| (p[base + l as usize] + c).clamp(0.0, plim))
+                    .sum();
             });
-        self.blocks.iter().map(|b| b.sums[0]).sum()
+        let in_contact: usize = self.blocks.iter().map(|b| b.contact.len()).sum();
+        let out_of_contact = (self.len() - in_contact) as f64;
+        let contact_sum: f64 = self.blocks.iter().map(|b| b.sums[0]).sum();
+        contact_sum + out_of_contact * c.clamp(0.0, plim)
     }
 }
