@@ -25,7 +25,10 @@
 //! number of iterations, or for larger corrections, costs more iterations than it saves and can
 //! stall the iteration.)
 //!
-//! Convergence: all four [`Residuals`] `≤ ε`.
+//! Convergence: all four [`Residuals`] `≤ ε`. The solve ends `Stalled` when its largest residual
+//! has not fallen below 0.9 × its best value for `stall_iterations`, or at once when the load
+//! restoration has twice fallen back to contact everywhere from the same state (a cycle of the
+//! load-controlled iteration, seen when almost all contact is saturated).
 //!
 //! Everything but the convolutions and one dense pass over the points out of contact runs over
 //! explicit contact lists (see [`super::workspace`]).
@@ -106,6 +109,10 @@ pub(crate) fn solve(
     let mut pending: Option<f64> = None;
     // Σ |Δp| of the pressure corrections left out of `u` since it was last recomputed.
     let mut neglected = 0.0;
+    // The free-set size and largest residual of the last iteration whose load restoration spread
+    // pressure over every point (see `Rebalanced::spread`).
+    let mut last_spread: Option<(f64, f64)> = None;
+    let mut cycling = false;
     let mut p_sum: f64 = ws.p.iter().sum();
     let mut g_old = 0.0;
     let mut reset = true;
@@ -173,6 +180,8 @@ pub(crate) fn solve(
             // Confirm (or correct) on the exact displacement of the current pressures.
             delta_prev = delta;
             continue;
+        } else if cycling {
+            Some(Termination::Stalled)
         } else if iterations >= settings.max_iterations {
             Some(Termination::MaxIterations)
         } else if r < 0.9 * progress_mark {
@@ -241,6 +250,16 @@ pub(crate) fn solve(
                     (rebalanced.pressure_sum - p_sum).abs()
                 };
                 p_sum = rebalanced.pressure_sum;
+                if rebalanced.spread && iterations > 1 {
+                    // Back to contact everywhere from the same state as at the last such fall-back:
+                    // the load-controlled iteration cycles (seen when almost all contact is
+                    // saturated); it stops here instead of after `stall_iterations`.
+                    let state = (stats.free_count, r);
+                    cycling = last_spread.is_some_and(|(free, r_last)| {
+                        free == state.0 && (r - r_last).abs() <= 1e-2 * r_last
+                    });
+                    last_spread = Some(state);
+                }
                 exact = false;
             }
         }

@@ -9,6 +9,9 @@ pub(super) struct Rebalanced {
     pub pressure_sum: f64,
     /// The free set could not carry the load: all pressures were shifted.
     pub shifted: bool,
+    /// The shift was upwards: every point out of contact received pressure, i.e. the iterate
+    /// fell back to contact everywhere.
+    pub spread: bool,
 }
 
 impl Workspace {
@@ -75,6 +78,7 @@ impl Workspace {
             return Rebalanced {
                 pressure_sum: sat_sum + self.scale_free(s, plim),
                 shifted: false,
+                spread: false,
             };
         }
         let n = self.len() as f64;
@@ -99,6 +103,7 @@ impl Workspace {
         Rebalanced {
             pressure_sum: self.p.iter().sum(),
             shifted: true,
+            spread: c > 0.0,
         }
     }
 }
