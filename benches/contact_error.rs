@@ -17,7 +17,9 @@
 //!
 //! Columns: CG iterations, FFT pairs per iteration (convolutions of the solve / iterations),
 //! time per solve, time per iteration, `t_fft` = one forward + inverse real FFT pair on the grid
-//! the solver transforms (2n × 2n for the non-periodic DC-FFT), `ratio = t_iter / t_fft`.
+//! the solver transforms (2n × 2n for the non-periodic DC-FFT; the median of three pairs timed
+//! right after each solve of the row, so both see the same machine load),
+//! `ratio = t_iter / t_fft`.
 
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -36,23 +38,46 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-fn fft_pair_seconds(n: usize) -> f64 {
-    let mut fft = RealFft2d::new(n, n);
-    let mut data: Vec<f64> = (0..n * n).map(|i| (i % 17) as f64).collect();
-    let reps = if n >= 2048 { 3 } else { 7 };
-    median(
-        (0..reps)
-            .map(|_| {
-                let t = Instant::now();
-                fft.round_trip(&mut data).unwrap();
-                t.elapsed().as_secs_f64()
-            })
-            .collect(),
-    )
+/// One forward + inverse FFT pair on the solver's grid, timed right after every solve so that
+/// `t_fft` and `t_solve` of a row see the same machine load (this machine is shared).
+struct FftClock {
+    fft: RealFft2d,
+    data: Vec<f64>,
+    samples: Vec<f64>,
 }
 
-/// Solves `reps` times from a cold start; returns the last step and the median time.
-fn timed_solve(solver: &mut ContactSolver, pressure: f64, reps: usize) -> (LoadStep, f64) {
+impl FftClock {
+    fn new(n: usize) -> Self {
+        Self {
+            fft: RealFft2d::new(n, n),
+            data: (0..n * n).map(|i| (i % 17) as f64).collect(),
+            samples: Vec::new(),
+        }
+    }
+
+    /// Times three FFT pairs.
+    fn tick(&mut self) {
+        for _ in 0..3 {
+            let t = Instant::now();
+            self.fft.round_trip(&mut self.data).unwrap();
+            self.samples.push(t.elapsed().as_secs_f64());
+        }
+    }
+
+    /// Median of the pairs timed since the last call.
+    fn take_median(&mut self) -> f64 {
+        median(std::mem::take(&mut self.samples))
+    }
+}
+
+/// Solves `reps` times from a cold start, each followed by [`FftClock::tick`]; returns the last
+/// step and the median time.
+fn timed_solve(
+    solver: &mut ContactSolver,
+    pressure: f64,
+    reps: usize,
+    clock: &mut FftClock,
+) -> (LoadStep, f64) {
     let mut times = Vec::new();
     let mut last = None;
     for _ in 0..reps {
@@ -61,6 +86,7 @@ fn timed_solve(solver: &mut ContactSolver, pressure: f64, reps: usize) -> (LoadS
         let step = solver.solve(pressure).unwrap();
         times.push(t.elapsed().as_secs_f64());
         last = Some(step);
+        clock.tick();
     }
     (last.unwrap(), median(times))
 }
@@ -221,13 +247,13 @@ fn main() {
             ((ix as f64 - c).powi(2) + (iy as f64 - c).powi(2)) * dx * dx / (2.0 * radius)
         });
         let material = ContactMaterial::against_rigid_flat(e_star, f64::INFINITY).unwrap();
-        let fft = fft_pair_seconds(2 * n);
+        let mut clock = FftClock::new(2 * n);
         for &tol in &tolerances {
             let problem =
                 ContactProblem::from_gap_array(gap.view(), dx, dx, material, Boundary::NonPeriodic)
                     .unwrap();
             let mut solver = ContactSolver::new(problem, options(tol)).unwrap();
-            let (step, t) = timed_solve(&mut solver, force / (side * side), reps(n));
+            let (step, t) = timed_solve(&mut solver, force / (side * side), reps(n), &mut clock);
             let a_num = (step.area_fraction * side * side / PI).sqrt();
             let p0 = 3.0 * force / (2.0 * PI * a * a);
             let delta = a * a / radius;
@@ -237,7 +263,7 @@ fn main() {
                 (step.approach - delta).abs() / delta,
                 (step.mean_contact_pressure - 2.0 / 3.0 * p0).abs() / (2.0 / 3.0 * p0)
             );
-            print_row("hertz", n, tol, &step, t, fft, &errors);
+            print_row("hertz", n, tol, &step, t, clock.take_median(), &errors);
         }
     }
 
@@ -255,14 +281,15 @@ fn main() {
             options(1e-9),
         )
         .unwrap();
-        let (step, t) = timed_solve(&mut solver, 20e6, 1);
+        let mut clock = FftClock::new(finest);
+        let (step, t) = timed_solve(&mut solver, 20e6, 1, &mut clock);
         print_row(
             "ref",
             finest,
             1e-9,
             &step,
             t,
-            fft_pair_seconds(finest),
+            clock.take_median(),
             "reference",
         );
         step
@@ -278,11 +305,12 @@ fn main() {
     };
     for &n in &grids {
         let gap = CompositeGap::against_flat(&self_affine(n, side)).unwrap();
-        let fft = fft_pair_seconds(n);
+        let mut clock = FftClock::new(n);
         for &tol in &tolerances {
             let problem = ContactProblem::new(gap.clone(), material, Boundary::Periodic);
             let mut solver = ContactSolver::new(problem, options(tol)).unwrap();
-            let (step, t) = timed_solve(&mut solver, 20e6, reps(n));
+            let (step, t) = timed_solve(&mut solver, 20e6, reps(n), &mut clock);
+            let fft = clock.take_median();
             print_row("rough", n, tol, &step, t, fft, &errors(&step));
             // The 20 MPa step of a load curve, warm-started from 15 MPa.
             let mut times = Vec::new();
@@ -294,8 +322,10 @@ fn main() {
                 let step = solver.solve(20e6).unwrap();
                 times.push(start.elapsed().as_secs_f64());
                 last = Some(step);
+                clock.tick();
             }
             if let Some(step) = last {
+                let fft = clock.take_median();
                 print_row("warm", n, tol, &step, median(times), fft, &errors(&step));
             }
         }
