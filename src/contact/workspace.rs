@@ -180,6 +180,20 @@ impl Settled<'_> {
     }
 }
 
+/// Runs `visit(base, block)` for every block in parallel; `base` is the global index of the
+/// block's first point.
+fn each_block(blocks: &mut [Block], visit: impl Fn(usize, &mut Block) + Sync + Send) {
+    blocks
+        .par_iter_mut()
+        .enumerate()
+        .for_each(|(b, block)| visit(b * BLOCK, block));
+}
+
+/// Global indices of a block's contact points.
+fn contact_points(base: usize, contact: &[u32]) -> impl Iterator<Item = usize> + '_ {
+    contact.iter().map(move |&l| base + l as usize)
+}
+
 fn is_free(p: f64, flow_pressure: f64) -> bool {
     p > 0.0 && p < flow_pressure
 }
@@ -254,19 +268,14 @@ impl Workspace {
     ) -> ContactStats {
         let (g0, u, p, w) = (&self.g0, &self.u, &self.p, &self.w);
         let tau = pending_step.unwrap_or(0.0);
-        self.blocks
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(b, block)| {
-                let base = b * BLOCK;
-                let mut s = ContactStats::EMPTY;
-                for &l in &block.contact {
-                    let i = base + l as usize;
-                    let v = g0[i] + (u[i] - tau * w[i]) - offset;
-                    s.add(v, v - delta_prev, p[i], plim);
-                }
-                block.stats = s;
-            });
+        each_block(&mut self.blocks, |base, block| {
+            let mut s = ContactStats::EMPTY;
+            for i in contact_points(base, &block.contact) {
+                let v = g0[i] + (u[i] - tau * w[i]) - offset;
+                s.add(v, v - delta_prev, p[i], plim);
+            }
+            block.stats = s;
+        });
         self.blocks.iter().fold(ContactStats::EMPTY, |a, b| {
             ContactStats::combine(a, &b.stats)
         })
@@ -342,23 +351,18 @@ impl Workspace {
     /// `[Σ_F w, Σ_F w t, Σ_F t, Σ_F (v − δ) t]` with `w = K t`.
     pub(super) fn step_sums(&mut self, offset: f64, delta: f64, plim: f64) -> [f64; 4] {
         let (g0, u, p, t, w) = (&self.g0, &self.u, &self.p, &self.t, &self.w);
-        self.blocks
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(b, block)| {
-                let base = b * BLOCK;
-                let mut a = [0.0; 4];
-                for &l in &block.contact {
-                    let i = base + l as usize;
-                    if p[i] < plim {
-                        a[0] += w[i];
-                        a[1] += w[i] * t[i];
-                        a[2] += t[i];
-                        a[3] += (g0[i] + u[i] - offset - delta) * t[i];
-                    }
+        each_block(&mut self.blocks, |base, block| {
+            let mut a = [0.0; 4];
+            for i in contact_points(base, &block.contact) {
+                if p[i] < plim {
+                    a[0] += w[i];
+                    a[1] += w[i] * t[i];
+                    a[2] += t[i];
+                    a[3] += (g0[i] + u[i] - offset - delta) * t[i];
                 }
-                block.sums = a;
-            });
+            }
+            block.sums = a;
+        });
         self.blocks.iter().fold([0.0; 4], |mut s, b| {
             s.iter_mut().zip(b.sums).for_each(|(o, v)| *o += v);
             s
@@ -470,17 +474,13 @@ impl Workspace {
     /// Free-set statistics of the current pressures (contact lists must be current).
     pub(super) fn free_stats(&mut self, plim: f64) -> FreeStats {
         let p = &self.p;
-        self.blocks
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(b, block)| {
-                let base = b * BLOCK;
-                let mut free = FreeStats::EMPTY;
-                for &l in &block.contact {
-                    free.add(p[base + l as usize], plim);
-                }
-                block.free = free;
-            });
+        each_block(&mut self.blocks, |base, block| {
+            let mut free = FreeStats::EMPTY;
+            for i in contact_points(base, &block.contact) {
+                free.add(p[i], plim);
+            }
+            block.free = free;
+        });
         self.blocks
             .iter()
             .fold(FreeStats::EMPTY, |a, b| FreeStats::combine(a, &b.free))
@@ -489,25 +489,21 @@ impl Workspace {
     /// `(Σ_F min(s p, p_lim), Σ_{F, s p < p_lim} p)`.
     pub(super) fn scaled_free_sum(&mut self, s: f64, plim: f64) -> (f64, f64) {
         let p = &self.p;
-        self.blocks
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(b, block)| {
-                let base = b * BLOCK;
-                let mut a = [0.0; 4];
-                for &l in &block.contact {
-                    let pi = p[base + l as usize];
-                    if is_free(pi, plim) {
-                        if s * pi < plim {
-                            a[0] += s * pi;
-                            a[1] += pi;
-                        } else {
-                            a[0] += plim;
-                        }
+        each_block(&mut self.blocks, |base, block| {
+            let mut a = [0.0; 4];
+            for i in contact_points(base, &block.contact) {
+                let pi = p[i];
+                if is_free(pi, plim) {
+                    if s * pi < plim {
+                        a[0] += s * pi;
+                        a[1] += pi;
+                    } else {
+                        a[0] += plim;
                     }
                 }
-                block.sums = a;
-            });
+            }
+            block.sums = a;
+        });
         self.blocks
             .iter()
             .fold((0.0, 0.0), |(f, d), b| (f + b.sums[0], d + b.sums[1]))
@@ -537,17 +533,11 @@ impl Workspace {
     /// current).
     pub(super) fn shifted_sum(&mut self, c: f64, plim: f64) -> f64 {
         let p = &self.p;
-        self.blocks
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(b, block)| {
-                let base = b * BLOCK;
-                block.sums[0] = block
-                    .contact
-                    .iter()
-                    .map(|&l| (p[base + l as usize] + c).clamp(0.0, plim))
-                    .sum();
-            });
+        each_block(&mut self.blocks, |base, block| {
+            block.sums[0] = contact_points(base, &block.contact)
+                .map(|i| (p[i] + c).clamp(0.0, plim))
+                .sum();
+        });
         let in_contact: usize = self.blocks.iter().map(|b| b.contact.len()).sum();
         let out_of_contact = (self.len() - in_contact) as f64;
         let contact_sum: f64 = self.blocks.iter().map(|b| b.sums[0]).sum();
