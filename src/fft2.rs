@@ -460,13 +460,7 @@ mod tests {
         stencil[nx] = 0.5;
         stencil[(ny - 1) * nx] = 0.5;
         let mut fft = RealFft2d::new(nx, ny);
-        let norm = 1.0 / (nx * ny) as f64;
-        let kernel: Vec<f64> = fft
-            .forward(&stencil)
-            .unwrap()
-            .iter()
-            .map(|c| c.re * norm)
-            .collect();
+        let kernel = spectral_kernel(&mut fft, &stencil);
         let mut out = vec![0.0; cols * rows];
         fft.convolve(&input, &kernel, &mut out, cols, rows).unwrap();
         let at = |ix: isize, iy: isize| {
@@ -491,6 +485,17 @@ mod tests {
         }
     }
 
+    /// The normalised real spectrum of an even stencil: the kernel `convolve` takes.
+    fn spectral_kernel(fft: &mut RealFft2d, stencil: &[f64]) -> Vec<f64> {
+        let (nx, ny) = fft.shape();
+        let norm = 1.0 / (nx * ny) as f64;
+        fft.forward(stencil)
+            .unwrap()
+            .iter()
+            .map(|c| c.re * norm)
+            .collect()
+    }
+
     /// Even stencil on an `nx × ny` grid (`s(x, y) = s(−x, y) = s(x, −y)`, real spectrum).
     fn even_stencil(nx: usize, ny: usize) -> Vec<f64> {
         (0..nx * ny)
@@ -513,13 +518,7 @@ mod tests {
         }
         let stencil = even_stencil(nx, ny);
         let mut fft = RealFft2d::new(nx, ny);
-        let norm = 1.0 / (nx * ny) as f64;
-        let kernel: Vec<f64> = fft
-            .forward(&stencil)
-            .unwrap()
-            .iter()
-            .map(|c| c.re * norm)
-            .collect();
+        let kernel = spectral_kernel(&mut fft, &stencil);
         let mut out = vec![0.0; cols * rows];
         fft.convolve(&input, &kernel, &mut out, cols, rows).unwrap();
         for iy in 0..rows {
