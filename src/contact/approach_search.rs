@@ -46,29 +46,30 @@ pub(crate) fn solve(
         };
         let out = constrained_cg::solve(ws, op, Control::Approach { approach }, &budget)?;
         iterations.0 += out.iterations;
-        iterations.1 += out.fft_pairs;
+        iterations.1 += out.fft_transforms;
         Ok(match out.termination {
             Termination::Converged => Some((out, out.mean_pressure - nominal_pressure)),
             _ => None,
         })
     };
-    let fail = |termination, (iterations, fft_pairs): (usize, usize), last: Option<CgOutcome>| {
-        let mean_pressure = last.map_or(0.0, |o| o.mean_pressure);
-        let mut residuals = last.map(|o| o.residuals).unwrap_or_default();
-        residuals.force = (mean_pressure - nominal_pressure).abs() / nominal_pressure;
-        CgOutcome {
-            termination,
-            iterations,
-            fft_pairs,
-            residuals,
-            approach: last.map_or(start_approach, |o| o.approach),
-            mean_pressure,
-        }
-    };
-    let finish = |mut out: CgOutcome, (iterations, fft_pairs): (usize, usize)| {
+    let fail =
+        |termination, (iterations, fft_transforms): (usize, usize), last: Option<CgOutcome>| {
+            let mean_pressure = last.map_or(0.0, |o| o.mean_pressure);
+            let mut residuals = last.map(|o| o.residuals).unwrap_or_default();
+            residuals.force = (mean_pressure - nominal_pressure).abs() / nominal_pressure;
+            CgOutcome {
+                termination,
+                iterations,
+                fft_transforms,
+                residuals,
+                approach: last.map_or(start_approach, |o| o.approach),
+                mean_pressure,
+            }
+        };
+    let finish = |mut out: CgOutcome, (iterations, fft_transforms): (usize, usize)| {
         out.residuals.force = (out.mean_pressure - nominal_pressure).abs() / nominal_pressure;
         out.iterations = iterations;
-        out.fft_pairs = fft_pairs;
+        out.fft_transforms = fft_transforms;
         out
     };
     let tolerance = settings.tolerance * nominal_pressure;

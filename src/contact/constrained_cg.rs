@@ -12,17 +12,19 @@
 //! `δ = mean_F(g₀ + K p)`; conjugate direction `t = g + β t_old` on `F` (`β = G/G_old`,
 //! `G = Σ_F g²`; reset to 0 — a steepest-descent restart — when more than [`RESTART_FRACTION`] of
 //! the free set entered it in the last step, and after every recomputation of `u` that did not
-//! confirm convergence); step `τ = Σ_F g t / Σ_F (K t − mean_F K t) t`;
+//! confirm convergence); step `τ = Σ_F g t / (tᵀ K t − Σ_F (K t) Σ_F t / |F|)` (the last term
+//! under load control only; it vanishes with `Σ_F t` when the free set has not changed, see
+//! [`MEAN_FREE_DIRECTION`]);
 //! `p ← p − τ t`, then projection on the box; points at a bound whose gap has the wrong sign
 //! (`p = 0, g < 0` or `p = p_lim, g > 0`) re-enter with `p ← p − τ g`. Under load control the
 //! load is restored by scaling the free pressures (saturating at `p_lim`).
 //!
-//! Convolutions: one FFT pair `w = K t` per iteration; the displacement is updated by linearity,
-//! `u ← u − τ w`, which is exact for the CG step itself. After a nonlinear correction
-//! (projection, re-entry, load rebalancing) `u = K p` is recomputed with a second FFT pair at the
-//! start of the next iteration — unless the corrections accumulated since the last
-//! recomputation are below [`LAZY_CORRECTION`] of the current step, when they are left out of
-//! `u` for now. Convergence is only accepted on a displacement recomputed from the pressures, so
+//! Convolutions: the forward FFT of `t` gives `tᵀ K t` by Parseval, `Σ_q K̂(q) |t̂(q)|²`, so the
+//! step needs no inverse transform unless the load correction term does. After a linear step the
+//! displacement is updated by linearity, `u ← u − τ w`, with `w = K t` from one inverse FFT of
+//! the kept spectrum (one FFT pair per iteration). After a nonlinear correction (projection,
+//! re-entry, load rebalancing) `u = K p` is recomputed with a full pair at the start of the next
+//! iteration instead (1.5 pairs, or 2 if the step needed `w`). Convergence is only accepted on a displacement recomputed from the pressures, so
 //! every reported residual is judged on an exact `u`. (Deferring the recomputation by a fixed
 //! number of iterations, or for larger corrections, costs more iterations than it saves and can
 //! stall the iteration.)
@@ -41,17 +43,6 @@ use super::options::{Residuals, Termination};
 use super::workspace::Workspace;
 use crate::fft2::FftFailure;
 
-/// Under load control, pressure corrections (projections, re-entries, load restoration) whose
-/// accumulated size `Σ |Δp|` stays below this fraction of the current CG step `Σ_F |τ t|` are
-/// left out of the displacement until the next recomputation of `u = K p`, which saves one FFT
-/// pair per iteration; convergence is still only accepted on a recomputed displacement. Under
-/// approach control (the inner solves of the approach search, converged to much tighter
-/// tolerances) the recomputation is never deferred: there it made solves stall. Measured on the
-/// 20 MPa rough benchmark (benches/contact_error.rs), 0.01 cuts the FFT pairs of a 1024² solve
-/// by 12 % (128 → 112 at ε = 1e-5) for 0–4 more iterations; 0.03 saves 25 % at 1024² but
-/// doubled the iterations of a 256² solve at ε = 1e-7, and 0.1 made some solves stall.
-const LAZY_CORRECTION: f64 = 0.01;
-
 /// The conjugation restarts (`β = 0`) when the points that entered the free set in the last step
 /// (from zero pressure or from saturation) exceed this fraction of it. Polonsky & Keer restart at
 /// every entry; on rough surfaces a few points enter in almost every step until the very end, so
@@ -63,6 +54,14 @@ const LAZY_CORRECTION: f64 = 0.01;
 /// more load-controlled solves stall and hand over to the approach search; at 1 % they are
 /// unchanged (3.6k).
 const RESTART_FRACTION: f64 = 0.01;
+
+/// Under load control the step is `τ = Σ_F g t / (tᵀ K t − Σ_F (K t) Σ_F t / |F|)` (Polonsky &
+/// Keer). The correction term needs `K t` in real space; it is computed only when `|Σ_F t|`
+/// exceeds this fraction of `Σ_F |t|` (after the free set changed under a conjugate direction),
+/// where leaving it out would change the step by more than that fraction. Leaving it out always
+/// doubled the iterations of the saturated ground contacts (studies/convergence.yaml: 896 →
+/// 1309 iterations).
+const MEAN_FREE_DIRECTION: f64 = 1e-10;
 
 /// Two fall-backs to contact everywhere are the same state when their free-set sizes and largest
 /// residuals agree within this fraction. (Exact equality of the free-set size missed cycles that
@@ -96,7 +95,7 @@ pub(crate) struct CgOutcome {
     pub termination: Termination,
     pub iterations: usize,
     /// Convolutions (one forward and one inverse real 2-D FFT each) of this solve.
-    pub fft_pairs: usize,
+    pub fft_transforms: usize,
     pub residuals: Residuals,
     pub approach: f64,
     pub mean_pressure: f64,
@@ -119,16 +118,13 @@ pub(crate) fn solve(
         Control::Load { .. } => (0.0, true),
     };
     ws.rebuild_contact();
-    let mut fft_pairs = 0;
+    let mut fft_transforms = 0;
     // `u` was recomputed from `p` at this iterate (not only updated incrementally).
     let mut u_fresh = false;
     // The step `τ` of a displacement update `u ← u − τ w` not yet applied off the contact set.
     // `None`: `u = K p` is recomputed before the next gap statistics — at the start, after a
-    // pressure correction that is not negligible (see `LAZY_CORRECTION`), and to confirm
-    // convergence.
+    // pressure correction, and to confirm convergence.
     let mut pending: Option<f64> = None;
-    // Σ |Δp| of the pressure corrections left out of `u` since it was last recomputed.
-    let mut neglected = 0.0;
     // The free-set size and largest residual of the last iteration whose load restoration spread
     // pressure over every point (see `Rebalanced::spread`).
     let mut last_spread: Option<(f64, f64)> = None;
@@ -144,9 +140,8 @@ pub(crate) fn solve(
         let pending_step = pending.take();
         if pending_step.is_none() {
             op.apply(&ws.p, &mut ws.u)?;
-            fft_pairs += 1;
+            fft_transforms += 2;
             u_fresh = true;
-            neglected = 0.0;
         }
         let stats = ws.contact_stats(pending_step, offset, delta_prev, plim);
         let has_free = stats.free_count > 0.0;
@@ -218,13 +213,13 @@ pub(crate) fn solve(
         if let Some(termination) = termination {
             if !u_fresh {
                 op.apply(&ws.p, &mut ws.u)?;
-                fft_pairs += 1;
+                fft_transforms += 2;
             }
             ws.write_gap(offset + delta);
             return Ok(CgOutcome {
                 termination,
                 iterations,
-                fft_pairs,
+                fft_transforms,
                 residuals,
                 approach: offset + delta,
                 mean_pressure: p_sum / n,
@@ -237,15 +232,18 @@ pub(crate) fn solve(
             free_g2 / g_old
         };
         g_old = free_g2;
-        ws.direction(beta, offset, delta, plim);
-        op.apply(&ws.t, &mut ws.w)?;
-        fft_pairs += 1;
-        let [w_sum, wt, t_sum, gt] = ws.step_sums(offset, delta, plim);
-        let rt = match control {
-            Control::Load { .. } if has_free => wt - w_sum / stats.free_count * t_sum,
-            Control::Load { .. } => 0.0,
-            Control::Approach { .. } => wt,
-        };
+        let [gt, t_sum, t_abs] = ws.direction(beta, offset, delta, plim);
+        // `tᵀ K t = Σ_F t (K t)`: `t` vanishes off the free set.
+        let mut rt = op.start_apply(&ws.t)?;
+        fft_transforms += 1;
+        // `w = K t` in real space, if it was needed for the step.
+        let mut w_ready = false;
+        if load_control && has_free && t_sum.abs() > MEAN_FREE_DIRECTION * t_abs {
+            op.finish_apply(&mut ws.w)?;
+            fft_transforms += 1;
+            w_ready = true;
+            rt -= ws.free_w_sum(plim) * t_sum / stats.free_count;
+        }
         let breakdown = !(rt > 0.0 && gt > 0.0 && (gt / rt).is_finite());
         let tau = if breakdown {
             settings.default_step
@@ -259,18 +257,12 @@ pub(crate) fn solve(
         p_sum = update.pressure_sum;
         delta_prev = delta;
         let mut exact = update.correction == 0.0 && !breakdown;
-        neglected += update.correction;
         if let Control::Load { nominal_pressure } = control {
             let total = nominal_pressure * n;
             // Round-off drift of the load in linear steps is repaired once it reaches a tenth of
             // the force tolerance.
             if !exact || (p_sum - total).abs() > 0.1 * settings.tolerance * total {
                 let rebalanced = ws.rebalance_with(total, plim, update.free);
-                neglected += if rebalanced.shifted {
-                    f64::INFINITY
-                } else {
-                    (rebalanced.pressure_sum - p_sum).abs()
-                };
                 p_sum = rebalanced.pressure_sum;
                 if rebalanced.spread && iterations > 1 {
                     // Back to contact everywhere from the same state as at the last such fall-back:
@@ -286,8 +278,11 @@ pub(crate) fn solve(
                 exact = false;
             }
         }
-        let lazy = load_control && !breakdown && neglected <= LAZY_CORRECTION * update.step_mass;
-        if exact || lazy {
+        if exact {
+            if !w_ready {
+                op.finish_apply(&mut ws.w)?;
+                fft_transforms += 1;
+            }
             pending = Some(tau);
         }
     }

@@ -142,6 +142,21 @@ impl InfluenceOperator {
             .convolve(pressure, &self.kernel, displacement, self.nx, self.ny)
     }
 
+    /// First half of `displacement = K pressure`: transforms `pressure` (kept for
+    /// [`Self::finish_apply`]) and returns the quadratic form `pressureᵀ K pressure` in Pa·m
+    /// (Parseval; one forward FFT).
+    pub(crate) fn start_apply(&mut self, pressure: &[f64]) -> Result<f64, FftFailure> {
+        self.fft
+            .start_convolve(pressure, &self.kernel, self.nx, self.ny)
+    }
+
+    /// Second half of `displacement = K pressure` for the pressure of the last
+    /// [`Self::start_apply`] (one inverse FFT; bit-identical to [`Self::apply`]).
+    pub(crate) fn finish_apply(&mut self, displacement: &mut [f64]) -> Result<(), FftFailure> {
+        self.fft
+            .finish_convolve(&self.kernel, displacement, self.nx, self.ny)
+    }
+
     /// Displacement of a pixel under a unit pressure on itself, `K₀₀` in m/Pa (> 0).
     pub(crate) fn self_influence(&self) -> f64 {
         self.self_influence

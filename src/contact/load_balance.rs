@@ -7,8 +7,6 @@ use super::workspace::{FreeStats, Workspace};
 pub(super) struct Rebalanced {
     /// `Σ p` after it.
     pub pressure_sum: f64,
-    /// The free set could not carry the load: all pressures were shifted.
-    pub shifted: bool,
     /// The shift was upwards: every point out of contact received pressure, i.e. the iterate
     /// fell back to contact everywhere.
     pub spread: bool,
@@ -77,7 +75,6 @@ impl Workspace {
             }
             return Rebalanced {
                 pressure_sum: sat_sum + self.scale_free(s, plim),
-                shifted: false,
                 spread: false,
             };
         }
@@ -102,7 +99,6 @@ impl Workspace {
         self.rebuild_contact();
         Rebalanced {
             pressure_sum: self.p.iter().sum(),
-            shifted: true,
             spread: c > 0.0,
         }
     }

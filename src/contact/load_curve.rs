@@ -45,9 +45,9 @@ pub struct LoadStep {
     pub approach: f64,
     /// CG iterations of this step.
     pub iterations: usize,
-    /// Convolutions (FFT pairs: one forward and one inverse real 2-D FFT) of this step,
-    /// including the exact recomputations of the displacement and the start.
-    pub fft_pairs: usize,
+    /// Real 2-D FFTs (forward or inverse; a full convolution is two) of this step, including
+    /// the exact recomputations of the displacement and the start.
+    pub fft_transforms: usize,
     /// Final residuals (all `≤` the tolerance).
     pub residuals: Residuals,
     /// Algorithm that produced the step.

@@ -201,7 +201,7 @@ impl ContactSolver {
                 let start = constrained_cg::solve(ws, op, load, &estimate)?;
                 let mut search =
                     approach_search::solve(ws, op, pressure, start.approach, &settings)?;
-                search.fft_pairs += start.fft_pairs;
+                search.fft_transforms += start.fft_transforms;
                 (search, SolvePath::ApproachSearch)
             }
             SolveStrategy::Auto => {
@@ -219,7 +219,7 @@ impl ContactSolver {
                     let mut second =
                         approach_search::solve(ws, op, pressure, start.approach, &budget)?;
                     second.iterations += first.iterations;
-                    second.fft_pairs += first.fft_pairs + start.fft_pairs;
+                    second.fft_transforms += first.fft_transforms + start.fft_transforms;
                     (second, SolvePath::ApproachSearch)
                 }
             }
@@ -277,7 +277,7 @@ impl ContactSolver {
             max_elastic_deformation: max_u,
             approach: outcome.approach,
             iterations: outcome.iterations,
-            fft_pairs: outcome.fft_pairs,
+            fft_transforms: outcome.fft_transforms,
             residuals: outcome.residuals,
             path,
             fields: self.options.fields.any().then(|| self.fields()),

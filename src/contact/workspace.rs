@@ -110,12 +110,8 @@ pub(crate) struct UpdateOutcome {
     pub pressure_sum: f64,
     /// Points at a bound with a wrong-signed gap that re-entered the free set.
     pub entered: f64,
-    /// Free points the step carried out of the box (projected).
-    pub projected: f64,
     /// Free-set statistics of the new pressures.
     pub free: FreeStats,
-    /// `Σ_F |τ t|`: the pressure change of the linear CG step.
-    pub step_mass: f64,
     /// `Σ |p_new − (p − τ t)|`: the pressure change the displacement update `u ← u − τ w` does
     /// not account for (projections and re-entries).
     pub correction: f64,
@@ -322,8 +318,9 @@ impl Workspace {
             .fold(f64::INFINITY, f64::min)
     }
 
-    /// `t ← (v − δ) + β t` on the free set, 0 at saturated points and off the contact set.
-    pub(super) fn direction(&mut self, beta: f64, offset: f64, delta: f64, plim: f64) {
+    /// `t ← (v − δ) + β t` on the free set, 0 at saturated points and off the contact set;
+    /// returns `[Σ_F (v − δ) t, Σ_F t, Σ_F |t|]` of the new direction.
+    pub(super) fn direction(&mut self, beta: f64, offset: f64, delta: f64, plim: f64) -> [f64; 3] {
         let (g0, u, p) = (&self.g0, &self.u, &self.p);
         self.t
             .par_chunks_mut(BLOCK)
@@ -331,10 +328,16 @@ impl Workspace {
             .enumerate()
             .for_each(|(b, (t, block))| {
                 let base = b * BLOCK;
+                let mut sums = [0.0; 4];
                 for &l in &block.contact {
                     let (i, l) = (base + l as usize, l as usize);
                     t[l] = if p[i] < plim {
-                        (g0[i] + u[i] - offset - delta) + beta * t[l]
+                        let r = g0[i] + u[i] - offset - delta;
+                        let ti = r + beta * t[l];
+                        sums[0] += r * ti;
+                        sums[1] += ti;
+                        sums[2] += ti.abs();
+                        ti
                     } else {
                         0.0
                     };
@@ -345,28 +348,24 @@ impl Workspace {
                     }
                 }
                 block.dropped.clear();
+                block.sums = sums;
             });
-    }
-
-    /// `[Σ_F w, Σ_F w t, Σ_F t, Σ_F (v − δ) t]` with `w = K t`.
-    pub(super) fn step_sums(&mut self, offset: f64, delta: f64, plim: f64) -> [f64; 4] {
-        let (g0, u, p, t, w) = (&self.g0, &self.u, &self.p, &self.t, &self.w);
-        each_block(&mut self.blocks, |base, block| {
-            let mut a = [0.0; 4];
-            for i in contact_points(base, &block.contact) {
-                if p[i] < plim {
-                    a[0] += w[i];
-                    a[1] += w[i] * t[i];
-                    a[2] += t[i];
-                    a[3] += (g0[i] + u[i] - offset - delta) * t[i];
-                }
-            }
-            block.sums = a;
-        });
-        self.blocks.iter().fold([0.0; 4], |mut s, b| {
+        self.blocks.iter().fold([0.0; 3], |mut s, b| {
             s.iter_mut().zip(b.sums).for_each(|(o, v)| *o += v);
             s
         })
+    }
+
+    /// `Σ_F w` with `w = K t`.
+    pub(super) fn free_w_sum(&mut self, plim: f64) -> f64 {
+        let (p, w) = (&self.p, &self.w);
+        each_block(&mut self.blocks, |base, block| {
+            block.sums[0] = contact_points(base, &block.contact)
+                .filter(|&i| p[i] < plim)
+                .map(|i| w[i])
+                .sum();
+        });
+        self.blocks.iter().map(|b| b.sums[0]).sum()
     }
 
     /// CG update of the contact points `p ← p − τ t` (free) and re-entry `p ← p − τ (v − δ)` at
@@ -398,7 +397,7 @@ impl Workspace {
                     free: FreeStats::EMPTY,
                     correction: 0.0,
                 };
-                let (mut entered, mut projected, mut step_mass) = (0.0, 0.0, 0.0);
+                let mut entered = 0.0;
                 let mut next_entering = entering.iter().peekable();
                 for &l in contact.iter() {
                     while let Some(&&(e, gap)) = next_entering.peek() {
@@ -412,12 +411,7 @@ impl Workspace {
                     let (l, i) = (l as usize, base + l as usize);
                     let old = settled.p[l];
                     let (new, linear) = if old < plim {
-                        let step = tau * settled.t[l];
-                        step_mass += step.abs();
-                        let v = old - step;
-                        if v <= 0.0 || v >= plim {
-                            projected += 1.0;
-                        }
+                        let v = old - tau * settled.t[l];
                         (v, v)
                     } else {
                         let gap = g0[i] + u[i] - offset - delta;
@@ -437,21 +431,17 @@ impl Workspace {
                 let (free, correction) = (settled.free, settled.correction);
                 std::mem::swap(contact, merged);
                 block.free = free;
-                block.sums = [entered, projected, step_mass, correction];
+                block.sums = [entered, correction, 0.0, 0.0];
             });
         let mut out = UpdateOutcome {
             pressure_sum: 0.0,
             entered: 0.0,
-            projected: 0.0,
             free: FreeStats::EMPTY,
-            step_mass: 0.0,
             correction: 0.0,
         };
         for b in &self.blocks {
             out.entered += b.sums[0];
-            out.projected += b.sums[1];
-            out.step_mass += b.sums[2];
-            out.correction += b.sums[3];
+            out.correction += b.sums[1];
             out.free = FreeStats::combine(out.free, &b.free);
         }
         out.pressure_sum = out.free.free_sum + out.free.sat_sum;

@@ -79,6 +79,8 @@ pub struct RealFft2d {
     col_inverse: Arc<dyn Fft<f64>>,
     rows: Vec<Complex<f64>>,
     cols: Vec<Complex<f64>>,
+    /// Per-column results of an [`ColumnPass::Energy`] pass, summed in column order.
+    column_energy: Vec<f64>,
     chunks: Vec<ChunkBuffers>,
     cols_per_chunk: usize,
 }
@@ -103,6 +105,11 @@ enum ColumnPass<'a> {
     Kernel(&'a [f64]),
     /// Inverse only, of the spectrum already in the column buffer.
     Inverse,
+    /// Forward, then the energy `Σ_ky kernel |X|²` of every column; the spectrum stays in the
+    /// column buffer.
+    Energy(&'a [f64]),
+    /// Multiply the spectrum already in the column buffer by the kernel, inverse.
+    KernelInverse(&'a [f64]),
 }
 
 impl RealFft2d {
@@ -142,6 +149,7 @@ impl RealFft2d {
             col_inverse,
             rows: vec![zero; nxc * ny],
             cols: vec![zero; nxc * ny],
+            column_energy: vec![0.0; nxc],
             chunks,
             cols_per_chunk,
         }
@@ -203,12 +211,7 @@ impl RealFft2d {
         cols: usize,
         rows: usize,
     ) -> Result<(), FftFailure> {
-        if cols > self.nx || rows > self.ny {
-            return Err(FftFailure::new(format!(
-                "block {cols} × {rows} exceeds the grid {} × {}",
-                self.nx, self.ny
-            )));
-        }
+        self.check_block(cols, rows)?;
         self.check_len("input", input.len(), cols * rows)?;
         self.check_len("output", output.len(), cols * rows)?;
         self.check_len("kernel", kernel.len(), self.spectrum_len())?;
@@ -218,6 +221,76 @@ impl RealFft2d {
         self.rows_forward(input, cols, rows)?;
         self.columns(ColumnPass::Kernel(kernel), rows);
         self.rows_inverse(output, cols, rows)
+    }
+
+    /// First half of [`RealFft2d::convolve`]: the forward transform of the block `input`, kept
+    /// for [`RealFft2d::finish_convolve`]. Returns the quadratic form
+    /// `Σ_r input(r) · (K input)(r) = Σ_k kernel(k) |X(k)|²` (Parseval, with the mirrored half of
+    /// the spectrum counted twice), where `K` is the convolution with `kernel`; the kernel must
+    /// be even (`kernel(−k) = kernel(k)`), as every kernel of a convolution with a symmetric
+    /// stencil is. The sum runs column by column in a fixed order, so it does not depend on the
+    /// thread count.
+    pub fn start_convolve(
+        &mut self,
+        input: &[f64],
+        kernel: &[f64],
+        cols: usize,
+        rows: usize,
+    ) -> Result<f64, FftFailure> {
+        self.check_block(cols, rows)?;
+        self.check_len("input", input.len(), cols * rows)?;
+        self.check_len("kernel", kernel.len(), self.spectrum_len())?;
+        if cols == 0 || rows == 0 {
+            self.cols.fill(Complex::new(0.0, 0.0));
+            return Ok(0.0);
+        }
+        self.rows_forward(input, cols, rows)?;
+        self.columns(ColumnPass::Energy(kernel), rows);
+        let (nx, nxc) = (self.nx, self.nxc);
+        Ok(self
+            .column_energy
+            .iter()
+            .enumerate()
+            .map(|(kx, &e)| {
+                // Columns 0 and (for even nx) nx/2 are their own mirror images.
+                if kx == 0 || (nx % 2 == 0 && kx == nxc - 1) {
+                    e
+                } else {
+                    2.0 * e
+                }
+            })
+            .sum())
+    }
+
+    /// Second half of [`RealFft2d::convolve`], on the spectrum kept by the last
+    /// [`RealFft2d::start_convolve`] (no other transform may run in between): multiplies by
+    /// `kernel`, transforms back and writes the top-left `rows × cols` block to `output`. The
+    /// two halves give the same bits as [`RealFft2d::convolve`].
+    pub fn finish_convolve(
+        &mut self,
+        kernel: &[f64],
+        output: &mut [f64],
+        cols: usize,
+        rows: usize,
+    ) -> Result<(), FftFailure> {
+        self.check_block(cols, rows)?;
+        self.check_len("output", output.len(), cols * rows)?;
+        self.check_len("kernel", kernel.len(), self.spectrum_len())?;
+        if cols == 0 || rows == 0 {
+            return Ok(());
+        }
+        self.columns(ColumnPass::KernelInverse(kernel), rows);
+        self.rows_inverse(output, cols, rows)
+    }
+
+    fn check_block(&self, cols: usize, rows: usize) -> Result<(), FftFailure> {
+        if cols > self.nx || rows > self.ny {
+            return Err(FftFailure::new(format!(
+                "block {cols} × {rows} exceeds the grid {} × {}",
+                self.nx, self.ny
+            )));
+        }
+        Ok(())
     }
 
     fn check_len(&self, what: &str, got: usize, expected: usize) -> Result<(), FftFailure> {
@@ -266,9 +339,10 @@ impl RealFft2d {
         let (fwd, inv) = (&self.col_forward, &self.col_inverse);
         self.cols
             .par_chunks_mut(ny * cpc)
+            .zip(self.column_energy.par_chunks_mut(cpc))
             .zip(self.chunks.par_iter_mut())
             .enumerate()
-            .for_each(|(chunk, (cols, buffers))| {
+            .for_each(|(chunk, ((cols, energy), buffers))| {
                 let first_col = chunk * cpc;
                 let scratch = &mut buffers.fft;
                 let fwd_len = fwd.get_inplace_scratch_len();
@@ -276,7 +350,7 @@ impl RealFft2d {
                 for (t, tile) in cols.chunks_mut(ny * TILE).enumerate() {
                     let tile_col = first_col + t * TILE;
                     let width = tile.len() / ny;
-                    if !matches!(pass, ColumnPass::Inverse) {
+                    if !matches!(pass, ColumnPass::Inverse | ColumnPass::KernelInverse(_)) {
                         transpose(spectra, nxc, rows, tile_col, width, tile, ny);
                         for column in tile.chunks_mut(ny) {
                             column[rows..].fill(Complex::new(0.0, 0.0));
@@ -285,8 +359,24 @@ impl RealFft2d {
                     }
                     match pass {
                         ColumnPass::Forward => continue,
+                        ColumnPass::Energy(kernel) => {
+                            let weights = &kernel[tile_col * ny..][..width * ny];
+                            let energies = &mut energy[t * TILE..][..width];
+                            for ((e, column), weights) in energies
+                                .iter_mut()
+                                .zip(tile.chunks(ny))
+                                .zip(weights.chunks(ny))
+                            {
+                                *e = column
+                                    .iter()
+                                    .zip(weights)
+                                    .map(|(c, &w)| w * c.norm_sqr())
+                                    .sum();
+                            }
+                            continue;
+                        }
                         ColumnPass::Scale(factor) => tile.iter_mut().for_each(|c| *c *= factor),
-                        ColumnPass::Kernel(kernel) => {
+                        ColumnPass::Kernel(kernel) | ColumnPass::KernelInverse(kernel) => {
                             let weights = &kernel[tile_col * ny..][..width * ny];
                             tile.iter_mut().zip(weights).for_each(|(c, &w)| *c *= w);
                         }
@@ -411,208 +501,4 @@ pub(crate) fn inverse_real_2d(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn signal(nx: usize, ny: usize) -> Vec<f64> {
-        (0..nx * ny)
-            .map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5)
-            .collect()
-    }
-
-    #[test]
-    fn round_trip_is_identity() {
-        for (nx, ny) in [(8, 8), (9, 6), (16, 5), (1, 4), (40, 70)] {
-            let x = signal(nx, ny);
-            let mut y = x.clone();
-            let mut fft = RealFft2d::new(nx, ny);
-            fft.round_trip(&mut y).unwrap();
-            for (a, b) in x.iter().zip(&y) {
-                // Round-off of two O(n log n) transforms on O(1) data.
-                assert!((a - b).abs() < 1e-13, "{nx}×{ny}: {a} vs {b}");
-            }
-        }
-    }
-
-    #[test]
-    fn wrong_lengths_are_errors() {
-        let mut fft = RealFft2d::new(4, 3);
-        assert!(fft.forward(&[0.0; 11]).is_err());
-        assert!(fft.round_trip(&mut [0.0; 13]).is_err());
-        let mut out = [0.0; 6];
-        assert!(fft.convolve(&[0.0; 6], &[0.0; 9], &mut out, 3, 2).is_ok());
-        assert!(fft.convolve(&[0.0; 6], &[0.0; 8], &mut out, 3, 2).is_err());
-        assert!(fft
-            .convolve(&[0.0; 10], &[0.0; 9], &mut [0.0; 10], 5, 2)
-            .is_err());
-    }
-
-    #[test]
-    fn padded_convolution_matches_direct_sum() {
-        // Linear convolution of a 5 × 3 block with an even 3 × 3 stencil through a 10 × 6 padded
-        // grid: the padding leaves room for the stencil, so nothing wraps around.
-        let (cols, rows, nx, ny) = (5, 3, 10, 6);
-        let input = signal(cols, rows);
-        let mut stencil = vec![0.0; nx * ny];
-        stencil[0] = 2.0;
-        stencil[1] = -1.0;
-        stencil[nx - 1] = -1.0;
-        stencil[nx] = 0.5;
-        stencil[(ny - 1) * nx] = 0.5;
-        let mut fft = RealFft2d::new(nx, ny);
-        let kernel = spectral_kernel(&mut fft, &stencil);
-        let mut out = vec![0.0; cols * rows];
-        fft.convolve(&input, &kernel, &mut out, cols, rows).unwrap();
-        let at = |ix: isize, iy: isize| {
-            if ix < 0 || iy < 0 || ix >= cols as isize || iy >= rows as isize {
-                0.0
-            } else {
-                input[iy as usize * cols + ix as usize]
-            }
-        };
-        for iy in 0..rows as isize {
-            for ix in 0..cols as isize {
-                let direct = 2.0 * at(ix, iy) - at(ix - 1, iy) - at(ix + 1, iy)
-                    + 0.5 * at(ix, iy - 1)
-                    + 0.5 * at(ix, iy + 1);
-                let got = out[iy as usize * cols + ix as usize];
-                // Round-off of an FFT pair on O(1) data.
-                assert!(
-                    (direct - got).abs() < 1e-13,
-                    "({ix}, {iy}): {direct} vs {got}"
-                );
-            }
-        }
-    }
-
-    /// The normalised real spectrum of an even stencil: the kernel `convolve` takes.
-    fn spectral_kernel(fft: &mut RealFft2d, stencil: &[f64]) -> Vec<f64> {
-        let (nx, ny) = fft.shape();
-        let norm = 1.0 / (nx * ny) as f64;
-        fft.forward(stencil)
-            .unwrap()
-            .iter()
-            .map(|c| c.re * norm)
-            .collect()
-    }
-
-    /// Even stencil on an `nx × ny` grid (`s(x, y) = s(−x, y) = s(x, −y)`, real spectrum).
-    fn even_stencil(nx: usize, ny: usize) -> Vec<f64> {
-        (0..nx * ny)
-            .map(|i| {
-                let (x, y) = (i % nx, i / nx);
-                let (x, y) = (x.min(nx - x), y.min(ny - y));
-                1.0 / (1.0 + (x * x + 3 * y * y) as f64)
-            })
-            .collect()
-    }
-
-    #[test]
-    fn zero_rows_match_direct_circular_sum() {
-        // Block rows 1 and 3 are zero (skipped by the row pass) and the block is padded in both
-        // directions; the result must still be the circular convolution with the stencil.
-        let (cols, rows, nx, ny) = (6, 5, 12, 10);
-        let mut input = signal(cols, rows);
-        for iy in [1, 3] {
-            input[iy * cols..(iy + 1) * cols].fill(0.0);
-        }
-        let stencil = even_stencil(nx, ny);
-        let mut fft = RealFft2d::new(nx, ny);
-        let kernel = spectral_kernel(&mut fft, &stencil);
-        let mut out = vec![0.0; cols * rows];
-        fft.convolve(&input, &kernel, &mut out, cols, rows).unwrap();
-        for iy in 0..rows {
-            for ix in 0..cols {
-                let mut direct = 0.0;
-                for jy in 0..rows {
-                    for jx in 0..cols {
-                        let (dx, dy) = ((ix + nx - jx) % nx, (iy + ny - jy) % ny);
-                        direct += input[jy * cols + jx] * stencil[dy * nx + dx];
-                    }
-                }
-                let got = out[iy * cols + ix];
-                // Round-off of an FFT pair on O(1) data summed over 30 terms.
-                assert!(
-                    (direct - got).abs() < 1e-13,
-                    "({ix}, {iy}): {direct} vs {got}"
-                );
-            }
-        }
-    }
-
-    #[test]
-    fn results_are_bit_identical_for_any_thread_count() {
-        // The chunking follows the rayon thread count; every 1-D transform must not.
-        let (cols, rows, nx, ny) = (21, 35, 42, 70);
-        let mut input = signal(cols, rows);
-        input[5 * cols..7 * cols].fill(0.0);
-        let kernel: Vec<f64> = signal(nx / 2 + 1, ny);
-        let run = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
-                let mut fft = RealFft2d::new(nx, ny);
-                let mut out = vec![0.0; cols * rows];
-                fft.convolve(&input, &kernel, &mut out, cols, rows).unwrap();
-                let mut grid = signal(nx, ny);
-                fft.round_trip(&mut grid).unwrap();
-                out.extend(grid);
-                out.extend(
-                    fft.forward(&signal(nx, ny))
-                        .unwrap()
-                        .iter()
-                        .map(|c| c.re + c.im),
-                );
-                out.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
-            })
-        };
-        let one = run(1);
-        for threads in [2, 3] {
-            assert!(one == run(threads), "{threads} threads differ from 1");
-        }
-    }
-
-    #[test]
-    fn empty_block_convolves_to_nothing() {
-        let mut fft = RealFft2d::new(8, 6);
-        let kernel = vec![1.0; fft.spectrum_len()];
-        assert!(fft.convolve(&[], &kernel, &mut [], 0, 3).is_ok());
-        assert!(fft.convolve(&[], &kernel, &mut [], 4, 0).is_ok());
-    }
-
-    #[test]
-    fn grid_round_trip_recovers_the_grid() {
-        for (ny, nx) in [(6, 8), (5, 7), (4, 9), (2, 2), (37, 20)] {
-            let z = Array2::from_shape_fn((ny, nx), |(j, i)| {
-                ((i * 7 + j * 3) % 11) as f64 - 0.3 * j as f64
-            });
-            let half = forward_real_2d(&z).unwrap();
-            let back = inverse_real_2d(&half, nx).unwrap() / (nx * ny) as f64;
-            // Round-off of a few FFT passes on O(10) values.
-            for (a, b) in z.iter().zip(back.iter()) {
-                assert!((a - b).abs() < 1e-12, "{a} vs {b}");
-            }
-        }
-        assert!(inverse_real_2d(&Array2::zeros((3, 4)), 8).is_err());
-    }
-
-    #[test]
-    fn forward_matches_direct_dft() {
-        let (ny, nx) = (3, 4);
-        let z = Array2::from_shape_fn((ny, nx), |(j, i)| (i as f64).sin() + (j * j) as f64);
-        let half = forward_real_2d(&z).unwrap();
-        for ((j, i), value) in half.indexed_iter() {
-            let mut direct = Complex::new(0.0, 0.0);
-            for ((y, x), zz) in z.indexed_iter() {
-                let phase = -2.0
-                    * std::f64::consts::PI
-                    * ((i * x) as f64 / nx as f64 + (j * y) as f64 / ny as f64);
-                direct += Complex::from_polar(*zz, phase);
-            }
-            // Direct O(N²) sum vs FFT: round-off only.
-            assert!((direct - value).norm() < 1e-12);
-        }
-    }
-}
+mod tests;
