@@ -26,17 +26,29 @@ impl Workspace {
             return;
         }
         let k = share.floor() as usize;
-        let mut order: Vec<usize> = (0..n).collect();
-        let by_gap = |a: &usize, b: &usize| self.g0[*a].total_cmp(&self.g0[*b]).then(a.cmp(b));
-        if k < n {
-            order.select_nth_unstable_by(k, by_gap);
-        }
-        self.p.fill(0.0);
-        for &i in &order[..k] {
-            self.p[i] = plim;
-        }
-        if k < n {
-            self.p[order[k]] = (share - k as f64) * plim;
+        let remainder = (share - k as f64) * plim;
+        // k < n here. The k-th smallest gap (0-based); ties are broken by index, as in a stable order of
+        // (gap, index): the first `k` points of that order carry p_lim, the next one the rest.
+        // Selecting on a copy of the values (not on indices compared through `g₀`) keeps the
+        // selection's memory access sequential.
+        let mut values = self.g0.clone();
+        let (_, &mut kth, _) = values.select_nth_unstable_by(k, f64::total_cmp);
+        let below = self.g0.iter().filter(|g| g.total_cmp(&kth).is_lt()).count();
+        let mut ties_left = k - below;
+        let mut remainder_given = false;
+        for (pi, &g) in self.p.iter_mut().zip(&self.g0) {
+            *pi = match g.total_cmp(&kth) {
+                std::cmp::Ordering::Less => plim,
+                std::cmp::Ordering::Equal if ties_left > 0 => {
+                    ties_left -= 1;
+                    plim
+                }
+                std::cmp::Ordering::Equal if !remainder_given => {
+                    remainder_given = true;
+                    remainder
+                }
+                _ => 0.0,
+            };
         }
     }
 
@@ -101,5 +113,19 @@ impl Workspace {
             pressure_sum: self.p.iter().sum(),
             spread: c > 0.0,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rigid_plastic_start_fills_the_smallest_gaps_in_index_order_of_ties() {
+        // Order by (gap, index): 6, 1, 3, 4, 2, 7, 0, 5. N p̄ / p_lim = 3.5: the first three carry
+        // p_lim, the fourth (index 4, the last of the tied gaps 1) half of it.
+        let mut ws = Workspace::new(vec![3.0, 1.0, 2.0, 1.0, 1.0, 5.0, 0.0, 2.0]);
+        ws.start_rigid_plastic(3.5 * 10.0 / 8.0, 10.0);
+        assert_eq!(ws.p, vec![0.0, 10.0, 0.0, 10.0, 5.0, 0.0, 10.0, 0.0]);
     }
 }
