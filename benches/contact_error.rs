@@ -15,7 +15,7 @@
 //!   finest grid with tolerance 1e-9 (`ref`).
 //! * `warm`: the same 20 MPa step warm-started from the converged 15 MPa step (a load curve).
 //!
-//! Columns: CG iterations, FFT pairs per iteration (convolutions of the solve / iterations),
+//! Columns: CG iterations, FFT pairs per iteration (half the 2-D FFTs of the solve / iterations),
 //! time per solve, time per iteration, `t_fft` = one forward + inverse real FFT pair on the grid
 //! the solver transforms (2n × 2n for the non-periodic DC-FFT; the median of three pairs timed
 //! right after each solve of the row, so both see the same machine load),
