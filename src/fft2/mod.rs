@@ -211,10 +211,8 @@ impl RealFft2d {
         cols: usize,
         rows: usize,
     ) -> Result<(), FftFailure> {
-        self.check_block(cols, rows)?;
         self.check_len("input", input.len(), cols * rows)?;
-        self.check_len("output", output.len(), cols * rows)?;
-        self.check_len("kernel", kernel.len(), self.spectrum_len())?;
+        self.check_back(kernel, output, cols, rows)?;
         if cols == 0 || rows == 0 {
             return Ok(());
         }
@@ -273,14 +271,25 @@ impl RealFft2d {
         cols: usize,
         rows: usize,
     ) -> Result<(), FftFailure> {
-        self.check_block(cols, rows)?;
-        self.check_len("output", output.len(), cols * rows)?;
-        self.check_len("kernel", kernel.len(), self.spectrum_len())?;
+        self.check_back(kernel, output, cols, rows)?;
         if cols == 0 || rows == 0 {
             return Ok(());
         }
         self.columns(ColumnPass::KernelInverse(kernel), rows);
         self.rows_inverse(output, cols, rows)
+    }
+
+    /// The block, kernel and output of a convolution's way back.
+    fn check_back(
+        &self,
+        kernel: &[f64],
+        output: &[f64],
+        cols: usize,
+        rows: usize,
+    ) -> Result<(), FftFailure> {
+        self.check_block(cols, rows)?;
+        self.check_len("output", output.len(), cols * rows)?;
+        self.check_len("kernel", kernel.len(), self.spectrum_len())
     }
 
     fn check_block(&self, cols: usize, rows: usize) -> Result<(), FftFailure> {
