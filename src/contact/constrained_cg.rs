@@ -260,7 +260,7 @@ pub(crate) fn solve(
         reset = breakdown || update.entered > RESTART_FRACTION * update.free.free_count;
         p_sum = update.pressure_sum;
         delta_prev = delta;
-        let mut exact = update.correction == 0.0 && !breakdown;
+        let mut exact = update.corrected == 0.0 && !breakdown;
         if let Control::Load { nominal_pressure } = control {
             let total = nominal_pressure * n;
             // Round-off drift of the load in linear steps is repaired once it reaches a tenth of

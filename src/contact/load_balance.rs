@@ -27,8 +27,8 @@ impl Workspace {
         }
         let k = share.floor() as usize;
         let remainder = (share - k as f64) * plim;
-        // k < n here. The k-th smallest gap (0-based); ties are broken by index, as in a stable order of
-        // (gap, index): the first `k` points of that order carry p_lim, the next one the rest.
+        // k < n here. The k-th smallest gap (0-based), ties broken by index as in a stable order
+        // of (gap, index): the first `k` points of that order carry p_lim, the next one the rest.
         // Selecting on a copy of the values (not on indices compared through `g₀`) keeps the
         // selection's memory access sequential.
         let mut values = self.g0.clone();

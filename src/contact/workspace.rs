@@ -112,9 +112,9 @@ pub(crate) struct UpdateOutcome {
     pub entered: f64,
     /// Free-set statistics of the new pressures.
     pub free: FreeStats,
-    /// `Σ |p_new − (p − τ t)|`: the pressure change the displacement update `u ← u − τ w` does
-    /// not account for (projections and re-entries).
-    pub correction: f64,
+    /// Points whose new pressure differs from the linear CG step `p − τ t` (projections and
+    /// re-entries): the displacement update `u ← u − τ w` does not account for them.
+    pub corrected: f64,
 }
 
 /// One block of the grid: its contact list and the partial results of the last pass.
@@ -157,7 +157,7 @@ struct Settled<'a> {
     merged: &'a mut Vec<u32>,
     dropped: &'a mut Vec<u32>,
     free: FreeStats,
-    correction: f64,
+    corrected: f64,
 }
 
 impl Settled<'_> {
@@ -166,7 +166,9 @@ impl Settled<'_> {
     fn set(&mut self, l: usize, new: f64, linear: f64, plim: f64) {
         let clamped = new.clamp(0.0, plim);
         self.p[l] = clamped;
-        self.correction += (clamped - linear).abs();
+        if clamped != linear {
+            self.corrected += 1.0;
+        }
         if clamped > 0.0 {
             self.merged.push(l as u32);
             self.free.add(clamped, plim);
@@ -395,7 +397,7 @@ impl Workspace {
                     merged,
                     dropped,
                     free: FreeStats::EMPTY,
-                    correction: 0.0,
+                    corrected: 0.0,
                 };
                 let mut entered = 0.0;
                 let mut next_entering = entering.iter().peekable();
@@ -428,20 +430,20 @@ impl Workspace {
                     entered += 1.0;
                     settled.set(e as usize, -tau * gap, 0.0, plim);
                 }
-                let (free, correction) = (settled.free, settled.correction);
+                let (free, corrected) = (settled.free, settled.corrected);
                 std::mem::swap(contact, merged);
                 block.free = free;
-                block.sums = [entered, correction, 0.0, 0.0];
+                block.sums = [entered, corrected, 0.0, 0.0];
             });
         let mut out = UpdateOutcome {
             pressure_sum: 0.0,
             entered: 0.0,
             free: FreeStats::EMPTY,
-            correction: 0.0,
+            corrected: 0.0,
         };
         for b in &self.blocks {
             out.entered += b.sums[0];
-            out.correction += b.sums[1];
+            out.corrected += b.sums[1];
             out.free = FreeStats::combine(out.free, &b.free);
         }
         out.pressure_sum = out.free.free_sum + out.free.sat_sum;
