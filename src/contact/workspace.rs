@@ -187,6 +187,41 @@ fn each_block(blocks: &mut [Block], visit: impl Fn(usize, &mut Block) + Sync + S
         .for_each(|(b, block)| visit(b * BLOCK, block));
 }
 
+/// Independent running minima of [`out_of_contact_min`]: a single one is a serial chain of
+/// dependent comparisons; eight break it and let the loop vectorise.
+const LANES: usize = 8;
+
+/// `min_{p = 0} (g₀ + u − offset)` over one block (`+∞` if every point is in contact). The gaps
+/// are finite (the inputs are checked), so the branch-free `if v < m` selection is the minimum.
+fn out_of_contact_min(u: &[f64], g0: &[f64], p: &[f64], offset: f64) -> f64 {
+    let mut lanes = [f64::INFINITY; LANES];
+    let fold = |m: &mut f64, (&ui, (&g0i, &pi)): (&f64, (&f64, &f64))| {
+        let v = if pi <= 0.0 {
+            g0i + ui - offset
+        } else {
+            f64::INFINITY
+        };
+        *m = if v < *m { v } else { *m };
+    };
+    let (u_body, u_tail) = u.split_at(u.len() - u.len() % LANES);
+    let (g0_body, g0_tail) = g0.split_at(u_body.len());
+    let (p_body, p_tail) = p.split_at(u_body.len());
+    for ((u, g0), p) in u_body
+        .chunks_exact(LANES)
+        .zip(g0_body.chunks_exact(LANES))
+        .zip(p_body.chunks_exact(LANES))
+    {
+        for (m, x) in lanes.iter_mut().zip(u.iter().zip(g0.iter().zip(p))) {
+            fold(m, x);
+        }
+    }
+    let mut tail = f64::INFINITY;
+    for x in u_tail.iter().zip(g0_tail.iter().zip(p_tail)) {
+        fold(&mut tail, x);
+    }
+    lanes.iter().fold(tail, |a, &b| a.min(b))
+}
+
 /// Global indices of a block's contact points.
 fn contact_points(base: usize, contact: &[u32]) -> impl Iterator<Item = usize> + '_ {
     contact.iter().map(move |&l| base + l as usize)
@@ -282,7 +317,9 @@ impl Workspace {
     /// The dense pass over the points out of contact. Applies the pending displacement update
     /// `u ← u − τ w` (everywhere) if `pending_step = Some(τ)`; returns the smallest gap
     /// `min_{p = 0} (g₀ + u − offset)` and records the points with `g₀ + u − offset − δ < 0`
-    /// (none for `δ = −∞`).
+    /// (none for `δ = −∞`). The minimum of each block is taken without branches over
+    /// [`LANES`] independent running minima; only a block whose minimum is below `δ` is scanned
+    /// again for its entering points (late in a solve a few blocks of the grid, if any).
     pub(super) fn out_of_contact_pass(
         &mut self,
         pending_step: Option<f64>,
@@ -302,12 +339,11 @@ impl Workspace {
                     u.iter_mut().zip(w).for_each(|(ui, &wi)| *ui -= tau * wi);
                 }
                 block.entering.clear();
-                let mut zero_min = f64::INFINITY;
-                for (l, ((&ui, &g0i), &pi)) in u.iter().zip(g0).zip(p).enumerate() {
-                    if pi <= 0.0 {
+                let zero_min = out_of_contact_min(u, g0, p, offset);
+                if zero_min - delta < 0.0 {
+                    for (l, ((&ui, &g0i), &pi)) in u.iter().zip(g0).zip(p).enumerate() {
                         let v = g0i + ui - offset;
-                        zero_min = zero_min.min(v);
-                        if v - delta < 0.0 {
+                        if pi <= 0.0 && v - delta < 0.0 {
                             block.entering.push((l as u32, v - delta));
                         }
                     }
