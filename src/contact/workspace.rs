@@ -394,6 +394,40 @@ impl Workspace {
         })
     }
 
+    /// The projected-gradient direction of a step the CG cannot take (see
+    /// `constrained_cg::solve`): `t ← v − δ` on the free set, at saturated points with an open
+    /// gap and at the recorded out-of-contact points with a negative gap, 0 elsewhere on the
+    /// contact set; returns `Σ t²`.
+    pub(super) fn entry_direction(&mut self, offset: f64, delta: f64, plim: f64) -> f64 {
+        let (g0, u, p) = (&self.g0, &self.u, &self.p);
+        self.t
+            .par_chunks_mut(BLOCK)
+            .zip(self.blocks.par_iter_mut())
+            .enumerate()
+            .for_each(|(b, (t, block))| {
+                let base = b * BLOCK;
+                let mut sum = 0.0;
+                for &l in &block.contact {
+                    let (i, l) = (base + l as usize, l as usize);
+                    let r = g0[i] + u[i] - offset - delta;
+                    t[l] = if p[i] < plim || r > 0.0 { r } else { 0.0 };
+                    sum += t[l] * t[l];
+                }
+                for &l in &block.dropped {
+                    if p[base + l as usize] <= 0.0 {
+                        t[l as usize] = 0.0;
+                    }
+                }
+                block.dropped.clear();
+                for &(l, gap) in &block.entering {
+                    t[l as usize] = gap;
+                    sum += gap * gap;
+                }
+                block.sums[0] = sum;
+            });
+        self.blocks.iter().map(|b| b.sums[0]).sum()
+    }
+
     /// `Σ_F w` with `w = K t`.
     pub(super) fn free_w_sum(&mut self, plim: f64) -> f64 {
         let (p, w) = (&self.p, &self.w);
