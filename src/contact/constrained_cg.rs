@@ -151,7 +151,7 @@ pub(crate) fn solve(
     loop {
         let pending_step = pending.take();
         if pending_step.is_none() {
-            op.apply(&ws.p, &mut ws.u)?;
+            ws.displace(op)?;
             fft_transforms += 2;
             u_fresh = true;
         }
@@ -224,7 +224,7 @@ pub(crate) fn solve(
         };
         if let Some(termination) = termination {
             if !u_fresh {
-                op.apply(&ws.p, &mut ws.u)?;
+                ws.displace(op)?;
                 fft_transforms += 2;
             }
             ws.write_gap(offset + delta);
@@ -246,7 +246,7 @@ pub(crate) fn solve(
         g_old = free_g2;
         let [gt, t_sum, t_abs] = ws.direction(beta, offset, delta, plim);
         // `tᵀ K t = Σ_F t (K t)`: `t` vanishes off the free set.
-        let mut rt = op.start_apply(&ws.t)?;
+        let mut rt = ws.start_direction_transform(op)?;
         fft_transforms += 1;
         // `w = K t` in real space, if it was needed for the step.
         let mut w_ready = false;

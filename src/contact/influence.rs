@@ -2,7 +2,7 @@
 
 use std::f64::consts::PI;
 
-use crate::fft2::{FftFailure, RealFft2d};
+use crate::fft2::{FftFailure, RealFft2d, RowSource};
 
 /// Lateral boundary condition of the contact domain.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -142,12 +142,28 @@ impl InfluenceOperator {
             .convolve(pressure, &self.kernel, displacement, self.nx, self.ny)
     }
 
+    /// [`Self::apply`] to the pressure whose rows `fill` supplies.
+    pub(crate) fn apply_rows<F: RowSource>(
+        &mut self,
+        fill: &F,
+        displacement: &mut [f64],
+    ) -> Result<(), FftFailure> {
+        self.fft
+            .convolve_rows(fill, &self.kernel, displacement, self.nx, self.ny)
+    }
+
     /// First half of `displacement = K pressure`: transforms `pressure` (kept for
     /// [`Self::finish_apply`]) and returns the quadratic form `pressureᵀ K pressure` in Pa·m
     /// (Parseval; one forward FFT).
     pub(crate) fn start_apply(&mut self, pressure: &[f64]) -> Result<f64, FftFailure> {
         self.fft
             .start_convolve(pressure, &self.kernel, self.nx, self.ny)
+    }
+
+    /// [`Self::start_apply`] to the pressure whose rows `fill` supplies.
+    pub(crate) fn start_apply_rows<F: RowSource>(&mut self, fill: &F) -> Result<f64, FftFailure> {
+        self.fft
+            .start_convolve_rows(fill, &self.kernel, self.nx, self.ny)
     }
 
     /// Second half of `displacement = K pressure` for the pressure of the last

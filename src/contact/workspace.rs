@@ -4,10 +4,11 @@
 //! At the loads of interest the true contact area is a few per cent of the grid (A/A₀ ≈ 0.7 % for
 //! the 20 MPa rough benchmark), so every quantity that lives on the contact set — the free-set
 //! statistics, the conjugate direction, the step sums, the pressure update and the load
-//! rebalancing — is computed over an explicit list of contact points (`p > 0`). Only two things
-//! are dense: the convolutions, and one pass per iteration over the points out of contact, which
-//! checks `g ≥ 0` there (the separation residual and the points that re-enter the contact) and
-//! applies a pending linear displacement update `u ← u − τ w`.
+//! rebalancing — is computed over an explicit list of contact points (`p > 0`); the FFTs of `p`
+//! and of the conjugate direction read their rows from the lists too (`contact_rows`). Only two
+//! things are dense: the transforms themselves and their outputs, and one pass per iteration over
+//! the points out of contact, which checks `g ≥ 0` there (the separation residual and the points
+//! that re-enter the contact) and applies a pending linear displacement update `u ← u − τ w`.
 //!
 //! The grid is cut into blocks of [`BLOCK`] points; each block keeps its own ascending list of
 //! contact points, so every pass runs in parallel over blocks with safe disjoint writes, and every
@@ -16,6 +17,9 @@
 //! their size).
 
 use rayon::prelude::*;
+
+use super::influence::InfluenceOperator;
+use crate::fft2::{FftFailure, RowSource};
 
 /// Points per block (independent of the thread count).
 pub(crate) const BLOCK: usize = 1 << 13;
@@ -222,6 +226,41 @@ fn out_of_contact_min(u: &[f64], g0: &[f64], p: &[f64], offset: f64) -> f64 {
     lanes.iter().fold(tail, |a, &b| a.min(b))
 }
 
+/// The rows of `values`, which vanish off the contact set, filled from the contact lists: the
+/// FFT of a pressure or a direction reads its few contact points instead of the dense array.
+/// Row `r` of `nx = row.len()` points holds the points `r·nx .. (r + 1)·nx` (a row may span two
+/// blocks); a row whose values are all zero reports `false`, as the dense rows do, so the
+/// transform is bit-identical to that of the dense array.
+fn contact_rows<'a>(blocks: &'a [Block], values: &'a [f64]) -> impl RowSource + 'a {
+    move |r: usize, row: &mut [f64]| {
+        let nx = row.len();
+        let (start, end) = (r * nx, (r + 1) * nx);
+        row.fill(0.0);
+        let mut nonzero = false;
+        for (b, block) in blocks
+            .iter()
+            .enumerate()
+            .take(end.div_ceil(BLOCK))
+            .skip(start / BLOCK)
+        {
+            let base = b * BLOCK;
+            let first = block
+                .contact
+                .partition_point(|&l| base + (l as usize) < start);
+            for i in contact_points(base, &block.contact[first..]).take_while(|&i| i < end) {
+                row[i - start] = values[i];
+                nonzero |= values[i] != 0.0;
+            }
+        }
+        debug_assert_eq!(
+            row,
+            &values[start..end],
+            "row {r} has values off the contact lists"
+        );
+        nonzero
+    }
+}
+
 /// Global indices of a block's contact points.
 fn contact_points(base: usize, contact: &[u32]) -> impl Iterator<Item = usize> + '_ {
     contact.iter().map(move |&l| base + l as usize)
@@ -267,6 +306,20 @@ impl Workspace {
 
     pub(super) fn len(&self) -> usize {
         self.p.len()
+    }
+
+    /// `u ← K p` (one FFT pair; `p` is read from the contact lists, which must be current).
+    pub(super) fn displace(&mut self, op: &mut InfluenceOperator) -> Result<(), FftFailure> {
+        op.apply_rows(&contact_rows(&self.blocks, &self.p), &mut self.u)
+    }
+
+    /// Forward transform of the conjugate direction `t` (kept for `finish_apply`); returns
+    /// `tᵀ K t`. `t` must vanish off the contact lists, as [`Self::direction`] leaves it.
+    pub(super) fn start_direction_transform(
+        &self,
+        op: &mut InfluenceOperator,
+    ) -> Result<f64, FftFailure> {
+        op.start_apply_rows(&contact_rows(&self.blocks, &self.t))
     }
 
     /// Rebuilds the contact lists from `p` (after `p` was set or shifted outside the CG step);

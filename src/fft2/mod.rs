@@ -53,6 +53,9 @@ impl From<realfft::FftError> for FftFailure {
 struct ChunkBuffers {
     /// Scratch of the 1-D transforms.
     fft: Vec<Complex<f64>>,
+    /// One tile of `TILE` columns of `ny` values, transformed without being kept
+    /// ([`ColumnPass::Energy`]).
+    tile: Vec<Complex<f64>>,
     /// One real row of `nx` values (a zero-padded input row or an inverse-transformed row).
     row: Vec<f64>,
     /// `TILE_ROWS` row spectra of `nx/2 + 1` values gathered for the inverse row transforms.
@@ -105,11 +108,10 @@ enum ColumnPass<'a> {
     Kernel(&'a [f64]),
     /// Inverse only, of the spectrum already in the column buffer.
     Inverse,
-    /// Forward, then the energy `Σ_ky kernel |X|²` of every column; the spectrum stays in the
-    /// column buffer.
+    /// Forward, then the energy `Σ_ky kernel |X|²` of every column. The tiles are transformed
+    /// in the chunk's own tile buffer: the column buffer is not written (the row spectra, which
+    /// the pass only reads, still hold everything a later [`ColumnPass::Kernel`] needs).
     Energy(&'a [f64]),
-    /// Multiply the spectrum already in the column buffer by the kernel, inverse.
-    KernelInverse(&'a [f64]),
 }
 
 impl RealFft2d {
@@ -135,6 +137,7 @@ impl RealFft2d {
         let chunks = (0..chunks)
             .map(|_| ChunkBuffers {
                 fft: vec![zero; scratch_len],
+                tile: vec![zero; TILE * ny],
                 row: vec![0.0; nx],
                 spectra: vec![zero; TILE_ROWS * nxc],
             })
@@ -169,7 +172,7 @@ impl RealFft2d {
     /// Forward transform of a full `ny × nx` grid; returns the spectrum in layout `[kx][ky]`.
     pub fn forward(&mut self, input: &[f64]) -> Result<&[Complex<f64>], FftFailure> {
         self.check_len("input", input.len(), self.nx * self.ny)?;
-        self.rows_forward(input, self.nx, self.ny)?;
+        self.rows_forward(&dense_rows(input), self.nx, self.ny)?;
         self.columns(ColumnPass::Forward, self.ny);
         Ok(&self.cols)
     }
@@ -192,7 +195,7 @@ impl RealFft2d {
     /// Forward transform, inverse transform and normalisation `1/(nx·ny)` in place: one FFT pair.
     pub fn round_trip(&mut self, data: &mut [f64]) -> Result<(), FftFailure> {
         self.check_len("data", data.len(), self.nx * self.ny)?;
-        self.rows_forward(data, self.nx, self.ny)?;
+        self.rows_forward(&dense_rows(data), self.nx, self.ny)?;
         let factor = 1.0 / (self.nx as f64 * self.ny as f64);
         self.columns(ColumnPass::Scale(factor), self.ny);
         self.rows_inverse(data, self.nx, self.ny)
@@ -212,11 +215,23 @@ impl RealFft2d {
         rows: usize,
     ) -> Result<(), FftFailure> {
         self.check_len("input", input.len(), cols * rows)?;
+        self.convolve_rows(&dense_rows(input), kernel, output, cols, rows)
+    }
+
+    /// [`RealFft2d::convolve`] of the block whose rows `fill` supplies (see [`RowSource`]).
+    pub fn convolve_rows<F: RowSource>(
+        &mut self,
+        fill: &F,
+        kernel: &[f64],
+        output: &mut [f64],
+        cols: usize,
+        rows: usize,
+    ) -> Result<(), FftFailure> {
         self.check_back(kernel, output, cols, rows)?;
         if cols == 0 || rows == 0 {
             return Ok(());
         }
-        self.rows_forward(input, cols, rows)?;
+        self.rows_forward(fill, cols, rows)?;
         self.columns(ColumnPass::Kernel(kernel), rows);
         self.rows_inverse(output, cols, rows)
     }
@@ -235,14 +250,25 @@ impl RealFft2d {
         cols: usize,
         rows: usize,
     ) -> Result<f64, FftFailure> {
-        self.check_block(cols, rows)?;
         self.check_len("input", input.len(), cols * rows)?;
+        self.start_convolve_rows(&dense_rows(input), kernel, cols, rows)
+    }
+
+    /// [`RealFft2d::start_convolve`] of the block whose rows `fill` supplies (see
+    /// [`RowSource`]).
+    pub fn start_convolve_rows<F: RowSource>(
+        &mut self,
+        fill: &F,
+        kernel: &[f64],
+        cols: usize,
+        rows: usize,
+    ) -> Result<f64, FftFailure> {
+        self.check_block(cols, rows)?;
         self.check_len("kernel", kernel.len(), self.spectrum_len())?;
         if cols == 0 || rows == 0 {
-            self.cols.fill(Complex::new(0.0, 0.0));
             return Ok(0.0);
         }
-        self.rows_forward(input, cols, rows)?;
+        self.rows_forward(fill, cols, rows)?;
         self.columns(ColumnPass::Energy(kernel), rows);
         let (nx, nxc) = (self.nx, self.nxc);
         Ok(self
@@ -260,10 +286,13 @@ impl RealFft2d {
             .sum())
     }
 
-    /// Second half of [`RealFft2d::convolve`], on the spectrum kept by the last
-    /// [`RealFft2d::start_convolve`] (no other transform may run in between): multiplies by
-    /// `kernel`, transforms back and writes the top-left `rows × cols` block to `output`. The
-    /// two halves give the same bits as [`RealFft2d::convolve`].
+    /// Second half of [`RealFft2d::convolve`], from the row spectra kept by the last
+    /// [`RealFft2d::start_convolve`] (no other transform may run in between): transforms the
+    /// columns, multiplies by `kernel`, transforms back and writes the top-left `rows × cols`
+    /// block to `output`. The two halves give the same bits as [`RealFft2d::convolve`]. (The
+    /// column transforms are repeated here rather than kept by `start_convolve`: writing the
+    /// column spectra out costs the first half more than redoing them costs the second, which a
+    /// caller needs only sometimes.)
     pub fn finish_convolve(
         &mut self,
         kernel: &[f64],
@@ -275,7 +304,7 @@ impl RealFft2d {
         if cols == 0 || rows == 0 {
             return Ok(());
         }
-        self.columns(ColumnPass::KernelInverse(kernel), rows);
+        self.columns(ColumnPass::Kernel(kernel), rows);
         self.rows_inverse(output, cols, rows)
     }
 
@@ -313,25 +342,29 @@ impl RealFft2d {
         }
     }
 
-    /// Row spectra of the `rows × cols` block `input` (`cols, rows ≥ 1`), zero-padded to `nx`,
-    /// into the first `rows` rows of the row buffer.
-    fn rows_forward(&mut self, input: &[f64], cols: usize, rows: usize) -> Result<(), FftFailure> {
+    /// Row spectra of a `rows × cols` block (`cols, rows ≥ 1`), zero-padded to `nx`, into the
+    /// first `rows` rows of the row buffer; `fill` supplies the rows (see [`RowSource`]).
+    fn rows_forward<F: RowSource>(
+        &mut self,
+        fill: &F,
+        cols: usize,
+        rows: usize,
+    ) -> Result<(), FftFailure> {
         let nxc = self.nxc;
         let rpc = rows.div_ceil(self.chunks.len()).max(1);
         let r2c = &self.r2c;
         let len = r2c.get_scratch_len();
         self.rows[..rows * nxc]
             .par_chunks_mut(nxc * rpc)
-            .zip(input.par_chunks(cols * rpc))
             .zip(self.chunks.par_iter_mut())
-            .try_for_each(|((spectra, block), buffers)| {
-                for (spectrum, values) in spectra.chunks_mut(nxc).zip(block.chunks(cols)) {
-                    if values.iter().all(|&v| v == 0.0) {
+            .enumerate()
+            .try_for_each(|(chunk, (spectra, buffers))| {
+                for (r, spectrum) in spectra.chunks_mut(nxc).enumerate() {
+                    let row = &mut buffers.row;
+                    if !fill(chunk * rpc + r, &mut row[..cols]) {
                         spectrum.fill(Complex::new(0.0, 0.0));
                         continue;
                     }
-                    let row = &mut buffers.row;
-                    row[..cols].copy_from_slice(values);
                     row[cols..].fill(0.0);
                     r2c.process_with_scratch(row, spectrum, &mut buffers.fft[..len])?;
                 }
@@ -353,13 +386,21 @@ impl RealFft2d {
             .enumerate()
             .for_each(|(chunk, ((cols, energy), buffers))| {
                 let first_col = chunk * cpc;
-                let scratch = &mut buffers.fft;
+                let ChunkBuffers {
+                    fft: scratch,
+                    tile: own_tile,
+                    ..
+                } = buffers;
                 let fwd_len = fwd.get_inplace_scratch_len();
                 let inv_len = inv.get_inplace_scratch_len();
-                for (t, tile) in cols.chunks_mut(ny * TILE).enumerate() {
+                for (t, column_tile) in cols.chunks_mut(ny * TILE).enumerate() {
                     let tile_col = first_col + t * TILE;
-                    let width = tile.len() / ny;
-                    if !matches!(pass, ColumnPass::Inverse | ColumnPass::KernelInverse(_)) {
+                    let width = column_tile.len() / ny;
+                    let tile = match pass {
+                        ColumnPass::Energy(_) => &mut own_tile[..width * ny],
+                        _ => column_tile,
+                    };
+                    if !matches!(pass, ColumnPass::Inverse) {
                         transpose(spectra, nxc, rows, tile_col, width, tile, ny);
                         for column in tile.chunks_mut(ny) {
                             column[rows..].fill(Complex::new(0.0, 0.0));
@@ -385,7 +426,7 @@ impl RealFft2d {
                             continue;
                         }
                         ColumnPass::Scale(factor) => tile.iter_mut().for_each(|c| *c *= factor),
-                        ColumnPass::Kernel(kernel) | ColumnPass::KernelInverse(kernel) => {
+                        ColumnPass::Kernel(kernel) => {
                             let weights = &kernel[tile_col * ny..][..width * ny];
                             tile.iter_mut().zip(weights).for_each(|(c, &w)| *c *= w);
                         }
@@ -415,7 +456,9 @@ impl RealFft2d {
             .zip(self.chunks.par_iter_mut())
             .enumerate()
             .try_for_each(|(chunk, (out, buffers))| {
-                let ChunkBuffers { fft, row, spectra } = buffers;
+                let ChunkBuffers {
+                    fft, row, spectra, ..
+                } = buffers;
                 for (t, out_tile) in out.chunks_mut(cols * TILE_ROWS).enumerate() {
                     let tile_row = chunk * rpc + t * TILE_ROWS;
                     let height = out_tile.len() / cols;
@@ -440,6 +483,26 @@ impl RealFft2d {
                 Ok::<(), realfft::FftError>(())
             })?;
         Ok(())
+    }
+}
+
+/// Supplies the rows of a transform's input block: `fill(r, row)` writes all `cols` values of
+/// row `r` into `row` and returns `true`, or returns `false` if the row is zero (then `row` is
+/// not read). A caller that knows where its input is nonzero fills the rows from that, without
+/// reading a dense array.
+pub trait RowSource: Fn(usize, &mut [f64]) -> bool + Sync {}
+
+impl<F: Fn(usize, &mut [f64]) -> bool + Sync> RowSource for F {}
+
+/// The rows of a dense row-major block with `row.len()` columns; all-zero rows report `false`.
+fn dense_rows(input: &[f64]) -> impl RowSource + '_ {
+    move |r: usize, row: &mut [f64]| {
+        let values = &input[r * row.len()..][..row.len()];
+        if values.iter().all(|&v| v == 0.0) {
+            return false;
+        }
+        row.copy_from_slice(values);
+        true
     }
 }
 
