@@ -29,13 +29,16 @@
 //!
 //! Convolutions: the forward FFT of `t` gives `tᵀ K t` by Parseval, `Σ_q K̂(q) |t̂(q)|²`, so the
 //! step needs no inverse transform unless the load correction term does. After a linear step the
-//! displacement is updated by linearity, `u ← u − τ w`, with `w = K t` from one inverse FFT of
-//! the kept spectrum (one FFT pair per iteration). After a nonlinear correction (projection,
-//! re-entry, load rebalancing) `u = K p` is recomputed with a full pair at the start of the next
-//! iteration instead (1.5 pairs, or 2 if the step needed `w`). Convergence is only accepted on a
-//! displacement recomputed from the pressures, so every reported residual is judged on an exact
-//! `u`. (Deferring the recomputation while the corrections are small saved at most 6 % of the
-//! FFTs of the 1024² benchmark and cost up to 13 % more iterations; deferring it by a fixed
+//! displacement is updated by linearity, `u ← u − τ K t`, from one inverse FFT that recomputes
+//! the column transforms of the kept row spectra (one FFT pair per iteration); its output rows
+//! update `u` as they are produced (see `workspace::dense`). After a nonlinear correction
+//! (projection, re-entry, load rebalancing) `u = K p` is recomputed with a full pair at the start
+//! of the next iteration instead (1.5 pairs, or 2 if the step needed `w`). On the rough
+//! benchmark almost every step is corrected: a few points enter or leave the contact in nearly
+//! every step, so the solver runs at about 1.5 pairs per iteration. Convergence is only accepted
+//! on a displacement recomputed from the pressures, so every reported residual is judged on an
+//! exact `u`. (Deferring the recomputation while the corrections are small saved at most 6 % of
+//! the FFTs of the 1024² benchmark and cost up to 13 % more iterations; deferring it by a fixed
 //! number of iterations, or for larger corrections, can stall the iteration.)
 //!
 //! Convergence: all four [`Residuals`] `≤ ε`. The solve ends `Stalled` when its largest residual
@@ -44,8 +47,9 @@
 //! and largest residual within [`CYCLE_MATCH`] (a cycle of the load-controlled iteration, seen
 //! when almost all contact is saturated).
 //!
-//! Everything but the convolutions and one dense pass over the points out of contact runs over
-//! explicit contact lists (see [`super::workspace`]).
+//! Everything but the transforms (whose inputs are read from the lists) and, after a pending
+//! update, one dense pass over the points out of contact runs over explicit contact lists (see
+//! [`super::workspace`]).
 
 use super::influence::InfluenceOperator;
 use super::options::{Residuals, Termination};
@@ -79,6 +83,18 @@ const MEAN_FREE_DIRECTION: f64 = 1e-2;
 /// residuals agree within this fraction. (Exact equality of the free-set size missed cycles that
 /// moved one point per period, which then ran for `stall_iterations`.)
 const CYCLE_MATCH: f64 = 0.02;
+
+/// The state of `u` at the start of an iteration.
+enum Displacement {
+    /// `u = K p` is recomputed (one FFT pair): at the start, after a pressure correction, and
+    /// to confirm convergence.
+    Stale,
+    /// The linear update `u ← u − τ w` with the kept `w = K t` is still to be applied (by the
+    /// pass over the points out of contact; on the contact set the statistics include it).
+    Pending(f64),
+    /// `u` was updated by linearity, `u ← u − τ K t`, as the inverse FFT wrote it.
+    Current,
+}
 
 /// What is prescribed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -133,10 +149,7 @@ pub(crate) fn solve(
     let mut fft_transforms = 0;
     // `u` was recomputed from `p` at this iterate (not only updated incrementally).
     let mut u_fresh = false;
-    // The step `τ` of a displacement update `u ← u − τ w` not yet applied off the contact set.
-    // `None`: `u = K p` is recomputed before the next gap statistics — at the start, after a
-    // pressure correction, and to confirm convergence.
-    let mut pending: Option<f64> = None;
+    let mut displacement = Displacement::Stale;
     // The free-set size and largest residual of the last iteration whose load restoration spread
     // pressure over every point (see `Rebalanced::spread`).
     let mut last_spread: Option<(f64, f64)> = None;
@@ -149,12 +162,16 @@ pub(crate) fn solve(
     let mut iterations = 0;
     let mut delta_prev = 0.0;
     loop {
-        let pending_step = pending.take();
-        if pending_step.is_none() {
-            ws.displace(op)?;
-            fft_transforms += 2;
-            u_fresh = true;
-        }
+        let pending_step = match std::mem::replace(&mut displacement, Displacement::Stale) {
+            Displacement::Stale => {
+                ws.displace(op, offset)?;
+                fft_transforms += 2;
+                u_fresh = true;
+                None
+            }
+            Displacement::Pending(tau) => Some(tau),
+            Displacement::Current => None,
+        };
         let stats = ws.contact_stats(pending_step, offset, delta_prev, plim);
         let has_free = stats.free_count > 0.0;
         // Mean of y = g − δ_prev on F: the correction of δ (load control).
@@ -224,7 +241,7 @@ pub(crate) fn solve(
         };
         if let Some(termination) = termination {
             if !u_fresh {
-                ws.displace(op)?;
+                ws.displace(op, offset)?;
                 fft_transforms += 2;
             }
             ws.write_gap(offset + delta);
@@ -300,11 +317,13 @@ pub(crate) fn solve(
             }
         }
         if exact {
-            if !w_ready {
-                op.finish_apply(&mut ws.w)?;
+            displacement = if w_ready {
+                Displacement::Pending(tau)
+            } else {
+                ws.advance_displacement(op, tau, offset)?;
                 fft_transforms += 1;
-            }
-            pending = Some(tau);
+                Displacement::Current
+            };
         }
     }
 }

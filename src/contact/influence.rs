@@ -2,7 +2,7 @@
 
 use std::f64::consts::PI;
 
-use crate::fft2::{FftFailure, RealFft2d, RowSource};
+use crate::fft2::{FftFailure, RealFft2d, RowSink, RowSource};
 
 /// Lateral boundary condition of the contact domain.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -142,14 +142,16 @@ impl InfluenceOperator {
             .convolve(pressure, &self.kernel, displacement, self.nx, self.ny)
     }
 
-    /// [`Self::apply`] to the pressure whose rows `fill` supplies.
-    pub(crate) fn apply_rows<F: RowSource>(
+    /// [`Self::apply`] to the pressure whose rows `fill` supplies, the displacement rows going
+    /// through `sink`; returns the sink's value of every row.
+    pub(crate) fn apply_rows_into<F: RowSource, S: RowSink>(
         &mut self,
         fill: &F,
         displacement: &mut [f64],
-    ) -> Result<(), FftFailure> {
+        sink: &S,
+    ) -> Result<&[f64], FftFailure> {
         self.fft
-            .convolve_rows(fill, &self.kernel, displacement, self.nx, self.ny)
+            .convolve_rows_into(fill, &self.kernel, displacement, self.nx, self.ny, sink)
     }
 
     /// First half of `displacement = K pressure`: transforms `pressure` (kept for
@@ -171,6 +173,17 @@ impl InfluenceOperator {
     pub(crate) fn finish_apply(&mut self, displacement: &mut [f64]) -> Result<(), FftFailure> {
         self.fft
             .finish_convolve(&self.kernel, displacement, self.nx, self.ny)
+    }
+
+    /// [`Self::finish_apply`] with the displacement rows going through `sink`; returns the
+    /// sink's value of every row.
+    pub(crate) fn finish_apply_into<S: RowSink>(
+        &mut self,
+        displacement: &mut [f64],
+        sink: &S,
+    ) -> Result<&[f64], FftFailure> {
+        self.fft
+            .finish_convolve_into(&self.kernel, displacement, self.nx, self.ny, sink)
     }
 
     /// Displacement of a pixel under a unit pressure on itself, `K₀₀` in m/Pa (> 0).

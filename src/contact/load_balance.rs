@@ -124,7 +124,7 @@ mod tests {
     fn rigid_plastic_start_fills_the_smallest_gaps_in_index_order_of_ties() {
         // Order by (gap, index): 6, 1, 3, 4, 2, 7, 0, 5. N p̄ / p_lim = 3.5: the first three carry
         // p_lim, the fourth (index 4, the last of the tied gaps 1) half of it.
-        let mut ws = Workspace::new(vec![3.0, 1.0, 2.0, 1.0, 1.0, 5.0, 0.0, 2.0]);
+        let mut ws = Workspace::new(vec![3.0, 1.0, 2.0, 1.0, 1.0, 5.0, 0.0, 2.0], 4);
         ws.start_rigid_plastic(3.5 * 10.0 / 8.0, 10.0);
         assert_eq!(ws.p, vec![0.0, 10.0, 0.0, 10.0, 5.0, 0.0, 10.0, 0.0]);
     }

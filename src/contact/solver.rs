@@ -99,7 +99,7 @@ impl ContactSolver {
             problem.material().composite_modulus(),
             problem.boundary(),
         )?;
-        let workspace = Workspace::new(gap.gap().iter().copied().collect());
+        let workspace = Workspace::new(gap.gap().iter().copied().collect(), gap.nx());
         let rms = gap.rms();
         Ok(Self {
             problem,

@@ -12,11 +12,17 @@
 
 use std::sync::Arc;
 
-use ndarray::Array2;
 use rayon::prelude::*;
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
+
+mod grid;
+mod rows;
+
+pub(crate) use grid::{forward_real_2d, inverse_real_2d};
+use rows::{dense_rows, Copy};
+pub use rows::{RowSink, RowSource};
 
 /// Columns transformed together: a tile of `TILE` columns of `ny` complex values is transposed,
 /// transformed forward, multiplied and transformed back while it is in cache.
@@ -84,6 +90,8 @@ pub struct RealFft2d {
     cols: Vec<Complex<f64>>,
     /// Per-column results of an [`ColumnPass::Energy`] pass, summed in column order.
     column_energy: Vec<f64>,
+    /// Per-row results of a [`RowSink`].
+    row_values: Vec<f64>,
     chunks: Vec<ChunkBuffers>,
     cols_per_chunk: usize,
 }
@@ -153,6 +161,7 @@ impl RealFft2d {
             rows: vec![zero; nxc * ny],
             cols: vec![zero; nxc * ny],
             column_energy: vec![0.0; nxc],
+            row_values: vec![0.0; ny],
             chunks,
             cols_per_chunk,
         }
@@ -189,7 +198,7 @@ impl RealFft2d {
         self.check_len("output", output.len(), self.nx * self.ny)?;
         self.cols.copy_from_slice(spectrum);
         self.columns(ColumnPass::Inverse, self.ny);
-        self.rows_inverse(output, self.nx, self.ny)
+        self.rows_inverse(output, self.nx, self.ny, None::<&Copy>)
     }
 
     /// Forward transform, inverse transform and normalisation `1/(nx·ny)` in place: one FFT pair.
@@ -198,7 +207,7 @@ impl RealFft2d {
         self.rows_forward(&dense_rows(data), self.nx, self.ny)?;
         let factor = 1.0 / (self.nx as f64 * self.ny as f64);
         self.columns(ColumnPass::Scale(factor), self.ny);
-        self.rows_inverse(data, self.nx, self.ny)
+        self.rows_inverse(data, self.nx, self.ny, None::<&Copy>)
     }
 
     /// Circular convolution of the block `input` (`rows × cols`, row-major, placed in the top-left
@@ -233,7 +242,28 @@ impl RealFft2d {
         }
         self.rows_forward(fill, cols, rows)?;
         self.columns(ColumnPass::Kernel(kernel), rows);
-        self.rows_inverse(output, cols, rows)
+        self.rows_inverse(output, cols, rows, None::<&Copy>)
+    }
+
+    /// [`RealFft2d::convolve_rows`] whose output rows go through `sink` (see [`RowSink`]);
+    /// returns the sink's value of each of the `rows` rows.
+    pub fn convolve_rows_into<F: RowSource, S: RowSink>(
+        &mut self,
+        fill: &F,
+        kernel: &[f64],
+        output: &mut [f64],
+        cols: usize,
+        rows: usize,
+        sink: &S,
+    ) -> Result<&[f64], FftFailure> {
+        self.check_back(kernel, output, cols, rows)?;
+        if cols == 0 || rows == 0 {
+            return Ok(&[]);
+        }
+        self.rows_forward(fill, cols, rows)?;
+        self.columns(ColumnPass::Kernel(kernel), rows);
+        self.rows_inverse(output, cols, rows, Some(sink))?;
+        Ok(&self.row_values[..rows])
     }
 
     /// First half of [`RealFft2d::convolve`]: the forward transform of the block `input`, kept
@@ -305,7 +335,26 @@ impl RealFft2d {
             return Ok(());
         }
         self.columns(ColumnPass::Kernel(kernel), rows);
-        self.rows_inverse(output, cols, rows)
+        self.rows_inverse(output, cols, rows, None::<&Copy>)
+    }
+
+    /// [`RealFft2d::finish_convolve`] whose output rows go through `sink` (see [`RowSink`]);
+    /// returns the sink's value of each of the `rows` rows.
+    pub fn finish_convolve_into<S: RowSink>(
+        &mut self,
+        kernel: &[f64],
+        output: &mut [f64],
+        cols: usize,
+        rows: usize,
+        sink: &S,
+    ) -> Result<&[f64], FftFailure> {
+        self.check_back(kernel, output, cols, rows)?;
+        if cols == 0 || rows == 0 {
+            return Ok(&[]);
+        }
+        self.columns(ColumnPass::Kernel(kernel), rows);
+        self.rows_inverse(output, cols, rows, Some(sink))?;
+        Ok(&self.row_values[..rows])
     }
 
     /// The block, kernel and output of a convolution's way back.
@@ -438,12 +487,14 @@ impl RealFft2d {
     }
 
     /// Inverse row transforms of the first `rows` rows (`cols, rows ≥ 1`) of the spectrum in the
-    /// column buffer; the first `cols` values of each are written to `output` (`rows × cols`).
-    fn rows_inverse(
+    /// column buffer; the first `cols` values of each are written to `output` (`rows × cols`),
+    /// or handed to `sink` with the output row (its values go to `row_values`).
+    fn rows_inverse<S: RowSink>(
         &mut self,
         output: &mut [f64],
         cols: usize,
         rows: usize,
+        sink: Option<&S>,
     ) -> Result<(), FftFailure> {
         let (nx, ny, nxc) = (self.nx, self.ny, self.nxc);
         let rpc = rows.div_ceil(self.chunks.len()).max(1);
@@ -453,18 +504,26 @@ impl RealFft2d {
         let even = nx % 2 == 0;
         output
             .par_chunks_mut(cols * rpc)
+            .zip(self.row_values.par_chunks_mut(rpc))
             .zip(self.chunks.par_iter_mut())
             .enumerate()
-            .try_for_each(|(chunk, (out, buffers))| {
+            .try_for_each(|(chunk, ((out, values), buffers))| {
                 let ChunkBuffers {
                     fft, row, spectra, ..
                 } = buffers;
-                for (t, out_tile) in out.chunks_mut(cols * TILE_ROWS).enumerate() {
+                for (t, (out_tile, tile_values)) in out
+                    .chunks_mut(cols * TILE_ROWS)
+                    .zip(values.chunks_mut(TILE_ROWS))
+                    .enumerate()
+                {
                     let tile_row = chunk * rpc + t * TILE_ROWS;
                     let height = out_tile.len() / cols;
                     transpose(spectrum, ny, nxc, tile_row, height, spectra, nxc);
-                    for (spec_row, out_row) in
-                        spectra.chunks_mut(nxc).zip(out_tile.chunks_mut(cols))
+                    for (k, ((spec_row, out_row), value)) in spectra
+                        .chunks_mut(nxc)
+                        .zip(out_tile.chunks_mut(cols))
+                        .zip(tile_values.iter_mut())
+                        .enumerate()
                     {
                         // The inverse of a real signal's spectrum: DC and Nyquist are real up to
                         // round-off.
@@ -472,37 +531,24 @@ impl RealFft2d {
                         if even {
                             spec_row[nxc - 1].im = 0.0;
                         }
-                        if cols == nx {
-                            c2r.process_with_scratch(spec_row, out_row, &mut fft[..len])?;
-                        } else {
-                            c2r.process_with_scratch(spec_row, row, &mut fft[..len])?;
-                            out_row.copy_from_slice(&row[..cols]);
+                        match sink {
+                            None if cols == nx => {
+                                c2r.process_with_scratch(spec_row, out_row, &mut fft[..len])?;
+                            }
+                            None => {
+                                c2r.process_with_scratch(spec_row, row, &mut fft[..len])?;
+                                out_row.copy_from_slice(&row[..cols]);
+                            }
+                            Some(sink) => {
+                                c2r.process_with_scratch(spec_row, row, &mut fft[..len])?;
+                                *value = sink(tile_row + k, &row[..cols], out_row);
+                            }
                         }
                     }
                 }
                 Ok::<(), realfft::FftError>(())
             })?;
         Ok(())
-    }
-}
-
-/// Supplies the rows of a transform's input block: `fill(r, row)` writes all `cols` values of
-/// row `r` into `row` and returns `true`, or returns `false` if the row is zero (then `row` is
-/// not read). A caller that knows where its input is nonzero fills the rows from that, without
-/// reading a dense array.
-pub trait RowSource: Fn(usize, &mut [f64]) -> bool + Sync {}
-
-impl<F: Fn(usize, &mut [f64]) -> bool + Sync> RowSource for F {}
-
-/// The rows of a dense row-major block with `row.len()` columns; all-zero rows report `false`.
-fn dense_rows(input: &[f64]) -> impl RowSource + '_ {
-    move |r: usize, row: &mut [f64]| {
-        let values = &input[r * row.len()..][..row.len()];
-        if values.iter().all(|&v| v == 0.0) {
-            return false;
-        }
-        row.copy_from_slice(values);
-        true
     }
 }
 
@@ -532,44 +578,6 @@ fn transpose(
             }
         }
     }
-}
-
-/// Forward transform of a real `[ny, nx]` grid to its half spectrum `[ny, nx/2 + 1]`
-/// (row `j` holds `ky = j` for `j ≤ ny/2` and `j − ny` above; column `i` holds `kx = i`).
-pub(crate) fn forward_real_2d(z: &Array2<f64>) -> Result<Array2<Complex<f64>>, FftFailure> {
-    let (ny, nx) = z.dim();
-    let standard = z.as_standard_layout();
-    let values = standard
-        .as_slice()
-        .ok_or_else(|| FftFailure::new("height grid is not contiguous"))?;
-    let mut fft = RealFft2d::new(nx, ny);
-    let spectrum = fft.forward(values)?;
-    let nxh = nx / 2 + 1;
-    Ok(Array2::from_shape_fn((ny, nxh), |(j, i)| {
-        spectrum[i * ny + j]
-    }))
-}
-
-/// Inverse of a `[ny, nx/2 + 1]` half spectrum to a real `[ny, nx]` grid, unnormalised (divide
-/// by `nx·ny` to invert [`forward_real_2d`]). The imaginary parts a real signal's row spectrum
-/// cannot carry (the `kx = 0` and, for even `nx`, `kx = nx/2` columns after the y transform) are
-/// dropped; callers that build Hermitian spectra make them zero up to round-off.
-pub(crate) fn inverse_real_2d(
-    half: &Array2<Complex<f64>>,
-    nx: usize,
-) -> Result<Array2<f64>, FftFailure> {
-    let (ny, nxh) = half.dim();
-    if nxh != nx / 2 + 1 || nx == 0 || ny == 0 {
-        return Err(FftFailure::new(format!(
-            "half spectrum is {ny} × {nxh}, expected {} columns for nx = {nx}",
-            nx / 2 + 1
-        )));
-    }
-    let transposed: Vec<Complex<f64>> = half.t().iter().copied().collect();
-    let mut fft = RealFft2d::new(nx, ny);
-    let mut out = vec![0.0; nx * ny];
-    fft.inverse(&transposed, &mut out)?;
-    Array2::from_shape_vec((ny, nx), out).map_err(|e| FftFailure::new(e.to_string()))
 }
 
 #[cfg(test)]

@@ -1,5 +1,7 @@
 //! Tests of the 2-D real FFT.
 
+use ndarray::Array2;
+
 use super::*;
 
 fn signal(nx: usize, ny: usize) -> Vec<f64> {
@@ -193,6 +195,47 @@ fn row_sources_give_the_bits_of_the_dense_block() {
             .start_convolve_rows(&rows_of, &kernel, cols, rows)
             .unwrap();
         assert_eq!(dense_energy.to_bits(), rows_energy.to_bits(), "{nx}×{ny}");
+    }
+}
+
+#[test]
+fn row_sinks_see_the_rows_of_the_result() {
+    // A sink that accumulates `out −= 2 · values` and returns the row sum gets exactly the rows
+    // `convolve` writes, for the whole convolution and for the second half.
+    for (cols, rows, nx, ny) in [(6, 5, 12, 10), (7, 9, 7, 9)] {
+        let input = signal(cols, rows);
+        let mut fft = RealFft2d::new(nx, ny);
+        let kernel = spectral_kernel(&mut fft, &even_stencil(nx, ny));
+        let mut whole = vec![0.0; cols * rows];
+        fft.convolve(&input, &kernel, &mut whole, cols, rows)
+            .unwrap();
+        let start = signal(rows, cols);
+        let expected: Vec<f64> = start.iter().zip(&whole).map(|(s, w)| s - 2.0 * w).collect();
+        let sums: Vec<f64> = whole.chunks(cols).map(|r| r.iter().sum()).collect();
+        let sink = |_: usize, values: &[f64], out: &mut [f64]| {
+            out.iter_mut().zip(values).for_each(|(o, &v)| *o -= 2.0 * v);
+            values.iter().sum()
+        };
+        let mut updated = start.clone();
+        let got = fft
+            .convolve_rows_into(
+                &dense_rows(&input),
+                &kernel,
+                &mut updated,
+                cols,
+                rows,
+                &sink,
+            )
+            .unwrap();
+        assert_eq!(got, &sums[..], "{nx}×{ny}");
+        assert_eq!(updated, expected, "{nx}×{ny}");
+        fft.start_convolve(&input, &kernel, cols, rows).unwrap();
+        let mut updated = start.clone();
+        let got = fft
+            .finish_convolve_into(&kernel, &mut updated, cols, rows, &sink)
+            .unwrap();
+        assert_eq!(got, &sums[..], "{nx}×{ny}");
+        assert_eq!(updated, expected, "{nx}×{ny}");
     }
 }
 

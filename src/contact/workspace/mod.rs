@@ -4,11 +4,11 @@
 //! At the loads of interest the true contact area is a few per cent of the grid (A/A₀ ≈ 0.7 % for
 //! the 20 MPa rough benchmark), so every quantity that lives on the contact set — the free-set
 //! statistics, the conjugate direction, the step sums, the pressure update and the load
-//! rebalancing — is computed over an explicit list of contact points (`p > 0`); the FFTs of `p`
-//! and of the conjugate direction read their rows from the lists too (`contact_rows`). Only two
-//! things are dense: the transforms themselves and their outputs, and one pass per iteration over
-//! the points out of contact, which checks `g ≥ 0` there (the separation residual and the points
-//! that re-enter the contact) and applies a pending linear displacement update `u ← u − τ w`.
+//! rebalancing — is computed over an explicit list of contact points (`p > 0`). The dense side
+//! lives in [`dense`]: the transforms (which read `p` and `t` from the lists and, while writing
+//! `u`, take each row's smallest gap out of contact) and the check of `g ≥ 0` out of contact
+//! (the separation residual and the points that re-enter the contact), which scans only the
+//! blocks that reach below `δ`.
 //!
 //! The grid is cut into blocks of [`BLOCK`] points; each block keeps its own ascending list of
 //! contact points, so every pass runs in parallel over blocks with safe disjoint writes, and every
@@ -18,8 +18,7 @@
 
 use rayon::prelude::*;
 
-use super::influence::InfluenceOperator;
-use crate::fft2::{FftFailure, RowSource};
+mod dense;
 
 /// Points per block (independent of the thread count).
 pub(crate) const BLOCK: usize = 1 << 13;
@@ -191,76 +190,6 @@ fn each_block(blocks: &mut [Block], visit: impl Fn(usize, &mut Block) + Sync + S
         .for_each(|(b, block)| visit(b * BLOCK, block));
 }
 
-/// Independent running minima of [`out_of_contact_min`]: a single one is a serial chain of
-/// dependent comparisons; eight break it and let the loop vectorise.
-const LANES: usize = 8;
-
-/// `min_{p = 0} (g₀ + u − offset)` over one block (`+∞` if every point is in contact). The gaps
-/// are finite (the inputs are checked), so the branch-free `if v < m` selection is the minimum.
-fn out_of_contact_min(u: &[f64], g0: &[f64], p: &[f64], offset: f64) -> f64 {
-    let mut lanes = [f64::INFINITY; LANES];
-    let fold = |m: &mut f64, (&ui, (&g0i, &pi)): (&f64, (&f64, &f64))| {
-        let v = if pi <= 0.0 {
-            g0i + ui - offset
-        } else {
-            f64::INFINITY
-        };
-        *m = if v < *m { v } else { *m };
-    };
-    let (u_body, u_tail) = u.split_at(u.len() - u.len() % LANES);
-    let (g0_body, g0_tail) = g0.split_at(u_body.len());
-    let (p_body, p_tail) = p.split_at(u_body.len());
-    for ((u, g0), p) in u_body
-        .chunks_exact(LANES)
-        .zip(g0_body.chunks_exact(LANES))
-        .zip(p_body.chunks_exact(LANES))
-    {
-        for (m, x) in lanes.iter_mut().zip(u.iter().zip(g0.iter().zip(p))) {
-            fold(m, x);
-        }
-    }
-    let mut tail = f64::INFINITY;
-    for x in u_tail.iter().zip(g0_tail.iter().zip(p_tail)) {
-        fold(&mut tail, x);
-    }
-    lanes.iter().fold(tail, |a, &b| a.min(b))
-}
-
-/// The rows of `values`, which vanish off the contact set, filled from the contact lists: the
-/// FFT of a pressure or a direction reads its few contact points instead of the dense array.
-/// Row `r` of `nx = row.len()` points holds the points `r·nx .. (r + 1)·nx` (a row may span two
-/// blocks); a row whose values are all zero reports `false`, as the dense rows do, so the
-/// transform is bit-identical to that of the dense array.
-fn contact_rows<'a>(blocks: &'a [Block], values: &'a [f64]) -> impl RowSource + 'a {
-    move |r: usize, row: &mut [f64]| {
-        let nx = row.len();
-        let (start, end) = (r * nx, (r + 1) * nx);
-        row.fill(0.0);
-        let mut nonzero = false;
-        for (b, block) in blocks
-            .iter()
-            .enumerate()
-            .take(end.div_ceil(BLOCK))
-            .skip(start / BLOCK)
-        {
-            let base = b * BLOCK;
-            let first = block
-                .contact
-                .partition_point(|&l| base + (l as usize) < start);
-            for i in contact_points(base, &block.contact[first..]).take_while(|&i| i < end) {
-                row[i - start] = values[i];
-                nonzero |= values[i] != 0.0;
-            }
-        }
-        debug_assert_eq!(
-            row,
-            &values[start..end],
-            "row {r} has values off the contact lists"
-        );
-        nonzero
-    }
-}
-
 /// Global indices of a block's contact points.
 fn contact_points(base: usize, contact: &[u32]) -> impl Iterator<Item = usize> + '_ {
     contact.iter().map(move |&l| base + l as usize)
@@ -287,11 +216,19 @@ pub(crate) struct Workspace {
     /// `w = K t`.
     pub(super) w: Vec<f64>,
     blocks: Vec<Block>,
+    /// Points per grid row.
+    nx: usize,
+    /// Per grid row, `min_{p = 0} (g₀ + u − offset)` as the last inverse transform left it.
+    row_min: Vec<f64>,
+    /// `row_min` holds for the current `u` and `p` (cleared whenever either changes otherwise).
+    row_min_current: bool,
 }
 
 impl Workspace {
-    pub(crate) fn new(g0: Vec<f64>) -> Self {
+    /// The workspace of a grid of `g0.len()` points in rows of `nx`.
+    pub(crate) fn new(g0: Vec<f64>, nx: usize) -> Self {
         let n = g0.len();
+        let nx = nx.max(1);
         let blocks = n.div_ceil(BLOCK).max(1);
         Self {
             g0,
@@ -301,6 +238,9 @@ impl Workspace {
             t: vec![0.0; n],
             w: vec![0.0; n],
             blocks: vec![Block::new(); blocks],
+            nx,
+            row_min: vec![f64::INFINITY; n.div_ceil(nx)],
+            row_min_current: false,
         }
     }
 
@@ -308,24 +248,11 @@ impl Workspace {
         self.p.len()
     }
 
-    /// `u ← K p` (one FFT pair; `p` is read from the contact lists, which must be current).
-    pub(super) fn displace(&mut self, op: &mut InfluenceOperator) -> Result<(), FftFailure> {
-        op.apply_rows(&contact_rows(&self.blocks, &self.p), &mut self.u)
-    }
-
-    /// Forward transform of the conjugate direction `t` (kept for `finish_apply`); returns
-    /// `tᵀ K t`. `t` must vanish off the contact lists, as [`Self::direction`] leaves it.
-    pub(super) fn start_direction_transform(
-        &self,
-        op: &mut InfluenceOperator,
-    ) -> Result<f64, FftFailure> {
-        op.start_apply_rows(&contact_rows(&self.blocks, &self.t))
-    }
-
     /// Rebuilds the contact lists from `p` (after `p` was set or shifted outside the CG step);
     /// points out of contact with a direction left are recorded to be cleared at the next
     /// conjugation.
     pub(super) fn rebuild_contact(&mut self) {
+        self.row_min_current = false;
         self.blocks
             .par_iter_mut()
             .zip(self.p.par_chunks(BLOCK))
@@ -365,48 +292,6 @@ impl Workspace {
         self.blocks.iter().fold(ContactStats::EMPTY, |a, b| {
             ContactStats::combine(a, &b.stats)
         })
-    }
-
-    /// The dense pass over the points out of contact. Applies the pending displacement update
-    /// `u ← u − τ w` (everywhere) if `pending_step = Some(τ)`; returns the smallest gap
-    /// `min_{p = 0} (g₀ + u − offset)` and records the points with `g₀ + u − offset − δ < 0`
-    /// (none for `δ = −∞`). The minimum of each block is taken without branches over
-    /// [`LANES`] independent running minima; only a block whose minimum is below `δ` is scanned
-    /// again for its entering points (late in a solve a few blocks of the grid, if any).
-    pub(super) fn out_of_contact_pass(
-        &mut self,
-        pending_step: Option<f64>,
-        offset: f64,
-        delta: f64,
-    ) -> f64 {
-        let w = &self.w;
-        self.u
-            .par_chunks_mut(BLOCK)
-            .zip(self.g0.par_chunks(BLOCK))
-            .zip(self.p.par_chunks(BLOCK))
-            .zip(self.blocks.par_iter_mut())
-            .enumerate()
-            .for_each(|(b, (((u, g0), p), block))| {
-                if let Some(tau) = pending_step {
-                    let w = &w[b * BLOCK..][..u.len()];
-                    u.iter_mut().zip(w).for_each(|(ui, &wi)| *ui -= tau * wi);
-                }
-                block.entering.clear();
-                let zero_min = out_of_contact_min(u, g0, p, offset);
-                if zero_min - delta < 0.0 {
-                    for (l, ((&ui, &g0i), &pi)) in u.iter().zip(g0).zip(p).enumerate() {
-                        let v = g0i + ui - offset;
-                        if pi <= 0.0 && v - delta < 0.0 {
-                            block.entering.push((l as u32, v - delta));
-                        }
-                    }
-                }
-                block.zero_min = zero_min;
-            });
-        self.blocks
-            .iter()
-            .map(|b| b.zero_min)
-            .fold(f64::INFINITY, f64::min)
     }
 
     /// `t ← (v − δ) + β t` on the free set, 0 at saturated points and off the contact set;
@@ -498,6 +383,7 @@ impl Workspace {
     /// negative gap; projection on `[0, p_lim]`. Points that drop to 0 leave the contact list,
     /// re-entered points join it. `u` is not changed.
     pub(super) fn update(&mut self, tau: f64, offset: f64, delta: f64, plim: f64) -> UpdateOutcome {
+        self.row_min_current = false;
         let (g0, u) = (&self.g0, &self.u);
         self.p
             .par_chunks_mut(BLOCK)
@@ -573,19 +459,6 @@ impl Workspace {
         out
     }
 
-    /// `g ← g₀ + u − approach` everywhere (the gap returned with a solve).
-    pub(super) fn write_gap(&mut self, approach: f64) {
-        self.g
-            .par_chunks_mut(BLOCK)
-            .zip(self.g0.par_chunks(BLOCK))
-            .zip(self.u.par_chunks(BLOCK))
-            .for_each(|((g, g0), u)| {
-                for ((gi, &g0i), &ui) in g.iter_mut().zip(g0).zip(u) {
-                    *gi = g0i + ui - approach;
-                }
-            });
-    }
-
     /// Free-set statistics of the current pressures (contact lists must be current).
     pub(super) fn free_stats(&mut self, plim: f64) -> FreeStats {
         let p = &self.p;
@@ -626,6 +499,7 @@ impl Workspace {
 
     /// `p ← min(s p, p_lim)` on the free set; returns the new `Σ_F p`.
     pub(super) fn scale_free(&mut self, s: f64, plim: f64) -> f64 {
+        self.row_min_current = false;
         self.p
             .par_chunks_mut(BLOCK)
             .zip(self.blocks.par_iter_mut())

@@ -1,0 +1,204 @@
+//! The dense side of the iteration: the rows the FFTs read and write, and the pass over the
+//! points out of contact.
+//!
+//! * The forward transforms of `p` and of the conjugate direction `t` read their rows from the
+//!   contact lists ([`contact_rows`]), not from the dense arrays.
+//! * The displacement rows an inverse transform produces go through a sink that, while each row
+//!   is still in cache, writes `u` (`u ← K p`, or the linear update `u ← u − τ K t`) and takes the
+//!   row's smallest out-of-contact gap `min_{p = 0} (g₀ + u − offset)`
+//!   ([`out_of_contact_min`]). The pass over the points out of contact then needs no dense
+//!   sweep: the smallest gap is the smallest row minimum, and only the blocks whose rows reach
+//!   below `δ` are scanned for entering points.
+//! * When `u` changed otherwise (a pending update `u ← u − τ w` with a `w` kept for the step),
+//!   the pass sweeps the grid as before.
+
+use rayon::prelude::*;
+
+use super::{contact_points, Block, Workspace, BLOCK};
+use crate::contact::influence::InfluenceOperator;
+use crate::fft2::{FftFailure, RowSource};
+
+/// Independent running minima of [`out_of_contact_min`]: a single one is a serial chain of
+/// dependent comparisons; eight break it and let the loop vectorise.
+const LANES: usize = 8;
+
+/// `min_{p = 0} (g₀ + u − offset)` over a stretch of the grid (`+∞` if every point is in
+/// contact). The gaps are finite (the inputs are checked), so the branch-free `if v < m`
+/// selection is the minimum.
+fn out_of_contact_min(u: &[f64], g0: &[f64], p: &[f64], offset: f64) -> f64 {
+    let mut lanes = [f64::INFINITY; LANES];
+    let fold = |m: &mut f64, (&ui, (&g0i, &pi)): (&f64, (&f64, &f64))| {
+        let v = if pi <= 0.0 {
+            g0i + ui - offset
+        } else {
+            f64::INFINITY
+        };
+        *m = if v < *m { v } else { *m };
+    };
+    let (u_body, u_tail) = u.split_at(u.len() - u.len() % LANES);
+    let (g0_body, g0_tail) = g0.split_at(u_body.len());
+    let (p_body, p_tail) = p.split_at(u_body.len());
+    for ((u, g0), p) in u_body
+        .chunks_exact(LANES)
+        .zip(g0_body.chunks_exact(LANES))
+        .zip(p_body.chunks_exact(LANES))
+    {
+        for (m, x) in lanes.iter_mut().zip(u.iter().zip(g0.iter().zip(p))) {
+            fold(m, x);
+        }
+    }
+    let mut tail = f64::INFINITY;
+    for x in u_tail.iter().zip(g0_tail.iter().zip(p_tail)) {
+        fold(&mut tail, x);
+    }
+    lanes.iter().fold(tail, |a, &b| a.min(b))
+}
+
+/// The rows of `values`, which vanish off the contact set, filled from the contact lists: the
+/// FFT of a pressure or a direction reads its few contact points instead of the dense array.
+/// Row `r` of `nx = row.len()` points holds the points `r·nx .. (r + 1)·nx` (a row may span two
+/// blocks); a row whose values are all zero reports `false`, as the dense rows do, so the
+/// transform is bit-identical to that of the dense array.
+fn contact_rows<'a>(blocks: &'a [Block], values: &'a [f64]) -> impl RowSource + 'a {
+    move |r: usize, row: &mut [f64]| {
+        let nx = row.len();
+        let (start, end) = (r * nx, (r + 1) * nx);
+        row.fill(0.0);
+        let mut nonzero = false;
+        for (b, block) in blocks
+            .iter()
+            .enumerate()
+            .take(end.div_ceil(BLOCK))
+            .skip(start / BLOCK)
+        {
+            let base = b * BLOCK;
+            let first = block
+                .contact
+                .partition_point(|&l| base + (l as usize) < start);
+            for i in contact_points(base, &block.contact[first..]).take_while(|&i| i < end) {
+                row[i - start] = values[i];
+                nonzero |= values[i] != 0.0;
+            }
+        }
+        debug_assert_eq!(
+            row,
+            &values[start..end],
+            "row {r} has values off the contact lists"
+        );
+        nonzero
+    }
+}
+
+impl Workspace {
+    /// `u ← K p` (one FFT pair; `p` is read from the contact lists, which must be current), with
+    /// the row minima of the out-of-contact gap `g₀ + u − offset`.
+    pub(in crate::contact) fn displace(
+        &mut self,
+        op: &mut InfluenceOperator,
+        offset: f64,
+    ) -> Result<(), FftFailure> {
+        let (g0, p, nx) = (&self.g0, &self.p, self.nx);
+        let sink = |r: usize, kp: &[f64], u: &mut [f64]| {
+            u.copy_from_slice(kp);
+            out_of_contact_min(u, &g0[r * nx..][..nx], &p[r * nx..][..nx], offset)
+        };
+        let minima = op.apply_rows_into(&contact_rows(&self.blocks, p), &mut self.u, &sink)?;
+        self.row_min.copy_from_slice(minima);
+        self.row_min_current = true;
+        Ok(())
+    }
+
+    /// Forward transform of the conjugate direction `t` (kept for `finish_apply`); returns
+    /// `tᵀ K t`. `t` must vanish off the contact lists, as [`Self::direction`] leaves it.
+    pub(in crate::contact) fn start_direction_transform(
+        &self,
+        op: &mut InfluenceOperator,
+    ) -> Result<f64, FftFailure> {
+        op.start_apply_rows(&contact_rows(&self.blocks, &self.t))
+    }
+
+    /// The linear displacement update `u ← u − τ K t` from the direction transformed last
+    /// (one inverse FFT; `K t` is not kept), with the row minima of the out-of-contact gap
+    /// `g₀ + u − offset` for the pressures as they are now.
+    pub(in crate::contact) fn advance_displacement(
+        &mut self,
+        op: &mut InfluenceOperator,
+        tau: f64,
+        offset: f64,
+    ) -> Result<(), FftFailure> {
+        let (g0, p, nx) = (&self.g0, &self.p, self.nx);
+        let sink = |r: usize, kt: &[f64], u: &mut [f64]| {
+            u.iter_mut().zip(kt).for_each(|(ui, &wi)| *ui -= tau * wi);
+            out_of_contact_min(u, &g0[r * nx..][..nx], &p[r * nx..][..nx], offset)
+        };
+        let minima = op.finish_apply_into(&mut self.u, &sink)?;
+        self.row_min.copy_from_slice(minima);
+        self.row_min_current = true;
+        Ok(())
+    }
+
+    /// The pass over the points out of contact. Applies the pending displacement update
+    /// `u ← u − τ w` (everywhere) if `pending_step = Some(τ)`; returns the smallest gap
+    /// `min_{p = 0} (g₀ + u − offset)` and records the points with `g₀ + u − offset − δ < 0`
+    /// (none for `δ = −∞`). If the row minima of the last transform are current, only the
+    /// blocks whose rows reach below `δ` are read; otherwise every block is swept for its
+    /// minimum and, if that is below `δ`, scanned.
+    pub(in crate::contact) fn out_of_contact_pass(
+        &mut self,
+        pending_step: Option<f64>,
+        offset: f64,
+        delta: f64,
+    ) -> f64 {
+        let row_minima = (pending_step.is_none() && self.row_min_current).then_some(&self.row_min);
+        self.row_min_current &= pending_step.is_none();
+        let (w, nx, n) = (&self.w, self.nx, self.g0.len());
+        self.u
+            .par_chunks_mut(BLOCK)
+            .zip(self.g0.par_chunks(BLOCK))
+            .zip(self.p.par_chunks(BLOCK))
+            .zip(self.blocks.par_iter_mut())
+            .enumerate()
+            .for_each(|(b, (((u, g0), p), block))| {
+                let zero_min = match row_minima {
+                    Some(minima) => {
+                        let rows = b * BLOCK / nx..(b * BLOCK + u.len()).min(n).div_ceil(nx);
+                        minima[rows].iter().fold(f64::INFINITY, |a, &m| a.min(m))
+                    }
+                    None => {
+                        if let Some(tau) = pending_step {
+                            let w = &w[b * BLOCK..][..u.len()];
+                            u.iter_mut().zip(w).for_each(|(ui, &wi)| *ui -= tau * wi);
+                        }
+                        out_of_contact_min(u, g0, p, offset)
+                    }
+                };
+                block.entering.clear();
+                if zero_min - delta < 0.0 {
+                    for (l, ((&ui, &g0i), &pi)) in u.iter().zip(g0).zip(p).enumerate() {
+                        let v = g0i + ui - offset;
+                        if pi <= 0.0 && v - delta < 0.0 {
+                            block.entering.push((l as u32, v - delta));
+                        }
+                    }
+                }
+                block.zero_min = zero_min;
+            });
+        self.blocks
+            .iter()
+            .map(|b| b.zero_min)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// `g ← g₀ + u − approach` everywhere (the gap returned with a solve).
+    pub(in crate::contact) fn write_gap(&mut self, approach: f64) {
+        self.g
+            .par_chunks_mut(BLOCK)
+            .zip(self.g0.par_chunks(BLOCK))
+            .zip(self.u.par_chunks(BLOCK))
+            .for_each(|((g, g0), u)| {
+                for ((gi, &g0i), &ui) in g.iter_mut().zip(g0).zip(u) {
+                    *gi = g0i + ui - approach;
+                }
+            });
+    }
+}
