@@ -236,13 +236,7 @@ impl RealFft2d {
         cols: usize,
         rows: usize,
     ) -> Result<(), FftFailure> {
-        self.check_back(kernel, output, cols, rows)?;
-        if cols == 0 || rows == 0 {
-            return Ok(());
-        }
-        self.rows_forward(fill, cols, rows)?;
-        self.columns(ColumnPass::Kernel(kernel), rows);
-        self.rows_inverse(output, cols, rows, None::<&Copy>)
+        self.convolve_through(fill, kernel, output, cols, rows, None::<&Copy>)
     }
 
     /// [`RealFft2d::convolve_rows`] whose output rows go through `sink` (see [`RowSink`]);
@@ -256,14 +250,26 @@ impl RealFft2d {
         rows: usize,
         sink: &S,
     ) -> Result<&[f64], FftFailure> {
+        self.convolve_through(fill, kernel, output, cols, rows, Some(sink))?;
+        Ok(&self.row_values[..rows])
+    }
+
+    /// Both halves of a convolution, the output rows written directly or through `sink`.
+    fn convolve_through<F: RowSource, S: RowSink>(
+        &mut self,
+        fill: &F,
+        kernel: &[f64],
+        output: &mut [f64],
+        cols: usize,
+        rows: usize,
+        sink: Option<&S>,
+    ) -> Result<(), FftFailure> {
         self.check_back(kernel, output, cols, rows)?;
         if cols == 0 || rows == 0 {
-            return Ok(&[]);
+            return Ok(());
         }
         self.rows_forward(fill, cols, rows)?;
-        self.columns(ColumnPass::Kernel(kernel), rows);
-        self.rows_inverse(output, cols, rows, Some(sink))?;
-        Ok(&self.row_values[..rows])
+        self.finish_through(kernel, output, cols, rows, sink)
     }
 
     /// First half of [`RealFft2d::convolve`]: the forward transform of the block `input`, kept
@@ -334,8 +340,7 @@ impl RealFft2d {
         if cols == 0 || rows == 0 {
             return Ok(());
         }
-        self.columns(ColumnPass::Kernel(kernel), rows);
-        self.rows_inverse(output, cols, rows, None::<&Copy>)
+        self.finish_through(kernel, output, cols, rows, None::<&Copy>)
     }
 
     /// [`RealFft2d::finish_convolve`] whose output rows go through `sink` (see [`RowSink`]);
@@ -352,9 +357,22 @@ impl RealFft2d {
         if cols == 0 || rows == 0 {
             return Ok(&[]);
         }
-        self.columns(ColumnPass::Kernel(kernel), rows);
-        self.rows_inverse(output, cols, rows, Some(sink))?;
+        self.finish_through(kernel, output, cols, rows, Some(sink))?;
         Ok(&self.row_values[..rows])
+    }
+
+    /// The way back of a convolution from the row spectra (`cols, rows ≥ 1`): column transforms,
+    /// kernel, inverse transforms, output rows written directly or through `sink`.
+    fn finish_through<S: RowSink>(
+        &mut self,
+        kernel: &[f64],
+        output: &mut [f64],
+        cols: usize,
+        rows: usize,
+        sink: Option<&S>,
+    ) -> Result<(), FftFailure> {
+        self.columns(ColumnPass::Kernel(kernel), rows);
+        self.rows_inverse(output, cols, rows, sink)
     }
 
     /// The block, kernel and output of a convolution's way back.

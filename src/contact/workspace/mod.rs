@@ -190,6 +190,17 @@ fn each_block(blocks: &mut [Block], visit: impl Fn(usize, &mut Block) + Sync + S
         .for_each(|(b, block)| visit(b * BLOCK, block));
 }
 
+/// Clears the direction of the block's recorded points that are still out of contact (a point
+/// back in contact keeps it) and empties the record.
+fn clear_dropped(t: &mut [f64], p: &[f64], base: usize, block: &mut Block) {
+    for &l in &block.dropped {
+        if p[base + l as usize] <= 0.0 {
+            t[l as usize] = 0.0;
+        }
+    }
+    block.dropped.clear();
+}
+
 /// Global indices of a block's contact points.
 fn contact_points(base: usize, contact: &[u32]) -> impl Iterator<Item = usize> + '_ {
     contact.iter().map(move |&l| base + l as usize)
@@ -318,12 +329,7 @@ impl Workspace {
                         0.0
                     };
                 }
-                for &l in &block.dropped {
-                    if p[base + l as usize] <= 0.0 {
-                        t[l as usize] = 0.0;
-                    }
-                }
-                block.dropped.clear();
+                clear_dropped(t, p, base, block);
                 block.sums = sums;
             });
         self.blocks.iter().fold([0.0; 3], |mut s, b| {
@@ -351,12 +357,7 @@ impl Workspace {
                     t[l] = if p[i] < plim || r > 0.0 { r } else { 0.0 };
                     sum += t[l] * t[l];
                 }
-                for &l in &block.dropped {
-                    if p[base + l as usize] <= 0.0 {
-                        t[l as usize] = 0.0;
-                    }
-                }
-                block.dropped.clear();
+                clear_dropped(t, p, base, block);
                 for &(l, gap) in &block.entering {
                     t[l as usize] = gap;
                     sum += gap * gap;
