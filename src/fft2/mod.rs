@@ -224,23 +224,19 @@ impl RealFft2d {
         rows: usize,
     ) -> Result<(), FftFailure> {
         self.check_len("input", input.len(), cols * rows)?;
-        self.convolve_rows(&dense_rows(input), kernel, output, cols, rows)
+        self.convolve_through(
+            &dense_rows(input),
+            kernel,
+            output,
+            cols,
+            rows,
+            None::<&Copy>,
+        )
     }
 
-    /// [`RealFft2d::convolve`] of the block whose rows `fill` supplies (see [`RowSource`]).
-    pub fn convolve_rows<F: RowSource>(
-        &mut self,
-        fill: &F,
-        kernel: &[f64],
-        output: &mut [f64],
-        cols: usize,
-        rows: usize,
-    ) -> Result<(), FftFailure> {
-        self.convolve_through(fill, kernel, output, cols, rows, None::<&Copy>)
-    }
-
-    /// [`RealFft2d::convolve_rows`] whose output rows go through `sink` (see [`RowSink`]);
-    /// returns the sink's value of each of the `rows` rows.
+    /// [`RealFft2d::convolve`] of the block whose rows `fill` supplies (see [`RowSource`]), its
+    /// output rows going through `sink` (see [`RowSink`]); returns the sink's value of each of
+    /// the `rows` rows.
     pub fn convolve_rows_into<F: RowSource, S: RowSink>(
         &mut self,
         fill: &F,

@@ -187,7 +187,11 @@ fn row_sources_give_the_bits_of_the_dense_block() {
         let mut from_rows = vec![0.0; cols * rows];
         fft.convolve(&dense, &kernel, &mut from_dense, cols, rows)
             .unwrap();
-        fft.convolve_rows(&rows_of, &kernel, &mut from_rows, cols, rows)
+        let copy = |_: usize, values: &[f64], out: &mut [f64]| {
+            out.copy_from_slice(values);
+            0.0
+        };
+        fft.convolve_rows_into(&rows_of, &kernel, &mut from_rows, cols, rows, &copy)
             .unwrap();
         assert_eq!(bits(&from_dense), bits(&from_rows), "{nx}×{ny}");
         let dense_energy = fft.start_convolve(&dense, &kernel, cols, rows).unwrap();
