@@ -1,6 +1,11 @@
 //! Starting pressures and the restoration of the load `Σ p = N p̄` between CG steps.
 
-use super::workspace::{FreeStats, Workspace};
+use std::cmp::Ordering;
+
+use rayon::prelude::*;
+
+use super::selection::kth_smallest;
+use super::workspace::{FreeStats, Workspace, BLOCK};
 
 /// Result of a load restoration.
 #[derive(Debug, Clone, Copy)]
@@ -29,27 +34,50 @@ impl Workspace {
         let remainder = (share - k as f64) * plim;
         // k < n here. The k-th smallest gap (0-based), ties broken by index as in a stable order
         // of (gap, index): the first `k` points of that order carry p_lim, the next one the rest.
-        // Selecting on a copy of the values (not on indices compared through `g₀`) keeps the
-        // selection's memory access sequential.
-        let mut values = self.g0.clone();
-        let (_, &mut kth, _) = values.select_nth_unstable_by(k, f64::total_cmp);
-        let below = self.g0.iter().filter(|g| g.total_cmp(&kth).is_lt()).count();
-        let mut ties_left = k - below;
-        let mut remainder_given = false;
-        for (pi, &g) in self.p.iter_mut().zip(&self.g0) {
-            *pi = match g.total_cmp(&kth) {
-                std::cmp::Ordering::Less => plim,
-                std::cmp::Ordering::Equal if ties_left > 0 => {
-                    ties_left -= 1;
-                    plim
+        let Some(kth) = kth_smallest(&self.g0, k) else {
+            self.p.fill(nominal);
+            return;
+        };
+        // Per block: points below the k-th gap and points tied with it.
+        let counts: Vec<(usize, usize)> = self
+            .g0
+            .par_chunks(BLOCK)
+            .map(|g0| {
+                g0.iter()
+                    .fold((0, 0), |(below, tied), g| match g.total_cmp(&kth) {
+                        Ordering::Less => (below + 1, tied),
+                        Ordering::Equal => (below, tied + 1),
+                        Ordering::Greater => (below, tied),
+                    })
+            })
+            .collect();
+        // The tied points carrying p_lim, then the one with the remainder, in index order.
+        let full_ties = k - counts.iter().map(|&(below, _)| below).sum::<usize>();
+        let ties_before = counts.iter().scan(0, |before, &(_, tied)| {
+            let first = *before;
+            *before += tied;
+            Some(first)
+        });
+        self.p
+            .par_chunks_mut(BLOCK)
+            .zip(self.g0.par_chunks(BLOCK))
+            .zip(ties_before.collect::<Vec<_>>())
+            .for_each(|((p, g0), mut tie)| {
+                for (pi, g) in p.iter_mut().zip(g0) {
+                    *pi = match g.total_cmp(&kth) {
+                        Ordering::Less => plim,
+                        Ordering::Equal => {
+                            tie += 1;
+                            match (tie - 1).cmp(&full_ties) {
+                                Ordering::Less => plim,
+                                Ordering::Equal => remainder,
+                                Ordering::Greater => 0.0,
+                            }
+                        }
+                        Ordering::Greater => 0.0,
+                    };
                 }
-                std::cmp::Ordering::Equal if !remainder_given => {
-                    remainder_given = true;
-                    remainder
-                }
-                _ => 0.0,
-            };
-        }
+            });
     }
 
     /// Restores `Σ p = total` from pressures set outside the iteration (a warm start).

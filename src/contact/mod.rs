@@ -16,6 +16,7 @@ mod load_balance;
 mod load_curve;
 mod material;
 mod options;
+mod selection;
 mod solver;
 mod workspace;
 

@@ -1,6 +1,7 @@
 //! The load-stepped contact solver: problem definition, warm starts, step results.
 
 use ndarray::{Array2, ArrayView2};
+use rayon::prelude::*;
 
 use super::approach_search;
 use super::constrained_cg::{self, CgOutcome, CgSettings, Control};
@@ -10,7 +11,50 @@ use super::influence::{Boundary, InfluenceOperator};
 use super::load_curve::{ContactFields, LoadCurve, LoadStep};
 use super::material::ContactMaterial;
 use super::options::{SolvePath, SolveStrategy, SolverOptions, Termination};
-use super::workspace::Workspace;
+use super::workspace::{Workspace, BLOCK};
+
+/// Sums over the fields of a converged step, block by block (combined in block order, so they do
+/// not depend on the thread count).
+#[derive(Debug, Clone, Copy)]
+struct FieldSums {
+    contact: usize,
+    saturated: usize,
+    pressure_sum: f64,
+    separation: f64,
+    max_u: f64,
+}
+
+impl FieldSums {
+    const EMPTY: Self = Self {
+        contact: 0,
+        saturated: 0,
+        pressure_sum: 0.0,
+        separation: 0.0,
+        max_u: f64::NEG_INFINITY,
+    };
+
+    fn of_block(p: &[f64], g: &[f64], u: &[f64], plim: f64) -> Self {
+        let mut sums = Self::EMPTY;
+        for ((&p, &g), &u) in p.iter().zip(g).zip(u) {
+            sums.contact += usize::from(p > 0.0);
+            sums.saturated += usize::from(p >= plim);
+            sums.pressure_sum += p;
+            sums.separation += g.max(0.0);
+            sums.max_u = sums.max_u.max(u);
+        }
+        sums
+    }
+
+    fn combine(self, other: Self) -> Self {
+        Self {
+            contact: self.contact + other.contact,
+            saturated: self.saturated + other.saturated,
+            pressure_sum: self.pressure_sum + other.pressure_sum,
+            separation: self.separation + other.separation,
+            max_u: self.max_u.max(other.max_u),
+        }
+    }
+}
 
 /// A normal contact problem: initial gap, material pair and lateral boundary condition.
 #[derive(Debug, Clone, PartialEq)]
@@ -250,21 +294,23 @@ impl ContactSolver {
         let ws = &self.workspace;
         let plim = self.problem.material().flow_pressure();
         let n = ws.p.len() as f64;
-        let (mut contact, mut saturated, mut separation) = (0usize, 0usize, 0.0);
-        let mut max_u = f64::NEG_INFINITY;
-        for ((&p, &g), &u) in ws.p.iter().zip(&ws.g).zip(&ws.u) {
-            if p > 0.0 {
-                contact += 1;
-            }
-            if p >= plim {
-                saturated += 1;
-            }
-            separation += g.max(0.0);
-            max_u = max_u.max(u);
-        }
+        let FieldSums {
+            contact,
+            saturated,
+            pressure_sum,
+            separation,
+            max_u,
+        } =
+            ws.p.par_chunks(BLOCK)
+                .zip(ws.g.par_chunks(BLOCK))
+                .zip(ws.u.par_chunks(BLOCK))
+                .map(|((p, g), u)| FieldSums::of_block(p, g, u, plim))
+                .collect::<Vec<_>>()
+                .into_iter()
+                .fold(FieldSums::EMPTY, FieldSums::combine);
         let area_fraction = contact as f64 / n;
         let mean_contact_pressure = if contact > 0 {
-            ws.p.iter().sum::<f64>() / contact as f64
+            pressure_sum / contact as f64
         } else {
             0.0
         };

@@ -11,6 +11,9 @@
 //!   below `δ` are scanned for entering points.
 //! * When `u` changed otherwise (a pending update `u ← u − τ w` with a `w` kept for the step),
 //!   the pass sweeps the grid as before.
+//! * Both read the initial gap of the points out of contact from `g0_out` (`g₀` there, `+∞` at
+//!   the contact points; kept current by the pressure update and the rebuild of the lists), one
+//!   stream of 8 bytes per point instead of `g₀` and `p`.
 
 use rayon::prelude::*;
 
@@ -23,32 +26,23 @@ use crate::fft2::{FftFailure, RowSource};
 const LANES: usize = 8;
 
 /// `min_{p = 0} (g₀ + u − offset)` over a stretch of the grid (`+∞` if every point is in
-/// contact). The gaps are finite (the inputs are checked), so the branch-free `if v < m`
-/// selection is the minimum.
-fn out_of_contact_min(u: &[f64], g0: &[f64], p: &[f64], offset: f64) -> f64 {
+/// contact), from `g0_out` (`g₀` out of contact, `+∞` at contact points). The gaps are finite
+/// (the inputs are checked), so the branch-free `if v < m` selection is the minimum.
+fn out_of_contact_min(u: &[f64], g0_out: &[f64], offset: f64) -> f64 {
     let mut lanes = [f64::INFINITY; LANES];
-    let fold = |m: &mut f64, (&ui, (&g0i, &pi)): (&f64, (&f64, &f64))| {
-        let v = if pi <= 0.0 {
-            g0i + ui - offset
-        } else {
-            f64::INFINITY
-        };
+    let fold = |m: &mut f64, (&ui, &g0i): (&f64, &f64)| {
+        let v = g0i + ui - offset;
         *m = if v < *m { v } else { *m };
     };
     let (u_body, u_tail) = u.split_at(u.len() - u.len() % LANES);
-    let (g0_body, g0_tail) = g0.split_at(u_body.len());
-    let (p_body, p_tail) = p.split_at(u_body.len());
-    for ((u, g0), p) in u_body
-        .chunks_exact(LANES)
-        .zip(g0_body.chunks_exact(LANES))
-        .zip(p_body.chunks_exact(LANES))
-    {
-        for (m, x) in lanes.iter_mut().zip(u.iter().zip(g0.iter().zip(p))) {
+    let (g0_body, g0_tail) = g0_out.split_at(u_body.len());
+    for (u, g0) in u_body.chunks_exact(LANES).zip(g0_body.chunks_exact(LANES)) {
+        for (m, x) in lanes.iter_mut().zip(u.iter().zip(g0)) {
             fold(m, x);
         }
     }
     let mut tail = f64::INFINITY;
-    for x in u_tail.iter().zip(g0_tail.iter().zip(p_tail)) {
+    for x in u_tail.iter().zip(g0_tail) {
         fold(&mut tail, x);
     }
     lanes.iter().fold(tail, |a, &b| a.min(b))
@@ -97,10 +91,16 @@ impl Workspace {
         op: &mut InfluenceOperator,
         offset: f64,
     ) -> Result<(), FftFailure> {
-        let (g0, p, nx) = (&self.g0, &self.p, self.nx);
+        let (g0_out, p, nx) = (&self.g0_out, &self.p, self.nx);
         let sink = |r: usize, kp: &[f64], u: &mut [f64]| {
+            debug_assert!(
+                (g0_out[r * nx..][..nx].iter())
+                    .zip(&p[r * nx..][..nx])
+                    .all(|(&g, &pi)| (pi > 0.0) == (g == f64::INFINITY)),
+                "row {r}: g0_out does not mark the contact points"
+            );
             u.copy_from_slice(kp);
-            out_of_contact_min(u, &g0[r * nx..][..nx], &p[r * nx..][..nx], offset)
+            out_of_contact_min(u, &g0_out[r * nx..][..nx], offset)
         };
         let minima = op.apply_rows_into(&contact_rows(&self.blocks, p), &mut self.u, &sink)?;
         self.row_min.copy_from_slice(minima);
@@ -126,10 +126,10 @@ impl Workspace {
         tau: f64,
         offset: f64,
     ) -> Result<(), FftFailure> {
-        let (g0, p, nx) = (&self.g0, &self.p, self.nx);
+        let (g0_out, nx) = (&self.g0_out, self.nx);
         let sink = |r: usize, kt: &[f64], u: &mut [f64]| {
             u.iter_mut().zip(kt).for_each(|(ui, &wi)| *ui -= tau * wi);
-            out_of_contact_min(u, &g0[r * nx..][..nx], &p[r * nx..][..nx], offset)
+            out_of_contact_min(u, &g0_out[r * nx..][..nx], offset)
         };
         let minima = op.finish_apply_into(&mut self.u, &sink)?;
         self.row_min.copy_from_slice(minima);
@@ -154,11 +154,10 @@ impl Workspace {
         let (w, nx, n) = (&self.w, self.nx, self.g0.len());
         self.u
             .par_chunks_mut(BLOCK)
-            .zip(self.g0.par_chunks(BLOCK))
-            .zip(self.p.par_chunks(BLOCK))
+            .zip(self.g0_out.par_chunks(BLOCK))
             .zip(self.blocks.par_iter_mut())
             .enumerate()
-            .for_each(|(b, (((u, g0), p), block))| {
+            .for_each(|(b, ((u, g0_out), block))| {
                 let zero_min = match row_minima {
                     Some(minima) => {
                         let rows = b * BLOCK / nx..(b * BLOCK + u.len()).min(n).div_ceil(nx);
@@ -169,14 +168,14 @@ impl Workspace {
                             let w = &w[b * BLOCK..][..u.len()];
                             u.iter_mut().zip(w).for_each(|(ui, &wi)| *ui -= tau * wi);
                         }
-                        out_of_contact_min(u, g0, p, offset)
+                        out_of_contact_min(u, g0_out, offset)
                     }
                 };
                 block.entering.clear();
                 if zero_min - delta < 0.0 {
-                    for (l, ((&ui, &g0i), &pi)) in u.iter().zip(g0).zip(p).enumerate() {
+                    for (l, (&ui, &g0i)) in u.iter().zip(g0_out).enumerate() {
                         let v = g0i + ui - offset;
-                        if pi <= 0.0 && v - delta < 0.0 {
+                        if v - delta < 0.0 {
                             block.entering.push((l as u32, v - delta));
                         }
                     }

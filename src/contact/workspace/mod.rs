@@ -157,6 +157,8 @@ impl Block {
 struct Settled<'a> {
     p: &'a mut [f64],
     t: &'a [f64],
+    g0: &'a [f64],
+    g0_out: &'a mut [f64],
     merged: &'a mut Vec<u32>,
     dropped: &'a mut Vec<u32>,
     free: FreeStats,
@@ -168,6 +170,11 @@ impl Settled<'_> {
     /// left with `p > 0` joins the new contact list, one at 0 is recorded as dropped.
     fn set(&mut self, l: usize, new: f64, linear: f64, plim: f64) {
         let clamped = new.clamp(0.0, plim);
+        match (self.p[l] > 0.0, clamped > 0.0) {
+            (false, true) => self.g0_out[l] = f64::INFINITY,
+            (true, false) => self.g0_out[l] = self.g0[l],
+            _ => {}
+        }
         self.p[l] = clamped;
         if clamped != linear {
             self.corrected += 1.0;
@@ -215,6 +222,9 @@ fn is_free(p: f64, flow_pressure: f64) -> bool {
 pub(crate) struct Workspace {
     /// Initial gap `g₀` in m.
     pub g0: Vec<f64>,
+    /// `g₀` at the points out of contact (`p = 0`), `+∞` at the contact points: the dense passes
+    /// over the points out of contact read this one array instead of `g₀` and `p`.
+    g0_out: Vec<f64>,
     /// Pressure in Pa.
     pub p: Vec<f64>,
     /// Composite elastic displacement `u = K p` in m.
@@ -242,6 +252,7 @@ impl Workspace {
         let nx = nx.max(1);
         let blocks = n.div_ceil(BLOCK).max(1);
         Self {
+            g0_out: g0.clone(),
             g0,
             p: vec![0.0; n],
             u: vec![0.0; n],
@@ -266,12 +277,17 @@ impl Workspace {
         self.row_min_current = false;
         self.blocks
             .par_iter_mut()
+            .zip(self.g0_out.par_chunks_mut(BLOCK))
+            .zip(self.g0.par_chunks(BLOCK))
             .zip(self.p.par_chunks(BLOCK))
             .zip(self.t.par_chunks(BLOCK))
-            .for_each(|((block, p), t)| {
+            .for_each(|((((block, g0_out), g0), p), t)| {
                 block.contact.clear();
                 block.dropped.clear();
-                for (l, (&pi, &ti)) in p.iter().zip(t).enumerate() {
+                for (l, ((out, &g0i), (&pi, &ti))) in
+                    g0_out.iter_mut().zip(g0).zip(p.iter().zip(t)).enumerate()
+                {
+                    *out = if pi > 0.0 { f64::INFINITY } else { g0i };
                     if pi > 0.0 {
                         block.contact.push(l as u32);
                     } else if ti != 0.0 {
@@ -389,9 +405,10 @@ impl Workspace {
         self.p
             .par_chunks_mut(BLOCK)
             .zip(self.t.par_chunks(BLOCK))
+            .zip(self.g0_out.par_chunks_mut(BLOCK))
             .zip(self.blocks.par_iter_mut())
             .enumerate()
-            .for_each(|(b, ((p, t), block))| {
+            .for_each(|(b, (((p, t), g0_out), block))| {
                 let base = b * BLOCK;
                 let Block {
                     contact,
@@ -404,6 +421,8 @@ impl Workspace {
                 let mut settled = Settled {
                     p,
                     t,
+                    g0: &g0[base..][..g0_out.len()],
+                    g0_out,
                     merged,
                     dropped,
                     free: FreeStats::EMPTY,
