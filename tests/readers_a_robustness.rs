@@ -223,3 +223,19 @@ fn truncated_npy_is_an_error_at_every_length() {
         assert!(err.to_string().contains("map.npy"), "{err}");
     }
 }
+
+/// A device, a pipe or a directory is refused by its file type before anything is read
+/// (`/dev/zero` would otherwise be read until memory runs out).
+#[cfg(unix)]
+#[test]
+fn files_that_are_not_regular_are_refused_before_reading() {
+    for path in ["/dev/zero", "/dev/null", "/tmp"] {
+        let error = asperity::surface::io::read_topography(Path::new(path))
+            .expect_err("not a regular file")
+            .to_string();
+        assert!(
+            error.contains(path) && error.contains("not a regular file"),
+            "{path}: {error}"
+        );
+    }
+}

@@ -266,9 +266,17 @@ impl ResolveContext<'_> {
         if let Some(h) = self.file_hashes.borrow().get(path) {
             return h.clone();
         }
-        let hash = std::fs::read(path)
-            .map(|bytes| blake3::hash(&bytes).to_hex().to_string())
-            .map_err(|e| format!("cannot read {}: {e}", path.display()));
+        // A device or a pipe would be read forever (`/dev/zero`) or block planning (a FIFO).
+        let hash = match std::fs::metadata(path) {
+            Ok(meta) if !meta.is_file() => Err(format!(
+                "cannot read {}: not a regular file (a directory, device or pipe); give the path \
+                 of a topography file",
+                path.display()
+            )),
+            _ => std::fs::read(path)
+                .map(|bytes| blake3::hash(&bytes).to_hex().to_string())
+                .map_err(|e| format!("cannot read {}: {e}", path.display())),
+        };
         self.file_hashes
             .borrow_mut()
             .insert(path.to_path_buf(), hash.clone());

@@ -177,10 +177,18 @@ pub fn detect_format(path: &Path, bytes: &[u8]) -> Option<Format> {
 
 /// Reads a topography file from disk in any supported format.
 pub fn read_topography(path: &Path) -> Result<Topography, ReadError> {
-    let bytes = std::fs::read(path).map_err(|source| ReadError::Io {
+    let io_error = |source| ReadError::Io {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    // A device or a pipe would be read forever (`/dev/zero`) or block (a FIFO).
+    if std::fs::metadata(path).is_ok_and(|meta| !meta.is_file()) {
+        return Err(io_error(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a regular file (a directory, device or pipe)",
+        )));
+    }
+    let bytes = std::fs::read(path).map_err(io_error)?;
     parse_topography(path, &bytes)
 }
 
