@@ -270,9 +270,9 @@ impl Workspace {
         self.p.len()
     }
 
-    /// Rebuilds the contact lists from `p` (after `p` was set or shifted outside the CG step);
-    /// points out of contact with a direction left are recorded to be cleared at the next
-    /// conjugation.
+    /// Rebuilds the contact lists and `g0_out` from `p` (after `p` was set or shifted outside the
+    /// CG step); points out of contact with a direction left are recorded to be cleared at the
+    /// next conjugation.
     pub(super) fn rebuild_contact(&mut self) {
         self.row_min_current = false;
         self.blocks
@@ -287,11 +287,14 @@ impl Workspace {
                 for (l, ((out, &g0i), (&pi, &ti))) in
                     g0_out.iter_mut().zip(g0).zip(p.iter().zip(t)).enumerate()
                 {
-                    *out = if pi > 0.0 { f64::INFINITY } else { g0i };
                     if pi > 0.0 {
+                        *out = f64::INFINITY;
                         block.contact.push(l as u32);
-                    } else if ti != 0.0 {
-                        block.dropped.push(l as u32);
+                    } else {
+                        *out = g0i;
+                        if ti != 0.0 {
+                            block.dropped.push(l as u32);
+                        }
                     }
                 }
             });
