@@ -52,7 +52,7 @@ const RIGHT: f64 = 18.0;
 const CHAR_WIDTH: f64 = 6.8;
 
 impl LinePlot {
-    /// Whether the x values are positive and spread over two decades or more (then a log axis
+    /// Whether the values (of x or of y) are positive and spread over two decades or more (then a log axis
     /// reads better).
     pub fn spans_decades(values: impl IntoIterator<Item = f64>) -> bool {
         let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);

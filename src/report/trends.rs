@@ -98,7 +98,11 @@ fn figure(
                 .iter()
                 .flat_map(|s| s.points.iter().map(|p| p.x)),
         ),
-        y_log: false,
+        y_log: LinePlot::spans_decades(
+            plot_series
+                .iter()
+                .flat_map(|s| s.points.iter().map(|p| p.y)),
+        ),
         x_label,
         y_label,
         series: plot_series,
@@ -251,4 +255,39 @@ pub fn load_curve_figures(
         }
     }
     figures
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The SVG of a one-series figure with the means `ys` at x = 1, 2, …
+    fn svg_of(ys: &[f64]) -> String {
+        let series = vec![SummarySeries {
+            label: String::from("s"),
+            points: (ys.iter().enumerate())
+                .map(|(i, &y)| ((i + 1) as f64, Summary::of(&[y]).expect("one value")))
+                .collect(),
+        }];
+        let figure = figure(
+            String::from("t"),
+            ("x", &DisplayUnit::none()),
+            ("y", ""),
+            &series,
+            String::new(),
+        );
+        figure.svg.expect("a plot")
+    }
+
+    #[test]
+    fn the_y_axis_is_logarithmic_when_the_means_span_two_decades() {
+        // Decade ticks only on a log axis over 1e-4 … 1; a linear axis has 0.2, 0.4, …
+        let log = svg_of(&[1e-4, 1e-2, 1.0]);
+        assert!(log.contains(">0.001<") && !log.contains(">0.2<"), "{log}");
+        let linear = svg_of(&[0.2, 0.5, 1.0]);
+        assert!(
+            linear.contains(">0.2<") && !linear.contains(">0.001<"),
+            "{linear}"
+        );
+    }
 }
