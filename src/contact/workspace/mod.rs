@@ -197,15 +197,29 @@ fn each_block(blocks: &mut [Block], visit: impl Fn(usize, &mut Block) + Sync + S
         .for_each(|(b, block)| visit(b * BLOCK, block));
 }
 
-/// Clears the direction of the block's recorded points that are still out of contact (a point
-/// back in contact keeps it) and empties the record.
-fn clear_dropped(t: &mut [f64], p: &[f64], base: usize, block: &mut Block) {
-    for &l in &block.dropped {
-        if p[base + l as usize] <= 0.0 {
-            t[l as usize] = 0.0;
-        }
-    }
-    block.dropped.clear();
+/// Runs `visit(base, t, block)` for every block in parallel, with the block's slice of the
+/// direction `t`, after clearing the direction of the block's recorded points that are still
+/// out of contact (a point back in contact keeps it) and emptying the record: the start of
+/// every pass that builds a new direction.
+fn each_direction_block(
+    t: &mut [f64],
+    p: &[f64],
+    blocks: &mut [Block],
+    visit: impl Fn(usize, &mut [f64], &mut Block) + Sync + Send,
+) {
+    t.par_chunks_mut(BLOCK)
+        .zip(blocks.par_iter_mut())
+        .enumerate()
+        .for_each(|(b, (t, block))| {
+            let base = b * BLOCK;
+            for &l in &block.dropped {
+                if p[base + l as usize] <= 0.0 {
+                    t[l as usize] = 0.0;
+                }
+            }
+            block.dropped.clear();
+            visit(base, t, block);
+        });
 }
 
 /// Global indices of a block's contact points.
@@ -328,29 +342,23 @@ impl Workspace {
     /// returns `[Σ_F (v − δ) t, Σ_F t, Σ_F |t|]` of the new direction.
     pub(super) fn direction(&mut self, beta: f64, offset: f64, delta: f64, plim: f64) -> [f64; 3] {
         let (g0, u, p) = (&self.g0, &self.u, &self.p);
-        self.t
-            .par_chunks_mut(BLOCK)
-            .zip(self.blocks.par_iter_mut())
-            .enumerate()
-            .for_each(|(b, (t, block))| {
-                let base = b * BLOCK;
-                let mut sums = [0.0; 4];
-                for &l in &block.contact {
-                    let (i, l) = (base + l as usize, l as usize);
-                    t[l] = if p[i] < plim {
-                        let r = g0[i] + u[i] - offset - delta;
-                        let ti = r + beta * t[l];
-                        sums[0] += r * ti;
-                        sums[1] += ti;
-                        sums[2] += ti.abs();
-                        ti
-                    } else {
-                        0.0
-                    };
-                }
-                clear_dropped(t, p, base, block);
-                block.sums = sums;
-            });
+        each_direction_block(&mut self.t, p, &mut self.blocks, |base, t, block| {
+            let mut sums = [0.0; 4];
+            for &l in &block.contact {
+                let (i, l) = (base + l as usize, l as usize);
+                t[l] = if p[i] < plim {
+                    let r = g0[i] + u[i] - offset - delta;
+                    let ti = r + beta * t[l];
+                    sums[0] += r * ti;
+                    sums[1] += ti;
+                    sums[2] += ti.abs();
+                    ti
+                } else {
+                    0.0
+                };
+            }
+            block.sums = sums;
+        });
         self.blocks.iter().fold([0.0; 3], |mut s, b| {
             s.iter_mut().zip(b.sums).for_each(|(o, v)| *o += v);
             s
@@ -363,26 +371,20 @@ impl Workspace {
     /// contact set; returns `Σ t²`.
     pub(super) fn entry_direction(&mut self, offset: f64, delta: f64, plim: f64) -> f64 {
         let (g0, u, p) = (&self.g0, &self.u, &self.p);
-        self.t
-            .par_chunks_mut(BLOCK)
-            .zip(self.blocks.par_iter_mut())
-            .enumerate()
-            .for_each(|(b, (t, block))| {
-                let base = b * BLOCK;
-                let mut sum = 0.0;
-                for &l in &block.contact {
-                    let (i, l) = (base + l as usize, l as usize);
-                    let r = g0[i] + u[i] - offset - delta;
-                    t[l] = if p[i] < plim || r > 0.0 { r } else { 0.0 };
-                    sum += t[l] * t[l];
-                }
-                clear_dropped(t, p, base, block);
-                for &(l, gap) in &block.entering {
-                    t[l as usize] = gap;
-                    sum += gap * gap;
-                }
-                block.sums[0] = sum;
-            });
+        each_direction_block(&mut self.t, p, &mut self.blocks, |base, t, block| {
+            let mut sum = 0.0;
+            for &l in &block.contact {
+                let (i, l) = (base + l as usize, l as usize);
+                let r = g0[i] + u[i] - offset - delta;
+                t[l] = if p[i] < plim || r > 0.0 { r } else { 0.0 };
+                sum += t[l] * t[l];
+            }
+            for &(l, gap) in &block.entering {
+                t[l as usize] = gap;
+                sum += gap * gap;
+            }
+            block.sums[0] = sum;
+        });
         self.blocks.iter().map(|b| b.sums[0]).sum()
     }
 
