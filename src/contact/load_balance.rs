@@ -4,7 +4,7 @@ use std::cmp::Ordering;
 
 use rayon::prelude::*;
 
-use super::selection::kth_smallest;
+use super::selection::{kth_smallest, lowest_ranks};
 use super::workspace::{FreeStats, Workspace, BLOCK};
 
 /// Result of a load restoration.
@@ -32,6 +32,14 @@ impl Workspace {
         }
         let k = share.floor() as usize;
         let remainder = (share - k as f64) * plim;
+        if let Some(lowest) = lowest_ranks(&self.g0, k) {
+            self.p.par_chunks_mut(BLOCK).for_each(|p| p.fill(0.0));
+            if let Some((&kth, full)) = lowest.split_last() {
+                full.iter().for_each(|&i| self.p[i] = plim);
+                self.p[kth] = remainder;
+            }
+            return;
+        }
         // k < n here. The k-th smallest gap (0-based), ties broken by index as in a stable order
         // of (gap, index): the first `k` points of that order carry p_lim, the next one the rest.
         let Some(kth) = kth_smallest(&self.g0, k) else {
@@ -155,5 +163,25 @@ mod tests {
         let mut ws = Workspace::new(vec![3.0, 1.0, 2.0, 1.0, 1.0, 5.0, 0.0, 2.0], 4);
         ws.start_rigid_plastic(3.5 * 10.0 / 8.0, 10.0);
         assert_eq!(ws.p, vec![0.0, 10.0, 0.0, 10.0, 5.0, 0.0, 10.0, 0.0]);
+    }
+
+    #[test]
+    fn rigid_plastic_start_is_the_same_by_either_selection() {
+        // 2¹⁴ gaps with many ties: small shares take the sampled selection, large ones the radix
+        // selection; both must give the order of (gap, index).
+        let n = 1 << 14;
+        let g0: Vec<f64> = (0..n).map(|i| ((i * 7919) % 211) as f64 * 1e-7).collect();
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by(|&a, &b| g0[a].total_cmp(&g0[b]).then(a.cmp(&b)));
+        let plim = 4e9;
+        for share in [0.3, 7.5, 100.25, 1000.5, 5000.75] {
+            let mut ws = Workspace::new(g0.clone(), 128);
+            ws.start_rigid_plastic(share * plim / n as f64, plim);
+            let k = share as usize;
+            let mut expected = vec![0.0; n];
+            order[..k].iter().for_each(|&i| expected[i] = plim);
+            expected[order[k]] = (share - k as f64) * plim;
+            assert_eq!(ws.p, expected, "share {share}");
+        }
     }
 }
