@@ -160,7 +160,8 @@ pub(crate) fn solve(
     // pressure over every point (see `Rebalanced::spread`).
     let mut last_spread: Option<(f64, f64)> = None;
     let mut cycling = false;
-    let mut p_sum: f64 = ws.p.iter().sum();
+    // Σ p over the contact lists (`p` vanishes off them), in parallel.
+    let mut p_sum = ws.free_stats(plim).total();
     let mut g_old = 0.0;
     let mut reset = true;
     let mut progress_mark = f64::INFINITY;

@@ -127,7 +127,11 @@ impl Workspace {
             };
         }
         let n = self.len() as f64;
-        let pmax = self.p.iter().copied().fold(0.0, f64::max);
+        let pmax = self
+            .p
+            .par_chunks(BLOCK)
+            .map(|p| p.iter().copied().fold(0.0, f64::max))
+            .reduce(|| 0.0, f64::max);
         let (mut lo, mut hi) = (-pmax, if plim.is_finite() { plim } else { total / n });
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);
@@ -142,11 +146,11 @@ impl Workspace {
         }
         let c = 0.5 * (lo + hi);
         self.p
-            .iter_mut()
+            .par_iter_mut()
             .for_each(|pi| *pi = (*pi + c).clamp(0.0, plim));
         self.rebuild_contact();
         Rebalanced {
-            pressure_sum: self.p.iter().sum(),
+            pressure_sum: self.free_stats(plim).total(),
             spread: c > 0.0,
         }
     }

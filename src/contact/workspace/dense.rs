@@ -140,48 +140,62 @@ impl Workspace {
     /// The pass over the points out of contact. Applies the pending displacement update
     /// `u ← u − τ w` (everywhere) if `pending_step = Some(τ)`; returns the smallest gap
     /// `min_{p = 0} (g₀ + u − offset)` and records the points with `g₀ + u − offset − δ < 0`
-    /// (none for `δ = −∞`). If the row minima of the last transform are current, only the
-    /// blocks whose rows reach below `δ` are read; otherwise every block is swept for its
-    /// minimum and, if that is below `δ`, scanned.
+    /// (none for `δ = −∞`). If the row minima of the last transform are current, each block's
+    /// smallest gap is that of its rows, and only the blocks that reach below `δ` are read (in
+    /// most iterations none: the pass then starts no parallel work); otherwise every block is
+    /// swept for its minimum and, if that is below `δ`, scanned.
     pub(in crate::contact) fn out_of_contact_pass(
         &mut self,
         pending_step: Option<f64>,
         offset: f64,
         delta: f64,
     ) -> f64 {
-        let row_minima = (pending_step.is_none() && self.row_min_current).then_some(&self.row_min);
+        let row_minima = pending_step.is_none() && self.row_min_current;
         self.row_min_current &= pending_step.is_none();
         let (w, nx, n) = (&self.w, self.nx, self.g0.len());
-        self.u
-            .par_chunks_mut(BLOCK)
-            .zip(self.g0_out.par_chunks(BLOCK))
-            .zip(self.blocks.par_iter_mut())
-            .enumerate()
-            .for_each(|(b, ((u, g0_out), block))| {
-                let zero_min = match row_minima {
-                    Some(minima) => {
-                        let rows = b * BLOCK / nx..(b * BLOCK + u.len()).min(n).div_ceil(nx);
-                        minima[rows].iter().fold(f64::INFINITY, |a, &m| a.min(m))
-                    }
-                    None => {
-                        if let Some(tau) = pending_step {
-                            let w = &w[b * BLOCK..][..u.len()];
-                            u.iter_mut().zip(w).for_each(|(ui, &wi)| *ui -= tau * wi);
-                        }
-                        out_of_contact_min(u, g0_out, offset)
-                    }
-                };
-                block.entering.clear();
-                if zero_min - delta < 0.0 {
-                    for (l, (&ui, &g0i)) in u.iter().zip(g0_out).enumerate() {
-                        let v = g0i + ui - offset;
-                        if v - delta < 0.0 {
-                            block.entering.push((l as u32, v - delta));
-                        }
+        let record_entering = |u: &[f64], g0_out: &[f64], block: &mut Block| {
+            block.entering.clear();
+            if block.zero_min - delta < 0.0 {
+                for (l, (&ui, &g0i)) in u.iter().zip(g0_out).enumerate() {
+                    let v = g0i + ui - offset;
+                    if v - delta < 0.0 {
+                        block.entering.push((l as u32, v - delta));
                     }
                 }
-                block.zero_min = zero_min;
-            });
+            }
+        };
+        let blocks = self
+            .u
+            .par_chunks_mut(BLOCK)
+            .zip(self.g0_out.par_chunks(BLOCK));
+        if row_minima {
+            let mut below = false;
+            for (b, block) in self.blocks.iter_mut().enumerate() {
+                let rows = b * BLOCK / nx..((b + 1) * BLOCK).min(n).div_ceil(nx);
+                block.zero_min = self.row_min[rows]
+                    .iter()
+                    .fold(f64::INFINITY, |a, &m| a.min(m));
+                block.entering.clear();
+                below |= block.zero_min - delta < 0.0;
+            }
+            if below {
+                blocks
+                    .zip(self.blocks.par_iter_mut())
+                    .filter(|(_, block)| block.zero_min - delta < 0.0)
+                    .for_each(|((u, g0_out), block)| record_entering(u, g0_out, block));
+            }
+        } else {
+            blocks.zip(self.blocks.par_iter_mut()).enumerate().for_each(
+                |(b, ((u, g0_out), block))| {
+                    if let Some(tau) = pending_step {
+                        let w = &w[b * BLOCK..][..u.len()];
+                        u.iter_mut().zip(w).for_each(|(ui, &wi)| *ui -= tau * wi);
+                    }
+                    block.zero_min = out_of_contact_min(u, g0_out, offset);
+                    record_entering(u, g0_out, block);
+                },
+            );
+        }
         self.blocks
             .iter()
             .map(|b| b.zero_min)

@@ -86,6 +86,11 @@ impl FreeStats {
         free_count: 0.0,
     };
 
+    /// `Σ p` (saturated and free).
+    pub(crate) fn total(&self) -> f64 {
+        self.free_sum + self.sat_sum
+    }
+
     fn add(&mut self, p: f64, plim: f64) {
         if p >= plim {
             self.sat_sum += p;
@@ -480,7 +485,7 @@ impl Workspace {
             out.corrected += b.sums[1];
             out.free = FreeStats::combine(out.free, &b.free);
         }
-        out.pressure_sum = out.free.free_sum + out.free.sat_sum;
+        out.pressure_sum = out.free.total();
         out
     }
 
