@@ -19,8 +19,9 @@
 //! (`p = 0, g < 0` or `p = p_lim, g > 0`) re-enter with `p ← p − τ g`. Under load control the
 //! load is restored by scaling the free pressures (saturating at `p_lim`).
 //!
-//! When the CG step is undefined (`Σ_F g t ≤ 0` or `tᵀKt ≤ 0`; typically the first step from the
-//! rigid-plastic start, whose free set is one point), the step is taken along the projected
+//! When the CG step is undefined (`Σ_F g t ≤ 0` or `tᵀKt ≤ 0`, or under load control a free set
+//! of at most one point, on which `t = g − δ` vanishes: the first step from the rigid-plastic
+//! start, taken without transforming that zero direction), the step is taken along the projected
 //! gradient `e = g − δ` on the free set and at the points that would re-enter, with its exact
 //! length for the unconstrained quadratic, `τ = Σ e² / eᵀ K e` (one more forward FFT). The
 //! earlier fallback `τ = 1/K₀₀`, exact for one isolated point, overshot by 3–5× when thousands of
@@ -268,32 +269,40 @@ pub(crate) fn solve(
             free_g2 / g_old
         };
         g_old = free_g2;
-        let [gt, t_sum, t_abs] = ws.direction(beta, offset, delta, plim);
-        // `tᵀ K t = Σ_F t (K t)`: `t` vanishes off the free set.
-        let mut rt = ws.start_direction_transform(op)?;
-        fft_transforms += 1;
         // `w = K t` in real space, if it was needed for the step.
         let mut w_ready = false;
-        if load_control && has_free && t_sum.abs() > MEAN_FREE_DIRECTION * t_abs {
-            op.finish_apply(&mut ws.w)?;
-            fft_transforms += 1;
-            w_ready = true;
-            rt -= ws.free_w_sum(plim) * t_sum / stats.free_count;
-        }
-        let breakdown = !(rt > 0.0 && gt > 0.0 && (gt / rt).is_finite());
-        let tau = if breakdown {
-            // The projected-gradient step (module docs); it replaces `t`, and `reset` below
-            // restarts the conjugation.
-            let e2 = ws.entry_direction(offset, delta, plim);
-            let ek = op.start_apply(&ws.t)?;
-            fft_transforms += 1;
-            if ek > 0.0 && e2 > 0.0 && (e2 / ek).is_finite() {
-                e2 / ek
-            } else {
-                settings.default_step
-            }
+        let cg_step = if load_control && stats.free_count <= 1.0 {
+            // Under load control `δ` is the mean of `g` on the free set, so on a free set of one
+            // point (the rigid-plastic start) `t = g − δ` vanishes: no direction to transform.
+            None
         } else {
-            gt / rt
+            let [gt, t_sum, t_abs] = ws.direction(beta, offset, delta, plim);
+            // `tᵀ K t = Σ_F t (K t)`: `t` vanishes off the free set.
+            let mut rt = ws.start_direction_transform(op)?;
+            fft_transforms += 1;
+            if load_control && has_free && t_sum.abs() > MEAN_FREE_DIRECTION * t_abs {
+                op.finish_apply(&mut ws.w)?;
+                fft_transforms += 1;
+                w_ready = true;
+                rt -= ws.free_w_sum(plim) * t_sum / stats.free_count;
+            }
+            (rt > 0.0 && gt > 0.0 && (gt / rt).is_finite()).then_some(gt / rt)
+        };
+        let breakdown = cg_step.is_none();
+        let tau = match cg_step {
+            Some(tau) => tau,
+            None => {
+                // The projected-gradient step (module docs); it replaces `t`, and `reset` below
+                // restarts the conjugation.
+                let e2 = ws.entry_direction(offset, delta, plim);
+                let ek = op.start_apply(&ws.t)?;
+                fft_transforms += 1;
+                if ek > 0.0 && e2 > 0.0 && (e2 / ek).is_finite() {
+                    e2 / ek
+                } else {
+                    settings.default_step
+                }
+            }
         };
         let update = ws.update(tau, offset, delta, plim);
         iterations += 1;
