@@ -220,14 +220,19 @@ mod tests {
         }
     }
 
+    /// `n` values spread over many binades, of both signs.
+    fn spread(n: usize) -> Vec<f64> {
+        (0..n)
+            .map(|i| ((i * 7919 % 1013) as f64 - 500.0) * 10f64.powi((i % 37) as i32 - 18))
+            .collect()
+    }
+
     #[test]
     fn selects_every_rank_of_spread_clustered_and_tied_values() {
         // More values than GATHER so that the radix passes run: spread over many binades,
         // clustered in one binade (the first pass cannot split them), and heavily tied.
         let n = 3 * GATHER + 17;
-        let spread: Vec<f64> = (0..n)
-            .map(|i| ((i * 7919 % 1013) as f64 - 500.0) * 10f64.powi((i % 37) as i32 - 18))
-            .collect();
+        let spread = spread(n);
         let clustered: Vec<f64> = (0..n)
             .map(|i| 1.0 + (i * 7919 % n) as f64 * 1e-12)
             .collect();
@@ -261,9 +266,7 @@ mod tests {
     #[test]
     fn lowest_ranks_select_the_smallest_in_index_order_of_ties() {
         let n = 5 * SAMPLE + 3;
-        let spread: Vec<f64> = (0..n)
-            .map(|i| ((i * 7919 % 1013) as f64 - 500.0) * 10f64.powi((i % 37) as i32 - 18))
-            .collect();
+        let spread = spread(n);
         // Few distinct values: the k-th is tied with many, which must be cut in index order.
         let tied: Vec<f64> = (0..n).map(|i| (i * 7919 % 97) as f64).collect();
         for values in [&spread, &tied] {
