@@ -141,9 +141,10 @@ impl Workspace {
     /// `u ← u − τ w` (everywhere) if `pending_step = Some(τ)`; returns the smallest gap
     /// `min_{p = 0} (g₀ + u − offset)` and records the points with `g₀ + u − offset − δ < 0`
     /// (none for `δ = −∞`). If the row minima of the last transform are current, each block's
-    /// smallest gap is that of its rows, and only the blocks that reach below `δ` are read (in
-    /// most iterations none: the pass then starts no parallel work); otherwise every block is
-    /// swept for its minimum and, if that is below `δ`, scanned.
+    /// smallest gap is that of its rows, and only the blocks that reach below `δ` are read (when
+    /// none does, the pass starts no parallel work; on rough surfaces some point enters in
+    /// almost every step); otherwise every block is swept for its minimum and, if that is below
+    /// `δ`, scanned.
     pub(in crate::contact) fn out_of_contact_pass(
         &mut self,
         pending_step: Option<f64>,
