@@ -17,7 +17,9 @@
 //! [`MEAN_FREE_DIRECTION`] and [`CORRECTED_SHARE`] for when it is left out);
 //! `p ← p − τ t`, then projection on the box; points at a bound whose gap has the wrong sign
 //! (`p = 0, g < 0` or `p = p_lim, g > 0`) re-enter with `p ← p − τ g`. Under load control the
-//! load is restored by scaling the free pressures (saturating at `p_lim`).
+//! load is restored by scaling the free pressures (saturating at `p_lim`); when the free set
+//! cannot carry it, the rest goes to the points out of contact of smallest gap (see
+//! `Workspace::rebalance_with`).
 //!
 //! When the CG step is undefined (`Σ_F g t ≤ 0` or `tᵀKt ≤ 0`, or under load control a free set
 //! of at most one point, on which `t = g − δ` vanishes: the first step from the rigid-plastic
@@ -44,9 +46,9 @@
 //!
 //! Convergence: all four [`Residuals`] `≤ ε`. The solve ends `Stalled` when its largest residual
 //! has not fallen below 0.9 × its best value for `stall_iterations`, or at once when the load
-//! restoration has twice fallen back to contact everywhere from the same state — free-set size
-//! and largest residual within [`CYCLE_MATCH`] (a cycle of the load-controlled iteration, seen
-//! when almost all contact is saturated).
+//! restoration has twice found the free set unable to carry the load from the same state —
+//! free-set size and largest residual within [`CYCLE_MATCH`] (a cycle of the load-controlled
+//! iteration, seen when almost all contact is saturated).
 //!
 //! Everything but the transforms (whose inputs are read from the lists) and, after a pending
 //! update, one dense pass over the points out of contact runs over explicit contact lists (see
@@ -95,11 +97,12 @@ const MEAN_FREE_DIRECTION: f64 = 0.1;
 /// per iteration before, 1.65–1.7 after; iterations the same ±1 at every tolerance, and 3 fewer
 /// at 512², ε = 1e-7). With saturated points it is always
 /// computed: skipping it there sent more of the saturated ground pairs of
-/// `studies/ground-validation.yaml` to the approach search (3481 → 3911 iterations).
+/// `studies/ground-validation.yaml` to the approach search (3481 → 3911 iterations, measured
+/// before the load restoration ranked the points out of contact by their gap).
 const CORRECTED_SHARE: f64 = 0.05;
 
-/// Two fall-backs to contact everywhere are the same state when their free-set sizes and largest
-/// residuals agree within this fraction. (Exact equality of the free-set size missed cycles that
+/// Two fall-backs of the load restoration are the same state when their free-set sizes and
+/// largest residuals agree within this fraction. (Exact equality of the free-set size missed cycles that
 /// moved one point per period, which then ran for `stall_iterations`.)
 const CYCLE_MATCH: f64 = 0.02;
 
@@ -340,9 +343,9 @@ pub(crate) fn solve(
                 let rebalanced = ws.rebalance_with(total, plim, update.free);
                 p_sum = rebalanced.pressure_sum;
                 if rebalanced.spread && iterations > 1 {
-                    // Back to contact everywhere from the same state as at the last such fall-back:
-                    // the load-controlled iteration cycles (seen when almost all contact is
-                    // saturated); it stops here instead of after `stall_iterations`.
+                    // A fall-back from the same state as the last one: the load-controlled
+                    // iteration cycles (seen when almost all contact is saturated); it stops here
+                    // instead of after `stall_iterations`.
                     let state = (stats.free_count, r);
                     cycling = last_spread.is_some_and(|(free, r_last)| {
                         (free - state.0).abs() <= CYCLE_MATCH * state.0

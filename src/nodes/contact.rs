@@ -27,7 +27,7 @@ pub(crate) const TABLE: &str = "contacts";
 pub(crate) const COMPOSITE_HEIGHT: &str = "composite_height";
 
 /// Implementation version of the `contact` kind; bump whenever its numerics change.
-pub const CONTACT_KIND_VERSION: u32 = 17;
+pub const CONTACT_KIND_VERSION: u32 = 18;
 
 /// `contact: {...}`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]

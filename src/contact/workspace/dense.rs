@@ -203,6 +203,20 @@ impl Workspace {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// `g ← g₀ + u` at the points out of contact and `+∞` at the contact points (`g` as scratch
+    /// during a solve: the load restoration ranks the points out of contact by it).
+    pub(in crate::contact) fn write_out_of_contact_gap(&mut self) {
+        self.g
+            .par_chunks_mut(BLOCK)
+            .zip(self.g0_out.par_chunks(BLOCK))
+            .zip(self.u.par_chunks(BLOCK))
+            .for_each(|((g, g0_out), u)| {
+                for ((gi, &g0i), &ui) in g.iter_mut().zip(g0_out).zip(u) {
+                    *gi = g0i + ui;
+                }
+            });
+    }
+
     /// `g ← g₀ + u − approach` everywhere (the gap returned with a solve).
     pub(in crate::contact) fn write_gap(&mut self, approach: f64) {
         self.g

@@ -248,7 +248,8 @@ pub(crate) struct Workspace {
     pub p: Vec<f64>,
     /// Composite elastic displacement `u = K p` in m.
     pub u: Vec<f64>,
-    /// Gap `g₀ + u − δ` in m of the last iterate (written when a solve returns).
+    /// Gap `g₀ + u − δ` in m of the last iterate (written when a solve returns; scratch during a
+    /// solve).
     pub g: Vec<f64>,
     /// Conjugate direction: zero at saturated points and, whenever it is convolved, off the
     /// contact set.
