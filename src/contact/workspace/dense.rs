@@ -206,27 +206,23 @@ impl Workspace {
     /// `g ← g₀ + u` at the points out of contact and `+∞` at the contact points (`g` as scratch
     /// during a solve: the load restoration ranks the points out of contact by it).
     pub(in crate::contact) fn write_out_of_contact_gap(&mut self) {
-        self.g
-            .par_chunks_mut(BLOCK)
-            .zip(self.g0_out.par_chunks(BLOCK))
-            .zip(self.u.par_chunks(BLOCK))
-            .for_each(|((g, g0_out), u)| {
-                for ((gi, &g0i), &ui) in g.iter_mut().zip(g0_out).zip(u) {
-                    *gi = g0i + ui;
-                }
-            });
+        sum_into(&mut self.g, &self.g0_out, &self.u, 0.0);
     }
 
     /// `g ← g₀ + u − approach` everywhere (the gap returned with a solve).
     pub(in crate::contact) fn write_gap(&mut self, approach: f64) {
-        self.g
-            .par_chunks_mut(BLOCK)
-            .zip(self.g0.par_chunks(BLOCK))
-            .zip(self.u.par_chunks(BLOCK))
-            .for_each(|((g, g0), u)| {
-                for ((gi, &g0i), &ui) in g.iter_mut().zip(g0).zip(u) {
-                    *gi = g0i + ui - approach;
-                }
-            });
+        sum_into(&mut self.g, &self.g0, &self.u, approach);
     }
+}
+
+/// `g ← base + u − offset`, in parallel.
+fn sum_into(g: &mut [f64], base: &[f64], u: &[f64], offset: f64) {
+    g.par_chunks_mut(BLOCK)
+        .zip(base.par_chunks(BLOCK))
+        .zip(u.par_chunks(BLOCK))
+        .for_each(|((g, base), u)| {
+            for ((gi, &bi), &ui) in g.iter_mut().zip(base).zip(u) {
+                *gi = bi + ui - offset;
+            }
+        });
 }
