@@ -32,10 +32,10 @@ impl Workspace {
         }
         let k = share.floor() as usize;
         let remainder = (share - k as f64) * plim;
-        if let Some(lowest) = lowest_ranks(&self.g0, k) {
+        if let Some(lowest) = lowest_ranks(&self.g0, k, &mut self.ranks) {
             self.p.par_chunks_mut(BLOCK).for_each(|p| p.fill(0.0));
-            if let Some((&kth, full)) = lowest.split_last() {
-                full.iter().for_each(|&i| self.p[i] = plim);
+            if let Some((&(_, kth), full)) = lowest.split_last() {
+                full.iter().for_each(|&(_, i)| self.p[i] = plim);
                 self.p[kth] = remainder;
             }
             return;
@@ -176,9 +176,8 @@ impl Workspace {
     /// iterations (the steps of 50 iterations or more, 33 of 80, now one; the largest 132 → 64),
     /// `studies/convergence.yaml` 894 → 365; the 256² and 512² load sweeps of the benchmark
     /// (0.5–95 % of `p_lim`) are unchanged but for two loads (+3 and +12 iterations), its 20 MPa
-    /// rows and Hertz unchanged. The selection allocates its sample and the gathered
-    /// candidates, inside the iteration: this branch runs 1.7 times per load step in the ground
-    /// study (136 times in 80 steps).
+    /// rows and Hertz unchanged. This branch runs 1.7 times per load step in the ground study
+    /// (136 times in 80 steps); the ranking's buffers are kept in the workspace.
     fn spread_by_gap(&mut self, rest: f64, plim: f64) -> Option<Rebalanced> {
         if !plim.is_finite() {
             return None;
@@ -186,8 +185,9 @@ impl Workspace {
         let share = rest / plim;
         let m = share.floor() as usize;
         self.write_out_of_contact_gap();
-        let lowest = lowest_ranks(&self.g, m)?;
-        if self.g[*lowest.last()?].is_infinite() {
+        let lowest = lowest_ranks(&self.g, m, &mut self.ranks)?;
+        let (&(last_gap, last), full) = lowest.split_last()?;
+        if last_gap.is_infinite() {
             return None;
         }
         self.p.par_iter_mut().for_each(|p| {
@@ -195,10 +195,8 @@ impl Workspace {
                 *p = plim;
             }
         });
-        if let Some((&last, full)) = lowest.split_last() {
-            full.iter().for_each(|&i| self.p[i] = plim);
-            self.p[last] = (share - m as f64) * plim;
-        }
+        full.iter().for_each(|&(_, i)| self.p[i] = plim);
+        self.p[last] = (share - m as f64) * plim;
         self.rebuild_contact();
         Some(Rebalanced {
             pressure_sum: self.free_stats(plim).total(),

@@ -18,6 +18,8 @@
 
 use rayon::prelude::*;
 
+use super::selection::RankBuffers;
+
 mod dense;
 
 /// Points per block (independent of the thread count).
@@ -257,6 +259,8 @@ pub(crate) struct Workspace {
     /// `w = K t`.
     pub(super) w: Vec<f64>,
     blocks: Vec<Block>,
+    /// Buffers of the ranking of gaps (rigid-plastic start, load restoration).
+    pub(super) ranks: RankBuffers,
     /// Points per grid row.
     nx: usize,
     /// Per grid row, `min_{p = 0} (g₀ + u − offset)` as the last inverse transform left it.
@@ -280,6 +284,7 @@ impl Workspace {
             t: vec![0.0; n],
             w: vec![0.0; n],
             blocks: vec![Block::new(); blocks],
+            ranks: RankBuffers::default(),
             nx,
             row_min: vec![f64::INFINITY; n.div_ceil(nx)],
             row_min_current: false,
