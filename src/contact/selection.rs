@@ -1,14 +1,15 @@
 //! The k-th smallest of many values, in parallel and without copying them all: the selection
-//! behind the rigid-plastic start (`load_balance`).
+//! behind the rigid-plastic start and the load restoration (`load_balance`).
 //!
 //! * [`lowest_ranks`], for a small rank (the rigid-plastic start at the loads of interest,
 //!   `k/N = p̄/p_lim` of a few per cent at most): a strided sample of the values gives a bound
 //!   that a little more than `k + 1` values are expected to stay below; one parallel pass counts
 //!   them, a serial one gathers them with their indices into buffers the caller keeps, and the
-//!   `k + 1` smallest in the order of `(value, index)` are selected among those few. If the sample misled (fewer than `k + 1`
-//!   values below the bound, or far more), it declines and the caller falls back on
-//!   [`kth_smallest`]. Measured on the 256² rough benchmark (65 536 gaps, the 0.5 % rank), the
-//!   whole rigid-plastic start fell from about 380 µs to about 60 µs per cold solve.
+//!   `k + 1` smallest in the order of `(value, index)` are selected among those few. If the
+//!   sample misled (fewer than `k + 1` values below the bound, or far more), it declines and the
+//!   caller falls back on [`kth_smallest`]. Measured with per-phase timers on the 256² rough
+//!   benchmark (65 536 gaps, the 0.5 % rank; the gather then in parallel), the whole
+//!   rigid-plastic start fell from about 380 µs to 110–165 µs per cold solve.
 //! * [`kth_smallest`], for any rank: radix selection on the order-preserving integer keys of the
 //!   values (the IEEE 754 total order of `f64::total_cmp`). The leading bits shared by the
 //!   smallest and the largest key are those of every key; below them each pass counts, in
