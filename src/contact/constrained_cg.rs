@@ -95,15 +95,15 @@ const MEAN_FREE_DIRECTION: f64 = 0.1;
 /// the conjugate direction is large in every one of them (Hertz on the benchmark at 64² and
 /// ε = 1e-3: the term was computed in 7 of 9 steps. At 64²–512² and ε = 1e-3: 1.85–2.0 FFT pairs
 /// per iteration before, 1.65–1.7 after; iterations the same ±1 at every tolerance, and 3 fewer
-/// at 512², ε = 1e-7). With saturated points it is always
-/// computed: skipping it there sent more of the saturated ground pairs of
-/// `studies/ground-validation.yaml` to the approach search (3481 → 3911 iterations, measured
-/// before the load restoration ranked the points out of contact by their gap).
+/// at 512², ε = 1e-7). With saturated points it is always computed: skipping it there sent more
+/// of the saturated ground pairs of `studies/ground-validation.yaml` to the approach search
+/// (3481 → 3911 iterations, measured before the load restoration ranked the points out of
+/// contact by their gap).
 const CORRECTED_SHARE: f64 = 0.05;
 
 /// Two fall-backs of the load restoration are the same state when their free-set sizes and
-/// largest residuals agree within this fraction. (Exact equality of the free-set size missed cycles that
-/// moved one point per period, which then ran for `stall_iterations`.)
+/// largest residuals agree within this fraction. (Exact equality of the free-set size missed
+/// cycles that moved one point per period, which then ran for `stall_iterations`.)
 const CYCLE_MATCH: f64 = 0.02;
 
 /// The state of `u` at the start of an iteration.

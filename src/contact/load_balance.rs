@@ -34,10 +34,7 @@ impl Workspace {
         let remainder = (share - k as f64) * plim;
         if let Some(lowest) = lowest_ranks(&self.g0, k, &mut self.ranks) {
             self.p.par_chunks_mut(BLOCK).for_each(|p| p.fill(0.0));
-            if let Some((&(_, kth), full)) = lowest.split_last() {
-                full.iter().for_each(|&(_, i)| self.p[i] = plim);
-                self.p[kth] = remainder;
-            }
+            place_ranked(&mut self.p, lowest, plim, remainder);
             return;
         }
         // k < n here. The k-th smallest gap (0-based), ties broken by index as in a stable order
@@ -160,9 +157,7 @@ impl Workspace {
             spread: c > 0.0,
         }
     }
-}
 
-impl Workspace {
     /// Saturates the free set and gives the load `rest` it cannot carry to the points out of
     /// contact of smallest gap `g₀ + u`, `p_lim` each and the last one the remainder: the
     /// rigid-plastic rule of [`Self::start_rigid_plastic`] on the deformed gap, where contact
@@ -186,8 +181,7 @@ impl Workspace {
         let m = share.floor() as usize;
         self.write_out_of_contact_gap();
         let lowest = lowest_ranks(&self.g, m, &mut self.ranks)?;
-        let (&(last_gap, last), full) = lowest.split_last()?;
-        if last_gap.is_infinite() {
+        if lowest.last()?.0.is_infinite() {
             return None;
         }
         self.p.par_iter_mut().for_each(|p| {
@@ -195,13 +189,21 @@ impl Workspace {
                 *p = plim;
             }
         });
-        full.iter().for_each(|&(_, i)| self.p[i] = plim);
-        self.p[last] = (share - m as f64) * plim;
+        place_ranked(&mut self.p, lowest, plim, (share - m as f64) * plim);
         self.rebuild_contact();
         Some(Rebalanced {
             pressure_sum: self.free_stats(plim).total(),
             spread: true,
         })
+    }
+}
+
+/// `p_lim` at the ranked points but the last, `remainder` at the last (see
+/// `selection::lowest_ranks`).
+fn place_ranked(p: &mut [f64], lowest: &[(f64, usize)], plim: f64, remainder: f64) {
+    if let Some((&(_, last), full)) = lowest.split_last() {
+        full.iter().for_each(|&(_, i)| p[i] = plim);
+        p[last] = remainder;
     }
 }
 
