@@ -72,6 +72,10 @@ fn slow_contact(m: &StatisticalModel, d: f64, law: &dyn Fn(f64) -> f64) -> (f64,
     let wc = m.critical_interference_star();
     let x_max = (d.max(0.0) + 40.0 * s - d) / wc;
     let mut cuts: Vec<f64> = vec![1.0, 6.0, 110.0];
+    // The full-stick laws break at ω* = 1, 110 (stick fit) and ω*_JG = 1.9, elsewhere in x.
+    if m.model == AsperityModel::FullStick {
+        cuts.extend(m.laws.load_breaks());
+    }
     cuts.extend(
         [-3.0 * s, 0.0, 3.0 * s, 10.0 * s]
             .iter()
@@ -144,6 +148,16 @@ fn check_all(m: &StatisticalModel, d: f64) {
             Box::new(ceb_area_ratio),
             Box::new(ceb_static_friction_ratio),
         ),
+        AsperityModel::FullStick => {
+            // The laws themselves are checked in tests/friction_full_stick.rs; here only the
+            // integration over the summit heights.
+            let laws = m.laws;
+            (
+                Box::new(move |x| laws.load_ratio(x)),
+                Box::new(move |x| laws.area_ratio(x)),
+                Box::new(move |x| laws.friction_ratio(x)),
+            )
+        }
     };
     let lib = |r: Result<asperity::friction::IntegralValue, asperity::friction::FrictionError>| {
         r.map(|v| v.value).unwrap_or_else(|e| panic!("{tag}: {e}"))
@@ -192,6 +206,7 @@ fn kogut_etsion_options_match_simpson() {
     let options = ModelOptions {
         static_friction_form: StaticFrictionForm::Clipped,
         adhesion_beyond_fits: AdhesionBeyondFits::ExtendLastFit,
+        ..ModelOptions::default()
     };
     let m = model(30.0, AsperityModel::KogutEtsion, options);
     for &d in &[-0.5, 1.5] {
@@ -204,6 +219,18 @@ fn ceb_integrals_match_simpson() {
     for &psi in &[0.8, 4.0] {
         let m = model(psi, AsperityModel::ChangEtsionBogy, ModelOptions::default());
         for &d in &[-0.5, 1.5, 3.5] {
+            check_all(&m, d);
+        }
+    }
+}
+
+/// Full stick at a low, a moderate and a ground-steel plasticity index (ψ = 45: the elastic–
+/// plastic band is a sliver of the Gaussian, the case the law breakpoints exist for).
+#[test]
+fn full_stick_integrals_match_simpson() {
+    for &psi in &[0.5, 8.0, 45.0] {
+        let m = model(psi, AsperityModel::FullStick, ModelOptions::default());
+        for &d in &[-1.0, 0.7, 2.5] {
             check_all(&m, d);
         }
     }

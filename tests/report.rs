@@ -261,3 +261,128 @@ fn a_friction_table_is_plotted_and_replicate_axes_can_be_named() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown --metric 'no_such_column'"));
     let _ = std::fs::remove_dir_all(results.parent().unwrap());
 }
+
+/// Adds friction nodes to the results folder as the friction node writes them: one
+/// `<node>_key` column per node in the scenarios table and one `friction` row per instance
+/// with `method`, `model` and `mu_s` (`None`: a failed row). `scenarios`: the table as the
+/// study wrote it; `nodes`: name, method, model and μ_s per scenario.
+fn write_friction(
+    results: &Path,
+    scenarios: &DataFrame,
+    nodes: &[(&str, &str, &str, Vec<Option<f64>>)],
+) {
+    let mut scenarios = scenarios.clone();
+    let (mut keys, mut names, mut methods, mut models, mut mu) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for (n, (name, method, model, values)) in nodes.iter().enumerate() {
+        assert_eq!(values.len(), scenarios.height());
+        let node_keys: Vec<String> = (0..values.len())
+            .map(|s| format!("{n:032x}{s:032x}"))
+            .collect();
+        scenarios
+            .with_column(Column::new(format!("{name}_key").into(), node_keys.clone()))
+            .unwrap();
+        keys.extend(node_keys);
+        names.extend(values.iter().map(|_| name.to_string()));
+        methods.extend(values.iter().map(|_| method.to_string()));
+        models.extend(values.iter().map(|_| model.to_string()));
+        mu.extend(values.iter().copied());
+    }
+    let status: Vec<&str> = mu
+        .iter()
+        .map(|m| if m.is_some() { "ok" } else { "failed" })
+        .collect();
+    let mut friction = DataFrame::new(
+        keys.len(),
+        vec![
+            Column::new("key".into(), keys),
+            Column::new("nodes".into(), names),
+            Column::new("method".into(), methods),
+            Column::new("model".into(), models),
+            Column::new("mu_s".into(), mu),
+            Column::new("status".into(), status),
+        ],
+    )
+    .unwrap();
+    for (name, df) in [("scenarios", &mut scenarios), ("friction", &mut friction)] {
+        let file = std::fs::File::create(results.join(format!("{name}.parquet"))).unwrap();
+        ParquetWriter::new(file).finish(df).unwrap();
+    }
+}
+
+/// The `<svg>` element whose title contains `title`.
+fn svg_titled<'a>(html: &'a str, title: &str) -> &'a str {
+    let at = html
+        .find(title)
+        .unwrap_or_else(|| panic!("no figure '{title}'"));
+    let start = html[..at].rfind("<svg").unwrap();
+    let end = at + html[at..].find("</svg>").unwrap();
+    &html[start..end]
+}
+
+#[test]
+fn several_friction_nodes_share_a_mu_s_by_friction_model_figure() {
+    let (cache, results) = run_study("models");
+    // Scenarios 0–3: Sq 0.5, 0.5, 1, 1 µm with seeds 1, 2, 1, 2. junction_shear failed in
+    // scenario 0; its μ_s is two decades below the others, so the y axis is logarithmic.
+    let nodes = [
+        (
+            "ke_statistical",
+            "statistical",
+            "kogut_etsion",
+            vec![Some(0.30), Some(0.32), Some(0.25), Some(0.27)],
+        ),
+        (
+            "stick_per_spot",
+            "per_spot",
+            "full_stick",
+            vec![Some(0.60), Some(0.62), Some(0.50), Some(0.52)],
+        ),
+        (
+            "junction_shear",
+            "per_spot",
+            "junction_shear",
+            vec![None, Some(0.002), Some(0.003), Some(0.004)],
+        ),
+    ];
+    let scenarios = read(&results.join("scenarios.parquet"));
+    write_friction(&results, &scenarios, &nodes);
+    let html = report(&cache, &results, &["--maps", "0"]);
+    let title = "μ_s by friction model vs Sq";
+    assert_eq!(
+        html.matches(title).count(),
+        1,
+        "one swept parameter, one figure"
+    );
+    let svg = svg_titled(&html, title);
+    for (name, method, model, _) in &nodes {
+        let label = format!(">{name} ({method}, {model})</text>");
+        assert_eq!(
+            svg.matches(&label).count(),
+            1,
+            "legend entry {label} in {svg}"
+        );
+    }
+    assert_eq!(svg.matches("<polyline").count(), 3, "one line per node");
+    assert!(svg.contains(">0.001<"), "a log y axis: {svg}");
+    let figure = &html[html.find(title).unwrap()..];
+    let caption = &figure[..figure.find("</figcaption>").unwrap()];
+    assert!(caption.contains("1 missing value(s)"));
+    // The failed scenario is left out: junction_shear at Sq = 0.5 µm is scenario 1 alone.
+    let rows = value_rows(&html, title);
+    assert_eq!(rows.len(), 6);
+    let junction = rows
+        .iter()
+        .find(|r| r[0].starts_with("junction_shear") && r[1] == "0.5")
+        .unwrap();
+    assert_eq!((junction[2].as_str(), junction[4].as_str()), ("0.002", "1"));
+    // The per-node figures stay.
+    assert_eq!(html.matches("μ_s vs Sq — friction").count(), 3);
+
+    // A single friction node: its own figure suffices.
+    write_friction(&results, &scenarios, &nodes[..1]);
+    let html = report(&cache, &results, &["--maps", "0"]);
+    assert!(html.contains("μ_s vs Sq — friction &#39;ke_statistical&#39;"));
+    assert!(!html.contains("by friction model"));
+    let _ = std::fs::remove_dir_all(results.parent().unwrap());
+}

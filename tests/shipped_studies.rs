@@ -86,6 +86,43 @@ fn every_shipped_study_runs_on_its_reduced_grid() {
             scenarios.iter().all(|s| s == "ok"),
             "{name}: scenario statuses {scenarios:?}"
         );
+        check_friction(&name, &dir.join("out/friction.parquet"));
         let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+/// No friction row of a shipped study has μ_s < 0; on the ground-steel studies every row of the
+/// high-plasticity models (full stick, junction shear) lies in the range of steel-steel static
+/// friction, 0.05 to 1.5.
+fn check_friction(name: &str, file: &Path) {
+    if !file.exists() {
+        return;
+    }
+    let df = ParquetReader::new(std::fs::File::open(file).unwrap())
+        .finish()
+        .unwrap();
+    let mu: Vec<f64> = df
+        .column("mu_s")
+        .unwrap()
+        .f64()
+        .unwrap()
+        .iter()
+        .map(|v| v.unwrap_or(f64::NAN))
+        .collect();
+    let models: Vec<String> = df
+        .column("model")
+        .unwrap()
+        .str()
+        .unwrap()
+        .iter()
+        .map(|s| s.unwrap_or("null").to_string())
+        .collect();
+    assert!(mu.iter().all(|m| *m >= 0.0), "{name}: μ_s {mu:?}");
+    if name == "ground-validation" || name == "sq-parameter-study" {
+        for (m, model) in mu.iter().zip(&models) {
+            if model == "full_stick" || model == "junction_shear" {
+                assert!((0.05..=1.5).contains(m), "{name} {model}: μ_s = {m}");
+            }
+        }
     }
 }

@@ -78,6 +78,9 @@ pub enum AsperityModel {
     KogutEtsion,
     /// Chang–Etsion–Bogy: Hertz + volume-conserving plastic cap; only elastic asperities carry Q.
     ChangEtsionBogy,
+    /// Full stick: Brizmer–Kligerman–Etsion stick load fit (Jackson–Green beyond ω* = 110),
+    /// Jackson–Green area, Q_max = μ(P*) P ([`super::full_stick`]).
+    FullStick,
 }
 
 /// Form of the KE 2004 Q_max polynomial on 1 < x ≤ 6.

@@ -45,6 +45,16 @@ pub enum FrictionError {
         /// Lowest dimensionless separation searched.
         d_star_min: f64,
     },
+    /// Two arrays that describe the same grid have different shapes.
+    #[error("array `{name}` has shape {found:?}, expected {expected:?} (ny, nx)")]
+    ShapeMismatch {
+        /// Name of the offending array.
+        name: &'static str,
+        /// Shape of the reference array (ny, nx).
+        expected: (usize, usize),
+        /// Shape found (ny, nx).
+        found: (usize, usize),
+    },
     /// An adaptive quadrature did not reach its relative tolerance within its interval budget.
     #[error("quadrature of {what} did not converge: estimated error {error} on value {value}")]
     QuadratureNotConverged {

@@ -14,6 +14,10 @@
 
 use super::error::{require_positive, FrictionError};
 
+/// Tabor's constraint factor: hardness H ≈ 2.8 × yield strength Y of a metal (Tabor, The Hardness
+/// of Metals, 1951), the rule used for Y when a material gives only H.
+pub const TABOR_FACTOR: f64 = 2.8;
+
 /// Elastic and plastic properties of a contact pair (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Material {
@@ -90,6 +94,11 @@ impl Material {
         let compliance = (1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2;
         let nu = if softer_is_first { nu1 } else { nu2 };
         Self::new(1.0 / compliance, hardness, nu)
+    }
+
+    /// Yield strength by Tabor's rule, Y = H/2.8 ([`TABOR_FACTOR`]).
+    pub fn tabor_yield_strength(&self) -> f64 {
+        self.hardness / TABOR_FACTOR
     }
 
     /// Hardness factor K = 0.454 + 0.41 ν.

@@ -1,32 +1,43 @@
-//! Stage 3: statistical and per-summit static-friction models (Greenwood–Williamson, Kogut–Etsion, CEB).
+//! Stage 3: statistical, per-summit and per-contact-spot static-friction models
+//! (Greenwood–Williamson, Kogut–Etsion, CEB, full stick, junction shear). Equations, sources and
+//! the confirmation status of every constant: `docs/friction-models.md`.
 //!
 //! * [`gw_functions`] — GW functions F_n(t) and Gaussian helpers (GW 1966);
 //! * [`summit_statistics`] — σ, σ_s, y_s, R, η, β, α from spectral moments (Nayak 1971, McCool 1986),
 //!   two surfaces combined by adding moments;
 //! * [`material`] — composite modulus, hardness factor K, critical values ω_c, P_c, A_c, plasticity
-//!   index ψ (with σ_s), adhesion parameters Δγ, ε;
+//!   index ψ (with σ_s), Tabor's yield strength Y = H/2.8, adhesion parameters Δγ, ε;
 //! * [`asperity_laws`] — single-asperity laws (KE 2002 load/area, KE 2003 adhesion, DMT/LJ,
 //!   KE 2004 Q_max literal/clipped, CEB), with what was confirmed from the literature;
-//! * [`statistical_integrals`] — P(d*), A(d*), F_s(d*), Q_max(d*), N(d*) for KE 2004 and CEB;
+//! * [`jackson_green`] — Jackson–Green 2005 elastic–plastic sphere (load, area, hardness);
+//! * [`full_stick`] — Brizmer–Kligerman–Etsion full-stick critical values and stick load fit,
+//!   the Jackson–Green hand-over beyond ω* = 110, and the parameterised μ(P*) = a coth(a P*^b);
+//! * [`model_laws`] — each model's laws as ratios to the KE critical values, its validated range
+//!   and how far its constants are confirmed ([`ModelBasis`]);
+//! * [`statistical_integrals`] — P(d*), A(d*), F_s(d*), Q_max(d*), N(d*) and the load beyond the
+//!   validated range, for every model;
 //! * [`mod@static_friction`] — solve F = P − F_s for d*, μ_s = Q_max/F, μ(F) curves;
 //! * [`per_summit`] — the same laws applied per identified summit, force-weighted μ and the
 //!   homogenization to the whole surface;
+//! * [`contact_spots`] — connected contact spots of a contact solution with their load, area and
+//!   radius, and the Lennard-Jones adhesion across its gap;
+//! * [`per_spot`] — a single-asperity law (full stick, KE, CEB) or junction shear per contact spot;
 //! * `quadrature`, `root_finding` (crate-private) — adaptive Gauss–Kronrod and Brent (own implementations).
 //!
-//! # Not implemented: Li–Etsion–Talke (2010)
-//! The LET model for high plasticity index (Li, Etsion & Talke, J. Tribol. 132 (2010), built on the
-//! Brizmer–Kligerman–Etsion 2007 full-stick sliding-inception fits) is NOT implemented: its
-//! equations could not be confirmed with the available literature search (no primary or secondary
-//! text restating them was found), and the project rule is not to guess fitted constants. At high
-//! ψ the KE 2004 model gives Q_max contributions only from asperities with x ≤ 6, which is the
-//! regime LET was designed to improve; results there should be read with that limitation.
+//! The Li–Etsion–Talke (2010) model itself is not implemented (its equations were not found);
+//! the full-stick line it builds on is, under its own name.
 //!
 //! All quantities are SI; nothing here prints, reads files or knows about the study engine.
 
 pub mod asperity_laws;
+pub mod contact_spots;
 pub mod error;
+pub mod full_stick;
 pub mod gw_functions;
+pub mod jackson_green;
 pub mod material;
+pub mod model_laws;
+pub mod per_spot;
 pub mod per_summit;
 pub(crate) mod quadrature;
 pub(crate) mod root_finding;
@@ -35,9 +46,14 @@ pub mod statistical_integrals;
 pub mod summit_statistics;
 
 pub use asperity_laws::{AdhesionBeyondFits, AsperityModel, DeformationState, StaticFrictionForm};
+pub use contact_spots::{Connectivity, ContactSpot, SpotLabels};
 pub use error::FrictionError;
+pub use full_stick::{FullStickLaw, StickFrictionLaw};
 pub use gw_functions::{gw_function, upper_tail_probability, INTEGRAL_REL_TOL};
-pub use material::{AdhesionParameters, CriticalValues, Material};
+pub use jackson_green::JacksonGreenLaw;
+pub use material::{AdhesionParameters, CriticalValues, Material, TABOR_FACTOR};
+pub use model_laws::{ModelBasis, ModelLaws};
+pub use per_spot::{per_spot_friction, PerSpotResult, SpotFriction, SpotLaw, SpotLoad};
 pub use per_summit::{
     per_summit_friction, summit_friction, PerSummitResult, SummitContact, SummitFriction,
 };
@@ -46,5 +62,7 @@ pub use static_friction::{
     net_load, static_friction, static_friction_at_pressure, static_friction_curve,
     static_friction_on_grid, NetLoadGrid, SolveSettings, SolveStatus, StaticFrictionResult,
 };
-pub use statistical_integrals::{AdhesionForce, IntegralValue, ModelOptions, StatisticalModel};
+pub use statistical_integrals::{
+    AdhesionForce, FullStickOptions, IntegralValue, ModelOptions, StatisticalModel,
+};
 pub use summit_statistics::{SpectralMoments, SummitStatistics, MCCOOL_ALPHA_BOUND};

@@ -5,10 +5,12 @@
 //! solution at the summit position (ω_i ≤ 0: not in contact, gap g_i = −ω_i). With
 //! ω_c,i = (πKH/2E)² R_i and x_i = ω_i/ω_c,i, each summit gets
 //!
-//! * F_n = P_c,i · (P/P_c)(x_i) (KE 2002 fits or CEB), 0 when not in contact;
+//! * F_n = P_c,i · (P/P_c)(x_i) (KE 2002 fits, CEB or full stick, [`super::model_laws`]), 0 when
+//!   not in contact;
 //! * F_a = 2πR_iΔγ · (KE 2003 contacting fit at x_i, ε/ω_c,i) in contact, or the DMT/LJ force
 //!   2πR_iΔγ [(4/3)(ε/h)² − (1/3)(ε/h)⁸] with h = ε + g_i out of contact;
-//! * F_f = Q_max = P_c,i · (Q/P_c)(x_i) (KE 2004, literal or clipped; CEB: elastic summits only);
+//! * F_f = Q_max = P_c,i · (Q/P_c)(x_i) (KE 2004, literal or clipped; CEB: elastic summits only;
+//!   full stick: μ(P*) P);
 //! * local μ = F_f / (F_n − F_a) when F_n − F_a > 0;
 //! * the deformation state (elastic x ≤ 1, elastic-plastic 1 < x ≤ 110, fully plastic x > 110).
 //!
@@ -27,11 +29,11 @@
 //! concentrated the friction capacity is.
 
 use super::asperity_laws::{
-    ceb_load_ratio, ceb_static_friction_ratio, contacting_adhesion_ratio, ke_load_ratio,
-    ke_static_friction_ratio, lennard_jones_adhesion_ratio, AsperityModel, DeformationState,
+    contacting_adhesion_ratio, lennard_jones_adhesion_ratio, AsperityModel, DeformationState,
 };
 use super::error::{require_positive, FrictionError};
 use super::material::{AdhesionParameters, Material};
+use super::model_laws::ModelLaws;
 use super::statistical_integrals::ModelOptions;
 
 /// One identified summit with its interference from the contact solution.
@@ -94,6 +96,9 @@ pub struct PerSummitResult {
     pub mu_s: Option<f64>,
     /// Counts of summits by state: [not in contact, elastic, elastic-plastic, fully plastic].
     pub state_counts: [usize; 4],
+    /// ΣF_n of the summits beyond the validated range of the friction law (N; x above
+    /// [`ModelLaws::fit_limit`]).
+    pub load_beyond_fit: f64,
     /// Summary of the local μ values (None when no summit has F_n − F_a > 0).
     pub local_mu_summary: Option<DistributionSummary>,
 }
@@ -154,15 +159,9 @@ pub fn summit_friction(
     }
     let critical = material.critical_values(radius);
     let x = summit.interference / critical.interference;
-    let k = material.hardness_factor();
     let adhesion_unit = 2.0 * std::f64::consts::PI * radius * adhesion.energy;
-    let (normal, friction) = match model {
-        AsperityModel::KogutEtsion => (
-            ke_load_ratio(x, k),
-            ke_static_friction_ratio(x, options.static_friction_form),
-        ),
-        AsperityModel::ChangEtsionBogy => (ceb_load_ratio(x), ceb_static_friction_ratio(x)),
-    };
+    let laws = ModelLaws::new(model, material, *options)?;
+    let (normal, friction) = (laws.load_ratio(x), laws.friction_ratio(x));
     let adhesion_ratio = if x > 0.0 {
         contacting_adhesion_ratio(
             x,
@@ -208,6 +207,12 @@ pub fn per_summit_friction(
     let total_normal_force: f64 = per.iter().map(|s| s.normal_force).sum();
     let total_adhesion_force: f64 = per.iter().map(|s| s.adhesion_force).sum();
     let total_friction_force: f64 = per.iter().map(|s| s.friction_force).sum();
+    let fit_limit = ModelLaws::new(model, material, *options)?.fit_limit();
+    let load_beyond_fit: f64 = per
+        .iter()
+        .filter(|s| s.interference_ratio > fit_limit)
+        .map(|s| s.normal_force)
+        .sum();
     let net = total_normal_force - total_adhesion_force;
     let mut state_counts = [0usize; 4];
     for s in &per {
@@ -228,6 +233,7 @@ pub fn per_summit_friction(
         total_friction_force,
         mu_s: (net > 0.0).then(|| total_friction_force / net),
         state_counts,
+        load_beyond_fit,
         local_mu_summary: summarize(&local),
         summits: per,
     })

@@ -14,8 +14,8 @@
 //! pull-off load returns [`FrictionError::LoadBelowPullOff`] (pull-off = grid minimum of P − F_s
 //! refined by golden section; a minimum beyond the top of the grid is not searched); μ_s is
 //! reported only for a compressive load F > 0 (it is `None` for a tensile load). With the
-//! literal KE 2004 Q_max at high ψ, Q_max and μ_s can come out negative; they are reported as
-//! computed (see [`super::asperity_laws`]).
+//! literal KE 2004 Q_max at high ψ, Q_max and μ_s can come out negative; the library reports them
+//! as computed (see [`super::asperity_laws`]) and the callers decide how to present them.
 //!
 //! μ(F) curves reuse one table for all loads: every net-load evaluation made by Brent is inserted
 //! into it, so later loads start from narrower brackets (each extra load costs a few iterations).
@@ -149,6 +149,9 @@ pub struct StaticFrictionResult {
     pub contacting_summits: f64,
     /// Real contact area (m²).
     pub real_contact_area: f64,
+    /// The part of the contact load carried by summits beyond the validated range of the
+    /// model's friction law (N; see [`super::ModelLaws::fit_limit`]).
+    pub load_beyond_fit: f64,
     /// Solver diagnostics.
     pub status: SolveStatus,
 }
@@ -429,6 +432,7 @@ fn evaluate_at(
     };
     let q = model.static_friction_force(d_star)?;
     let area = model.contact_area(d_star)?;
+    let beyond = model.load_beyond_fit(d_star)?;
     let rel = |v: f64, e: f64| if v == 0.0 { 0.0 } else { (e / v).abs() };
     let max_integral_relative_error = [
         rel(p.value, p.error),
@@ -456,6 +460,7 @@ fn evaluate_at(
         plasticity_index: model.plasticity_index,
         contacting_summits: model.contacting_summits(d_star),
         real_contact_area: area.value,
+        load_beyond_fit: beyond.value,
         status: SolveStatus {
             roots_found,
             root_taken: 0,

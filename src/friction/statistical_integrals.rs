@@ -24,27 +24,53 @@
 //! with no absolute tolerance (only an exactly-zero integrand stops on error = 0).
 
 use super::asperity_laws::{
-    ceb_area_ratio, ceb_load_ratio, ceb_static_friction_ratio, contacting_adhesion_ratio,
-    ke_area_ratio, ke_load_ratio, ke_static_friction_ratio, lennard_jones_adhesion_ratio,
-    AdhesionBeyondFits, AsperityModel, StaticFrictionForm, KE_STATIC_FRICTION_ZERO,
+    contacting_adhesion_ratio, lennard_jones_adhesion_ratio, AdhesionBeyondFits, AsperityModel,
+    StaticFrictionForm,
 };
 use super::error::{require_positive, FrictionError};
+use super::full_stick::{FullStickLaw, StickFrictionLaw};
 use super::gw_functions::{
     normal_pdf, upper_tail_probability, GAUSSIAN_CUT, GAUSSIAN_FEATURES, INTEGRAL_REL_TOL,
 };
 use super::material::{AdhesionParameters, CriticalValues, Material};
+use super::model_laws::ModelLaws;
 use super::quadrature::{
     breakpoints, integrate, pieces_graded_at_start, Grading, Piece, QuadratureOutcome,
 };
 use super::summit_statistics::SummitStatistics;
 
 /// Model options beyond the physical inputs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ModelOptions {
     /// Form of the KE Q_max polynomial (literal by default).
     pub static_friction_form: StaticFrictionForm,
     /// Contacting adhesion beyond x = 110 (hold the x = 110 value by default).
     pub adhesion_beyond_fits: AdhesionBeyondFits,
+    /// Inputs of the full-stick model (ignored by the others).
+    pub full_stick: FullStickOptions,
+}
+
+/// Inputs of the full-stick model beyond the [`Material`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FullStickOptions {
+    /// Yield strength Y of the softer body (Pa); `None`: Tabor's Y = H/2.8
+    /// ([`Material::tabor_yield_strength`]).
+    pub yield_strength: Option<f64>,
+    /// μ(P*) of a sticking asperity.
+    pub friction_law: StickFrictionLaw,
+}
+
+impl FullStickOptions {
+    /// The full-stick laws for `material` with these options.
+    pub fn law(&self, material: &Material) -> Result<FullStickLaw, FrictionError> {
+        FullStickLaw::new(
+            self.yield_strength
+                .unwrap_or_else(|| material.tabor_yield_strength()),
+            material.composite_modulus,
+            material.poisson_ratio,
+            self.friction_law,
+        )
+    }
 }
 
 /// A statistical static-friction model ready to evaluate its integrals.
@@ -66,6 +92,8 @@ pub struct StatisticalModel {
     pub critical: CriticalValues,
     /// Plasticity index ψ (with σ_s).
     pub plasticity_index: f64,
+    /// The single-asperity laws of `model`.
+    pub laws: ModelLaws,
 }
 
 /// An integral in SI units with its quadrature diagnostics.
@@ -136,7 +164,9 @@ impl StatisticalModel {
         let summits = summits.validated()?;
         let critical = material.critical_values(summits.radius);
         let plasticity_index = material.plasticity_index(summits.sigma_s, summits.radius);
+        let laws = ModelLaws::new(model, &material, options)?;
         Ok(Self {
+            laws,
             model,
             summits,
             material,
@@ -170,21 +200,29 @@ impl StatisticalModel {
             * self.adhesion.energy
     }
 
-    /// ∫_{d*}^{∞} law((z* − d*)/ω_c*) φ*(z*) dz*, with the law vanishing beyond `x_support`.
+    /// ∫ law((z* − d*)/ω_c*) φ*(z*) dz* over the summits with x_from ≤ x ≤ x_support.
     fn contact_integral(
         &self,
         d_star: f64,
         law: &dyn Fn(f64) -> f64,
         law_breaks: &[f64],
-        x_support: f64,
+        (x_from, x_support): (f64, f64),
     ) -> QuadratureOutcome {
         let s = self.summit_std_star();
         let wc = self.critical_interference_star();
         let z_max = d_star.max(0.0) + GAUSSIAN_CUT * s;
         let x_max = ((z_max - d_star) / wc).min(x_support);
+        if x_from >= x_max {
+            return QuadratureOutcome {
+                value: 0.0,
+                error: 0.0,
+                evaluations: 0,
+                converged: true,
+            };
+        }
         let mut candidates: Vec<f64> = law_breaks.to_vec();
         candidates.extend(GAUSSIAN_FEATURES.iter().map(|g| (g * s - d_star) / wc));
-        let points = breakpoints(0.0, x_max, &candidates);
+        let points = breakpoints(x_from, x_max, &candidates);
         let integrand = |x: f64| law(x) * normal_pdf(d_star + wc * x, s) * wc;
         let pieces = pieces_graded_at_start(&points, &integrand);
         integrate(&pieces, INTEGRAL_REL_TOL, 0.0)
@@ -192,18 +230,13 @@ impl StatisticalModel {
 
     /// Contact load P(d*) (N).
     pub fn contact_load(&self, d_star: f64) -> Result<IntegralValue, FrictionError> {
-        let k = self.material.hardness_factor();
-        let outcome = match self.model {
-            AsperityModel::KogutEtsion => self.contact_integral(
-                d_star,
-                &|x| ke_load_ratio(x, k),
-                &[1.0, 6.0, 110.0],
-                f64::INFINITY,
-            ),
-            AsperityModel::ChangEtsionBogy => {
-                self.contact_integral(d_star, &ceb_load_ratio, &[1.0], f64::INFINITY)
-            }
-        };
+        let laws = &self.laws;
+        let outcome = self.contact_integral(
+            d_star,
+            &|x| laws.load_ratio(x),
+            &laws.load_breaks(),
+            (0.0, f64::INFINITY),
+        );
         finished(
             outcome,
             self.summit_count() * self.critical.load,
@@ -211,16 +244,32 @@ impl StatisticalModel {
         )
     }
 
+    /// The part of the contact load P(d*) (N) carried by summits beyond the validated range of
+    /// the model's friction law (x > [`ModelLaws::fit_limit`]).
+    pub fn load_beyond_fit(&self, d_star: f64) -> Result<IntegralValue, FrictionError> {
+        let laws = &self.laws;
+        let outcome = self.contact_integral(
+            d_star,
+            &|x| laws.load_ratio(x),
+            &laws.load_breaks(),
+            (laws.fit_limit(), f64::INFINITY),
+        );
+        finished(
+            outcome,
+            self.summit_count() * self.critical.load,
+            "contact load beyond the fit",
+        )
+    }
+
     /// Real contact area A(d*) (m²).
     pub fn contact_area(&self, d_star: f64) -> Result<IntegralValue, FrictionError> {
-        let outcome = match self.model {
-            AsperityModel::KogutEtsion => {
-                self.contact_integral(d_star, &ke_area_ratio, &[1.0, 6.0, 110.0], f64::INFINITY)
-            }
-            AsperityModel::ChangEtsionBogy => {
-                self.contact_integral(d_star, &ceb_area_ratio, &[1.0], f64::INFINITY)
-            }
-        };
+        let laws = &self.laws;
+        let outcome = self.contact_integral(
+            d_star,
+            &|x| laws.area_ratio(x),
+            &laws.load_breaks(),
+            (0.0, f64::INFINITY),
+        );
         finished(
             outcome,
             self.summit_count() * self.critical.area,
@@ -228,21 +277,16 @@ impl StatisticalModel {
         )
     }
 
-    /// Static friction force Q_max(d*) (N): KE 2004 (literal or clipped polynomial) or the CEB
-    /// baseline (elastic asperities only).
+    /// Static friction force Q_max(d*) (N): KE 2004 (literal or clipped polynomial), the CEB
+    /// baseline (elastic asperities only) or full stick.
     pub fn static_friction_force(&self, d_star: f64) -> Result<IntegralValue, FrictionError> {
-        let form = self.options.static_friction_form;
-        let outcome = match self.model {
-            AsperityModel::KogutEtsion => self.contact_integral(
-                d_star,
-                &|x| ke_static_friction_ratio(x, form),
-                &[1.0, KE_STATIC_FRICTION_ZERO],
-                6.0,
-            ),
-            AsperityModel::ChangEtsionBogy => {
-                self.contact_integral(d_star, &ceb_static_friction_ratio, &[], 1.0)
-            }
-        };
+        let laws = &self.laws;
+        let outcome = self.contact_integral(
+            d_star,
+            &|x| laws.friction_ratio(x),
+            &laws.friction_breaks(),
+            (0.0, laws.friction_support()),
+        );
         finished(
             outcome,
             self.summit_count() * self.critical.load,
@@ -270,7 +314,7 @@ impl StatisticalModel {
             d_star,
             &|x| contacting_adhesion_ratio(x, eps_over_wc, beyond),
             &[1.0, 6.0, 110.0],
-            f64::INFINITY,
+            (0.0, f64::INFINITY),
         );
         let contacting = finished(contacting, scale, "contacting adhesion force")?;
         let non_contacting = finished(

@@ -53,6 +53,14 @@ pub struct MaterialMapping {
     /// Plastic flow pressure p_lim (pressure > 0); omitted: the built-in value, else = hardness.
     #[serde(default)]
     pub flow_pressure: Option<Param<Quantity<Pressure>>>,
+    /// Yield strength Y (pressure > 0) used by the full-stick and Jackson–Green laws; omitted:
+    /// Tabor's rule Y = H/2.8.
+    #[serde(default)]
+    pub yield_strength: Option<Param<Quantity<Pressure>>>,
+    /// Shear strength k (pressure > 0) of the material, the junction-shear strength of a clean
+    /// interface; omitted: von Mises k = Y/√3.
+    #[serde(default)]
+    pub shear_strength: Option<Param<Quantity<Pressure>>>,
 }
 
 /// A material resolved for one scenario (SI units).
@@ -68,6 +76,10 @@ pub struct ResolvedMaterial {
     pub hardness: Option<f64>,
     /// Plastic flow pressure (Pa), if known.
     pub flow_pressure: Option<f64>,
+    /// Yield strength (Pa), if given (the friction models default to H/2.8).
+    pub yield_strength: Option<f64>,
+    /// Shear strength (Pa), if given (the friction models default to Y/√3).
+    pub shear_strength: Option<f64>,
 }
 
 impl<'de> Deserialize<'de> for MaterialSpec {
@@ -86,7 +98,7 @@ impl<'de> Visitor<'de> for MaterialVisitor {
     type Value = MaterialSource;
 
     fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("a material name such as 's235jr' or a mapping {name, youngs_modulus, poisson_ratio, hardness, flow_pressure}")
+        f.write_str("a material name such as 's235jr' or a mapping {name, youngs_modulus, poisson_ratio, hardness, flow_pressure, yield_strength, shear_strength}")
     }
 
     fn visit_str<E: de::Error>(self, v: &str) -> Result<Self::Value, E> {
@@ -299,6 +311,8 @@ impl MaterialSpec {
                     poisson_ratio: b.poisson_ratio,
                     hardness: Some(b.hardness),
                     flow_pressure: Some(b.flow_pressure),
+                    yield_strength: None,
+                    shear_strength: None,
                 });
             }
             MaterialSource::Mapping(m) => m,
@@ -357,6 +371,8 @@ impl MaterialSpec {
             poisson_ratio,
             hardness,
             flow_pressure,
+            yield_strength: pressure(&m.yield_strength, "yield_strength")?,
+            shear_strength: pressure(&m.shear_strength, "shear_strength")?,
         })
     }
 }

@@ -31,7 +31,8 @@ pub enum TribologyNode {
     Surface(SurfaceSpec),
     /// Stage 2: elastic–perfectly-plastic contact of one or two surfaces.
     Contact(ContactSpec),
-    /// Stage 3: static friction coefficient (statistical Kogut–Etsion/CEB or per summit).
+    /// Stage 3: static friction coefficient (Kogut–Etsion, CEB, full stick or junction shear;
+    /// statistical, per summit or per contact spot).
     Friction(FrictionSpec),
 }
 

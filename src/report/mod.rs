@@ -3,7 +3,8 @@
 //! The page shows (a) trends of μ_s (`friction.mu_s`), A_t,rel (`contacts.area_fraction`), θ
 //! (`contacts.stress_ratio`) and any requested metric against every swept parameter, as mean ±
 //! sample standard deviation over the replicate axes ([`scenarios`] explains how they are
-//! found), one series per combination of the other swept parameters; (b) load curves from
+//! found), one series per combination of the other swept parameters, and with two or more
+//! friction nodes one figure per swept parameter comparing their μ_s; (b) load curves from
 //! `contacts_load_curve`; (c) height and contact-pressure maps of chosen scenarios from
 //! verified cache entries. Missing tables, entries or fields are listed on the page, not
 //! errors. This module knows the tribology table and column names but never prints.
@@ -31,7 +32,7 @@ pub use error::ReportError;
 
 use figure::Section;
 use html::PageHeader;
-use metrics::{NodeTable, NODE_TABLES};
+use metrics::{Metric, NodeTable, NODE_TABLES};
 use scenarios::ScenarioSet;
 use table::ResultTable;
 
@@ -92,29 +93,7 @@ pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Re
     let metrics = metrics::select_metrics(&tables, &scenarios, &options.metrics)?;
     let mut sections = Vec::new();
 
-    let mut trend = Vec::new();
-    for metric in &metrics {
-        let figures = trends::trend_figures(&scenarios, metric);
-        if figures.is_empty() {
-            skipped.push(format!(
-                "trend of {}.{} of node '{}': no values (failed or not computed)",
-                metric.table, metric.column, metric.node
-            ));
-        }
-        trend.extend(figures);
-    }
-    let mut intro = trend_intro(&scenarios);
-    if metrics.is_empty() {
-        intro.push_str(
-            " No metric to plot: there is no contacts or friction table; name a column with \
-             --metric (e.g. --metric surfaces.sq_m).",
-        );
-    }
-    sections.push(Section {
-        title: String::from("Trends"),
-        intro,
-        figures: trend,
-    });
+    sections.push(trend_section(&scenarios, &metrics, &mut skipped));
 
     let contacts = tables.iter().find(|t| t.kind == "contact");
     match (contacts, ResultTable::read(dir, "contacts_load_curve")?) {
@@ -168,6 +147,44 @@ pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Re
         figures,
         skipped,
     })
+}
+
+/// The trends of every metric; after the μ_s trends, the comparison of the friction nodes
+/// when there are two or more.
+fn trend_section(
+    scenarios: &ScenarioSet,
+    metrics: &[Metric],
+    skipped: &mut Vec<String>,
+) -> Section {
+    let is_mu_s = |m: &Metric| m.table == "friction" && m.column == "mu_s";
+    let mu_s: Vec<&Metric> = metrics.iter().filter(|m| is_mu_s(m)).collect();
+    let last_mu_s = metrics.iter().rposition(is_mu_s);
+    let mut figures = Vec::new();
+    for (i, metric) in metrics.iter().enumerate() {
+        let trends = trends::trend_figures(scenarios, metric);
+        if trends.is_empty() {
+            skipped.push(format!(
+                "trend of {}.{} of node '{}': no values (failed or not computed)",
+                metric.table, metric.column, metric.node
+            ));
+        }
+        figures.extend(trends);
+        if Some(i) == last_mu_s {
+            figures.extend(trends::friction_model_figures(scenarios, &mu_s));
+        }
+    }
+    let mut intro = trend_intro(scenarios);
+    if metrics.is_empty() {
+        intro.push_str(
+            " No metric to plot: there is no contacts or friction table; name a column with \
+             --metric (e.g. --metric surfaces.sq_m).",
+        );
+    }
+    Section {
+        title: String::from("Trends"),
+        intro,
+        figures,
+    }
 }
 
 fn trend_intro(scenarios: &ScenarioSet) -> String {

@@ -1,8 +1,10 @@
 //! The `friction` node kind: the static friction coefficient μ_s of a rough contact (stage 3).
+//! Models: `kogut_etsion` (default), `chang_etsion_bogy`, `full_stick` and `junction_shear`
+//! (`docs/friction-models.md`).
 //!
-//! * `method: statistical` — Kogut–Etsion 2004 (default) or Chang–Etsion–Bogy on Greenwood–
-//!   Williamson summit statistics (`friction::static_friction`): roughness from one or two upstream
-//!   surface nodes (isotropic spectral moments, two surfaces combined by adding moments) or explicit
+//! * `method: statistical` — KE 2004, CEB or full stick on Greenwood–Williamson summit statistics
+//!   (`friction::static_friction`): roughness from one or two upstream surface nodes (isotropic
+//!   spectral moments, two surfaces combined by adding moments) or explicit
 //!   `{sigma, radius, density}`; load as nominal pressures or forces, or the final nominal pressure
 //!   of an upstream contact node. Several loads give a μ(F) curve (long table `friction_curve`);
 //!   the row is at the last load.
@@ -10,6 +12,12 @@
 //!   topography an upstream contact node solved (`fields: true`), with each summit's interference
 //!   from the contact's deformation there (`friction::per_summit_friction`); optional long table
 //!   `friction_summits`.
+//! * `method: per_spot` — the law per contact spot of that solution (full stick, KE/CEB, or
+//!   junction shear, whose only method it is; `friction::per_spot_friction`); optional long table
+//!   `friction_spots`.
+//!
+//! Every row says how far to trust it: `model_basis`, `load_share_beyond_fit`, and `mu_s` is
+//! never negative (`mu_s_computed`, `mu_s_floored` keep what the model gave).
 //!
 //! Table `friction`, one row per node instance (see `docs/study-format.md`).
 
@@ -19,13 +27,17 @@ use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
 use crate::engine::study::{Param, ResolveContext, SpannedName, SpecError};
 use crate::engine::value::{Field, Value};
+use crate::friction::contact_spots::Connectivity;
 use crate::friction::{
-    AdhesionParameters, AsperityModel, Material, ModelOptions, StaticFrictionForm, SummitStatistics,
+    AdhesionParameters, AsperityModel, Material, ModelBasis, ModelOptions, StaticFrictionForm,
+    SummitStatistics,
 };
-use crate::units::{Area, Force, Length, Pressure, Quantity, SurfaceEnergy};
+use crate::units::{Area, Dimension, Force, Length, Pressure, Quantity, SurfaceEnergy};
 
 use super::material_spec::MaterialSpec;
 
+mod model_setup;
+mod per_spot;
 mod per_summit;
 mod setup;
 mod statistical;
@@ -34,7 +46,7 @@ pub(crate) const KIND: &str = "friction";
 pub(crate) const TABLE: &str = "friction";
 
 /// Implementation version of the `friction` kind; bump whenever its numerics change.
-pub const FRICTION_KIND_VERSION: u32 = 1;
+pub const FRICTION_KIND_VERSION: u32 = 2;
 
 /// Default adhesion energy Δγ (N/m): "somewhat clean" metal surfaces, the value of the static
 /// friction experiments on 17-4PH compared with the KE model (reference workflow; the range
@@ -48,11 +60,15 @@ pub const DEFAULT_EQUILIBRIUM_DISTANCE: f64 = 0.158e-9;
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionSpec {
-    /// `statistical` (default: GW summit statistics) or `per_summit` (summits of a contact node's
-    /// composite topography with the contact's deformation).
+    /// `statistical` (GW summit statistics; the default), `per_summit` (summits of a contact
+    /// node's composite topography with the contact's deformation) or `per_spot` (each contact
+    /// spot of a contact node's solution with its exact load and area; the default and only
+    /// method of `junction_shear`).
     #[serde(default)]
     pub method: Option<FrictionMethod>,
-    /// Single-asperity laws: `kogut_etsion` (default) or `chang_etsion_bogy` (baseline).
+    /// Model: `kogut_etsion` (default), `chang_etsion_bogy` (baseline), `full_stick`
+    /// (Brizmer–Kligerman–Etsion full-stick laws with Jackson–Green beyond their range; for high
+    /// plasticity index) or `junction_shear` (Bowden–Tabor τ_s·A_true on a contact solution).
     #[serde(default)]
     pub model: Option<Param<String>>,
     /// Statistical: upstream surface node of the lower body (roughness from its spectral moments).
@@ -67,12 +83,12 @@ pub struct FrictionSpec {
     pub contact: Option<SpannedName>,
     /// Statistical: explicit summit statistics instead of upstream surfaces.
     #[serde(default)]
-    pub roughness: Option<RoughnessSpec>,
+    pub roughness: Option<Box<RoughnessSpec>>,
     /// Material of the lower body (a built-in name, a name with overrides or explicit constants).
     pub lower_material: MaterialSpec,
     /// Material of the upper body; omitted: a rigid counter-body.
     #[serde(default)]
-    pub upper_material: Option<MaterialSpec>,
+    pub upper_material: Option<Box<MaterialSpec>>,
     /// Adhesion energy Δγ (surface energy ≥ 0, e.g. `0.5 N/m`, the default; 0 switches adhesion off).
     #[serde(default)]
     pub adhesion_energy: Option<Param<Quantity<SurfaceEnergy>>>,
@@ -96,6 +112,33 @@ pub struct FrictionSpec {
     /// Per summit: also write the long table `friction_summits` (one row per summit).
     #[serde(default)]
     pub summits_table: Option<Param<bool>>,
+    /// Full stick: the single-asperity friction law μ(P*) = a coth(a P*^b); defaults
+    /// `{a: 0.27, b: 0.35}` attributed to Brizmer, Kligerman & Etsion (2007), not confirmed.
+    #[serde(default)]
+    pub stick_law: Option<Box<StickLawSpec>>,
+    /// Junction shear: interface factor c ≥ 0 of the shear strength, τ_s = c·k of the softer
+    /// body (default 1, a clean metal junction; smaller for contaminated or lubricated ones).
+    #[serde(default)]
+    pub interface_factor: Option<Param<f64>>,
+    /// Per spot: grid neighbours that join contact points into one spot, 4 (edges, default) or
+    /// 8 (edges and corners).
+    #[serde(default)]
+    pub spot_connectivity: Option<Param<i64>>,
+    /// Per spot: also write the long table `friction_spots` (one row per contact spot).
+    #[serde(default)]
+    pub spots_table: Option<Param<bool>>,
+}
+
+/// `stick_law: {a, b}` — μ(P*) = a coth(a P*^b) of a sticking asperity.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StickLawSpec {
+    /// a > 0, the large-load limit of μ (default 0.27).
+    #[serde(default)]
+    pub a: Option<Param<f64>>,
+    /// b in (0, 1), the load exponent (default 0.35).
+    #[serde(default)]
+    pub b: Option<Param<f64>>,
 }
 
 /// Which friction method a node uses.
@@ -106,6 +149,40 @@ pub enum FrictionMethod {
     Statistical,
     /// The single-asperity laws per summit of a contact node's solution.
     PerSummit,
+    /// The single-asperity law per contact spot of a contact node's solution.
+    PerSpot,
+}
+
+impl FrictionMethod {
+    /// The name written to tables.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            Self::Statistical => "statistical",
+            Self::PerSummit => "per_summit",
+            Self::PerSpot => "per_spot",
+        }
+    }
+}
+
+/// A friction model: single-asperity laws driven by interference, or junction shear.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum FrictionModel {
+    /// Kogut–Etsion, CEB or full stick.
+    Asperity(AsperityModel),
+    /// Bowden–Tabor junction shear, μ_s = τ_s A_true/(F_n − F_a).
+    JunctionShear,
+}
+
+impl FrictionModel {
+    /// The name written to tables (and accepted in studies).
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            Self::Asperity(AsperityModel::KogutEtsion) => "kogut_etsion",
+            Self::Asperity(AsperityModel::ChangEtsionBogy) => "chang_etsion_bogy",
+            Self::Asperity(AsperityModel::FullStick) => "full_stick",
+            Self::JunctionShear => "junction_shear",
+        }
+    }
 }
 
 /// Explicit summit statistics of the equivalent rough surface.
@@ -170,24 +247,26 @@ pub(crate) enum MethodSetup {
         periodic: bool,
         summits_table: bool,
     },
+    PerSpot {
+        contact: usize,
+        nominal_area: Option<f64>,
+        periodic: bool,
+        connectivity: Connectivity,
+        spots_table: bool,
+    },
 }
 
 /// A resolved friction node.
 #[derive(Debug, Clone)]
 pub struct FrictionTask {
     params: Vec<Field>,
-    model: AsperityModel,
+    model: FrictionModel,
     material: Material,
+    /// Interfacial shear strength τ_s (Pa) of junction shear.
+    shear_strength: Option<f64>,
     adhesion: AdhesionParameters,
     options: ModelOptions,
     setup: MethodSetup,
-}
-
-pub(crate) fn model_name(model: AsperityModel) -> &'static str {
-    match model {
-        AsperityModel::KogutEtsion => "kogut_etsion",
-        AsperityModel::ChangEtsionBogy => "chang_etsion_bogy",
-    }
 }
 
 pub(crate) fn form_name(form: StaticFrictionForm) -> &'static str {
@@ -246,19 +325,21 @@ impl NodeTask for FrictionTask {
             MethodSetup::Statistical { .. } => 1 << 20,
             // Copies of the contact's maps (a 2048² map is 32 MiB) plus per-summit rows.
             MethodSetup::PerSummit { .. } => 1 << 28,
+            // Spot labels (4 B per point) and the spots; the maps are read in place.
+            MethodSetup::PerSpot { .. } => 1 << 27,
         }
     }
 
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
+        let method = match self.setup {
+            MethodSetup::Statistical { .. } => FrictionMethod::Statistical,
+            MethodSetup::PerSummit { .. } => FrictionMethod::PerSummit,
+            MethodSetup::PerSpot { .. } => FrictionMethod::PerSpot,
+        };
         let mut metrics = vec![
-            Field::text(
-                "method",
-                match self.setup {
-                    MethodSetup::Statistical { .. } => "statistical",
-                    MethodSetup::PerSummit { .. } => "per_summit",
-                },
-            ),
-            Field::text("model", model_name(self.model)),
+            Field::text("method", method.name()),
+            Field::text("model", self.model.name()),
+            Field::text("model_basis", self.basis().name()),
         ];
         let mut tables = std::collections::BTreeMap::<String, Table>::new();
         match &self.setup {
@@ -289,6 +370,24 @@ impl NodeTask for FrictionTask {
                 &mut metrics,
                 &mut tables,
             )?,
+            MethodSetup::PerSpot {
+                contact,
+                nominal_area,
+                periodic,
+                connectivity,
+                spots_table,
+            } => per_spot::compute(
+                self,
+                input(inputs, *contact, "contact")?,
+                per_spot::Section {
+                    nominal_area: *nominal_area,
+                    periodic: *periodic,
+                    connectivity: *connectivity,
+                    spots_table: *spots_table,
+                },
+                &mut metrics,
+                &mut tables,
+            )?,
         }
         Ok(Artifact {
             metrics,
@@ -296,4 +395,50 @@ impl NodeTask for FrictionTask {
             tables,
         })
     }
+}
+
+impl FrictionTask {
+    /// How far the model's constants are confirmed.
+    fn basis(&self) -> ModelBasis {
+        match self.model {
+            FrictionModel::Asperity(AsperityModel::FullStick) => {
+                ModelBasis::ParameterisedUnverified
+            }
+            FrictionModel::Asperity(_) => ModelBasis::PublishedFits,
+            FrictionModel::JunctionShear => ModelBasis::TextbookLaw,
+        }
+    }
+
+    /// The asperity model (junction shear has none).
+    fn asperity_model(&self) -> Result<AsperityModel, NodeError> {
+        match self.model {
+            FrictionModel::Asperity(m) => Ok(m),
+            FrictionModel::JunctionShear => Err(NodeError::new(
+                "junction shear has no single-asperity laws: use `method: per_spot`",
+            )),
+        }
+    }
+}
+
+/// The coefficient columns of a row: `mu_s` (never negative), `mu_s_computed` (the model's value
+/// as computed) and `mu_s_floored` (true when a negative computed value is reported as 0: a
+/// negative total Q_max, e.g. the literal KE 2004 polynomial at high plasticity index).
+pub(crate) fn coefficient_fields(mu_computed: f64) -> [Field; 3] {
+    let floored = mu_computed < 0.0;
+    [
+        Field::float("mu_s", mu_computed.max(0.0), Dimension::Dimensionless),
+        Field::float("mu_s_computed", mu_computed, Dimension::Dimensionless),
+        Field::bool("mu_s_floored", floored),
+    ]
+}
+
+/// `load_share_beyond_fit`: the share of the normal load carried outside the validated range of
+/// the law used (0 when there is no load).
+pub(crate) fn beyond_fit_field(load_beyond_fit: f64, normal_load: f64) -> Field {
+    let share = if normal_load > 0.0 {
+        (load_beyond_fit / normal_load).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    Field::float("load_share_beyond_fit", share, Dimension::Dimensionless)
 }

@@ -34,7 +34,7 @@ use crate::friction::{per_summit_friction, DeformationState, SummitContact, Summ
 use crate::surface::{find_summits, Boundary, HeightMap, Summit, SummitOptions};
 use crate::units::Dimension;
 
-use super::{float_metric, FrictionTask};
+use super::{beyond_fit_field, coefficient_fields, float_metric, FrictionTask};
 
 fn array(contact: &Artifact, name: &str) -> Result<Option<Array2<f64>>, NodeError> {
     contact
@@ -144,7 +144,7 @@ pub(super) fn compute(
         .collect::<Result<Vec<_>, NodeError>>()?;
     let result = per_summit_friction(
         &contacts,
-        task.model,
+        task.asperity_model()?,
         &task.material,
         &task.adhesion,
         &task.options,
@@ -163,8 +163,9 @@ pub(super) fn compute(
     let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
     let [_, elastic, elastic_plastic, fully_plastic] = result.state_counts;
     let in_contact = elastic + elastic_plastic + fully_plastic;
+    metrics.extend(coefficient_fields(mu_s));
     metrics.extend([
-        n("mu_s", mu_s),
+        beyond_fit_field(result.load_beyond_fit, result.total_normal_force),
         Field::float(
             "external_load",
             scale * (result.total_normal_force - result.total_adhesion_force),
@@ -183,7 +184,7 @@ pub(super) fn compute(
         ),
         Field::float(
             "friction_force",
-            scale * result.total_friction_force,
+            scale * result.total_friction_force.max(0.0),
             Dimension::Force,
         ),
         Field::float(

@@ -10,14 +10,20 @@ use crate::engine::value::{Field, Value};
 use crate::friction::{
     AdhesionParameters, AsperityModel, Material, ModelOptions, StaticFrictionForm, SummitStatistics,
 };
+
+use super::model_setup;
 use crate::units::{format_number, Dimension};
 
 use super::{
-    form_name, model_name, FrictionMethod, FrictionSpec, FrictionTask, Loads, MethodSetup,
+    form_name, FrictionMethod, FrictionModel, FrictionSpec, FrictionTask, Loads, MethodSetup,
     Roughness, DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE,
 };
 
-fn spec_error(location: SourceLocation, field: &str, message: impl Into<String>) -> SpecError {
+pub(super) fn spec_error(
+    location: SourceLocation,
+    field: &str,
+    message: impl Into<String>,
+) -> SpecError {
     SpecError {
         location,
         field: field.to_string(),
@@ -25,7 +31,7 @@ fn spec_error(location: SourceLocation, field: &str, message: impl Into<String>)
     }
 }
 
-fn positive(v: f64, unit: &str) -> Result<(), String> {
+pub(super) fn positive(v: f64, unit: &str) -> Result<(), String> {
     if v > 0.0 {
         Ok(())
     } else {
@@ -34,7 +40,11 @@ fn positive(v: f64, unit: &str) -> Result<(), String> {
 }
 
 /// The value of a parameter of an upstream task.
-fn upstream_param<'a>(ctx: &'a ResolveContext<'_>, index: usize, name: &str) -> Option<&'a Value> {
+pub(super) fn upstream_param<'a>(
+    ctx: &'a ResolveContext<'_>,
+    index: usize,
+    name: &str,
+) -> Option<&'a Value> {
     ctx.upstream(index)?
         .params()
         .iter()
@@ -45,11 +55,23 @@ fn upstream_param<'a>(ctx: &'a ResolveContext<'_>, index: usize, name: &str) -> 
 /// Young's modulus (Pa) and Poisson's ratio of one body.
 type Body = (f64, f64);
 
+/// The resolved material pair: the friction [`Material`], both bodies' elastic constants and the
+/// softer body's strengths.
+pub(super) struct MaterialPair {
+    pub material: Material,
+    pub lower: Body,
+    pub upper: Option<Body>,
+    /// Yield strength Y of the softer body (Pa): given, or Tabor's H/2.8.
+    pub yield_strength: f64,
+    /// Shear strength k of the softer body (Pa): given, or von Mises Y/√3.
+    pub shear_strength: f64,
+}
+
 fn resolve_material(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
     params: &mut Vec<Field>,
-) -> Result<(Material, Body, Option<Body>), SpecError> {
+) -> Result<MaterialPair, SpecError> {
     let lower = spec.lower_material.resolve(ctx, "lower_material")?;
     let upper = match &spec.upper_material {
         Some(m) => Some(m.resolve(ctx, "upper_material")?),
@@ -57,15 +79,21 @@ fn resolve_material(
     };
     let compliance = |e: f64, nu: f64| (1.0 - nu * nu) / e;
     let mut total = compliance(lower.youngs_modulus, lower.poisson_ratio);
-    let mut softer = (lower.hardness, lower.poisson_ratio, "lower_material");
+    let mut softer = (
+        lower.hardness,
+        lower.poisson_ratio,
+        "lower_material",
+        &lower,
+    );
     if let Some(u) = &upper {
         total += compliance(u.youngs_modulus, u.poisson_ratio);
         if let Some(hu) = u.hardness {
             if lower.hardness.is_none_or(|hl| hu < hl) {
-                softer = (Some(hu), u.poisson_ratio, "upper_material");
+                softer = (Some(hu), u.poisson_ratio, "upper_material", u);
             }
         }
     }
+    let strengths = (softer.3.yield_strength, softer.3.shear_strength);
     let Some(hardness) = softer.0 else {
         return Err(spec_error(
             spec.lower_material.location(),
@@ -88,14 +116,19 @@ fn resolve_material(
             Dimension::Dimensionless,
         ),
     ]);
-    Ok((
+    let yield_strength = strengths
+        .0
+        .unwrap_or_else(|| material.tabor_yield_strength());
+    Ok(MaterialPair {
         material,
-        (lower.youngs_modulus, lower.poisson_ratio),
-        upper.map(|u| (u.youngs_modulus, u.poisson_ratio)),
-    ))
+        lower: (lower.youngs_modulus, lower.poisson_ratio),
+        upper: upper.map(|u| (u.youngs_modulus, u.poisson_ratio)),
+        yield_strength,
+        shear_strength: strengths.1.unwrap_or(yield_strength / 3f64.sqrt()),
+    })
 }
 
-fn resolve_choice<T: Copy>(
+pub(super) fn resolve_choice<T: Copy>(
     ctx: &ResolveContext<'_>,
     param: &Option<crate::engine::study::Param<String>>,
     field: &str,
@@ -222,17 +255,7 @@ pub(super) fn instantiate(
 ) -> Result<FrictionTask, SpecError> {
     check_upstream(spec, ctx)?;
     let location = location_of(spec);
-    let method = spec.method.unwrap_or(FrictionMethod::Statistical);
-    let model = resolve_choice(
-        ctx,
-        &spec.model,
-        "model",
-        &[
-            ("kogut_etsion", AsperityModel::KogutEtsion),
-            ("chang_etsion_bogy", AsperityModel::ChangEtsionBogy),
-        ],
-    )?
-    .unwrap_or(AsperityModel::KogutEtsion);
+    let (model, method) = model_setup::model_and_method(spec, ctx, location)?;
     let form = resolve_choice(
         ctx,
         &spec.static_friction_form,
@@ -241,20 +264,26 @@ pub(super) fn instantiate(
             ("literal", StaticFrictionForm::Literal),
             ("clipped", StaticFrictionForm::Clipped),
         ],
-    )?
-    .unwrap_or_default();
+    )?;
+    if form.is_some() && model != FrictionModel::Asperity(AsperityModel::KogutEtsion) {
+        return Err(spec_error(
+            location,
+            "static_friction_form",
+            "is used by `model: kogut_etsion` only; remove it",
+        ));
+    }
+    let form = form.unwrap_or_default();
     let mut params = vec![
-        Field::text(
-            "method",
-            match method {
-                FrictionMethod::Statistical => "statistical",
-                FrictionMethod::PerSummit => "per_summit",
-            },
-        ),
-        Field::text("model", model_name(model)),
-        Field::text("static_friction_form", form_name(form)),
+        Field::text("method", method.name()),
+        Field::text("model", model.name()),
     ];
-    let (material, lower_body, upper_body) = resolve_material(spec, ctx, &mut params)?;
+    if model == FrictionModel::Asperity(AsperityModel::KogutEtsion) {
+        params.push(Field::text("static_friction_form", form_name(form)));
+    }
+    let pair = resolve_material(spec, ctx, &mut params)?;
+    let (full_stick, shear_strength) =
+        model_setup::model_inputs(spec, ctx, model, &pair, &mut params)?;
+    check_method_fields(spec, method, location)?;
     let energy = match &spec.adhesion_energy {
         Some(p) => ctx
             .resolve_checked(p, "adhesion_energy", |q| {
@@ -299,13 +328,6 @@ pub(super) fn instantiate(
     let contact = spec.contact.as_ref().map(|_| surfaces);
     let setup = match method {
         FrictionMethod::Statistical => {
-            if spec.summits_table.is_some() {
-                return Err(spec_error(
-                    location,
-                    "summits_table",
-                    "is only available with `method: per_summit`",
-                ));
-            }
             let roughness = match (&spec.roughness, &spec.lower, &spec.upper) {
                 (Some(_), Some(n), _) | (Some(_), None, Some(n)) => {
                     return Err(spec_error(
@@ -365,119 +387,80 @@ pub(super) fn instantiate(
                 loads,
             }
         }
-        FrictionMethod::PerSummit => per_summit_setup(
-            spec,
-            ctx,
-            location,
-            contact,
-            nominal_area,
-            lower_body,
-            upper_body,
-            &mut params,
-        )?,
+        FrictionMethod::PerSummit => {
+            let (contact, periodic) =
+                model_setup::contact_solution(spec, ctx, location, contact, &pair, method)?;
+            let summits_table = match &spec.summits_table {
+                Some(p) => ctx.resolve(p, "summits_table")?,
+                None => false,
+            };
+            params.push(Field::bool("summits_table", summits_table));
+            MethodSetup::PerSummit {
+                contact,
+                nominal_area,
+                periodic,
+                summits_table,
+            }
+        }
+        FrictionMethod::PerSpot => {
+            let (contact, periodic) =
+                model_setup::contact_solution(spec, ctx, location, contact, &pair, method)?;
+            let (connectivity, spots_table) = model_setup::spot_options(spec, ctx, &mut params)?;
+            MethodSetup::PerSpot {
+                contact,
+                nominal_area,
+                periodic,
+                connectivity,
+                spots_table,
+            }
+        }
     };
     Ok(FrictionTask {
         params,
         model,
-        material,
+        material: pair.material,
+        shear_strength,
         adhesion,
         options: ModelOptions {
             static_friction_form: form,
+            full_stick,
             ..ModelOptions::default()
         },
         setup,
     })
 }
 
-#[allow(clippy::too_many_arguments)]
-fn per_summit_setup(
+/// Fields that only one method uses are refused with the others.
+fn check_method_fields(
     spec: &FrictionSpec,
-    ctx: &ResolveContext<'_>,
+    method: FrictionMethod,
     location: SourceLocation,
-    contact: Option<usize>,
-    nominal_area: Option<f64>,
-    lower_body: (f64, f64),
-    upper_body: Option<(f64, f64)>,
-    params: &mut Vec<Field>,
-) -> Result<MethodSetup, SpecError> {
-    let not_here = |field: &str, what: &str| {
-        Err(spec_error(
-            location,
-            field,
-            format!("is not used by `method: per_summit` ({what}); remove it"),
-        ))
-    };
-    if spec.lower.is_some() || spec.upper.is_some() {
-        return not_here(
-            "lower",
-            "summits are found on the composite topography the contact node solved",
-        );
+) -> Result<(), SpecError> {
+    let only = [
+        (
+            "summits_table",
+            spec.summits_table.is_some(),
+            FrictionMethod::PerSummit,
+        ),
+        (
+            "spots_table",
+            spec.spots_table.is_some(),
+            FrictionMethod::PerSpot,
+        ),
+        (
+            "spot_connectivity",
+            spec.spot_connectivity.is_some(),
+            FrictionMethod::PerSpot,
+        ),
+    ];
+    for (field, given, owner) in only {
+        if given && method != owner {
+            return Err(spec_error(
+                location,
+                field,
+                format!("is only available with `method: {}`", owner.name()),
+            ));
+        }
     }
-    if spec.roughness.is_some() {
-        return not_here(
-            "roughness",
-            "summits come from the contact node's topography",
-        );
-    }
-    if spec.nominal_pressures.is_some() || spec.loads.is_some() {
-        return not_here(
-            "nominal_pressures",
-            "the load is the contact node's final nominal pressure",
-        );
-    }
-    let (Some(index), Some(name)) = (contact, &spec.contact) else {
-        return Err(spec_error(
-            location,
-            "contact",
-            "`method: per_summit` needs an upstream `contact` node (run with `fields: true`)",
-        ));
-    };
-    if let Some(Value::Bool(false)) | None = upstream_param(ctx, index, "fields") {
-        return Err(spec_error(
-            name.location,
-            "contact",
-            format!(
-                "`method: per_summit` needs the deformation fields of contact node '{}': add `fields: true` to it",
-                name.value
-            ),
-        ));
-    }
-    // The deformation was computed with the contact's materials: the friction node's must match.
-    let float = |n: &str| match upstream_param(ctx, index, n) {
-        Some(Value::Float(v)) => Some(*v),
-        _ => None,
-    };
-    let compliance =
-        |body: Option<(f64, f64)>| body.map_or(0.0, |(e, nu): (f64, f64)| (1.0 - nu * nu) / e);
-    let contact_lower = float("lower_youngs_modulus").zip(float("lower_poisson_ratio"));
-    let contact_upper = float("upper_youngs_modulus").zip(float("upper_poisson_ratio"));
-    let ours = compliance(Some(lower_body)) + compliance(upper_body);
-    let theirs = compliance(contact_lower) + compliance(contact_upper);
-    if (ours - theirs).abs() > 1e-9 * theirs.abs() {
-        return Err(spec_error(
-            spec.lower_material.location(),
-            "lower_material",
-            format!(
-                "the composite modulus {} Pa differs from that of contact node '{}' ({} Pa): use the contact node's materials",
-                format_number(1.0 / ours),
-                name.value,
-                format_number(1.0 / theirs)
-            ),
-        ));
-    }
-    let periodic = !matches!(
-        upstream_param(ctx, index, "periodic"),
-        Some(Value::Bool(false))
-    );
-    let summits_table = match &spec.summits_table {
-        Some(p) => ctx.resolve(p, "summits_table")?,
-        None => false,
-    };
-    params.push(Field::bool("summits_table", summits_table));
-    Ok(MethodSetup::PerSummit {
-        contact: index,
-        nominal_area,
-        periodic,
-        summits_table,
-    })
+    Ok(())
 }

@@ -1,4 +1,5 @@
-//! `method: statistical`: KE 2004 / CEB static friction on Greenwood–Williamson summit statistics.
+//! `method: statistical`: KE 2004 / CEB / full-stick static friction on Greenwood–Williamson
+//! summit statistics.
 //!
 //! Roughness: explicit, or Nayak/McCool summit statistics from the isotropic profile moments
 //! m0, m2, m4 of the upstream surface(s) (`surfaces` metrics `m0_m^2`, `m2`, `m4_1/m^2`); two
@@ -20,7 +21,9 @@ use crate::friction::{
 };
 use crate::units::Dimension;
 
-use super::{float_metric, input, FrictionTask, Loads, Roughness};
+use super::{
+    beyond_fit_field, coefficient_fields, float_metric, input, FrictionTask, Loads, Roughness,
+};
 
 fn moments(surface: &Artifact, role: &str) -> Result<SpectralMoments, NodeError> {
     let get = |name: &str| {
@@ -85,7 +88,7 @@ pub(super) fn compute(
 ) -> Result<(), NodeError> {
     let (summits, area) = roughness_and_area(inputs, roughness, nominal_area)?;
     let model = StatisticalModel::new(
-        task.model,
+        task.asperity_model()?,
         summits,
         task.material,
         task.adhesion,
@@ -127,8 +130,9 @@ pub(super) fn compute(
         })
     };
     let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
+    metrics.extend(coefficient_fields(mu(last)?));
     metrics.extend([
-        n("mu_s", mu(last)?),
+        beyond_fit_field(last.load_beyond_fit, last.contact_load),
         Field::float("external_load", last.external_load, Dimension::Force),
         Field::float(
             "nominal_pressure",
@@ -139,7 +143,7 @@ pub(super) fn compute(
         Field::float("adhesion_force", last.adhesion_force, Dimension::Force),
         Field::float(
             "friction_force",
-            last.static_friction_force,
+            last.static_friction_force.max(0.0),
             Dimension::Force,
         ),
         Field::float(
@@ -185,7 +189,12 @@ fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, Nod
     );
     let mu: Option<Vec<f64>> = results.iter().map(|r| r.mu_s).collect();
     let mu = mu.ok_or_else(|| NodeError::new("a curve load is not compressive"))?;
-    t.push_float("mu_s", Dimension::Dimensionless, mu);
+    t.push_float(
+        "mu_s",
+        Dimension::Dimensionless,
+        mu.iter().map(|m| m.max(0.0)).collect(),
+    );
+    t.push_float("mu_s_computed", Dimension::Dimensionless, mu);
     t.push_float("normal_load", Dimension::Force, column(|r| r.contact_load));
     t.push_float(
         "adhesion_force",
@@ -195,7 +204,18 @@ fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, Nod
     t.push_float(
         "friction_force",
         Dimension::Force,
-        column(|r| r.static_friction_force),
+        column(|r| r.static_friction_force.max(0.0)),
+    );
+    t.push_float(
+        "load_share_beyond_fit",
+        Dimension::Dimensionless,
+        column(|r| {
+            if r.contact_load > 0.0 {
+                (r.load_beyond_fit / r.contact_load).clamp(0.0, 1.0)
+            } else {
+                0.0
+            }
+        }),
     );
     t.push_float(
         "separation",

@@ -1,0 +1,296 @@
+//! `method: per_spot`: the friction law per contact spot of the solution a contact node computed
+//! (`fields: true`), [`crate::friction::per_spot_friction`].
+//!
+//! * **Spots**: connected components of the points with p > 0 of the contact's `pressure`
+//!   (4- or 8-neighbours, `spot_connectivity`), joined across the edges when the contact was
+//!   periodic; load Σ p dA and area from the solution, radius from a paraboloid fitted to the
+//!   contact's `composite_height` over the spot and its ring ([`crate::friction::contact_spots`]).
+//! * **Adhesion** F_a: the Lennard-Jones attraction of the points out of contact across the
+//!   contact's `gap` (`adhesion_from_gap`), 0 with `adhesion_energy: 0`.
+//! * **Coefficient**: μ_s = Σ Q_i/(Σ P_i − F_a) of the section; forces are scaled to
+//!   `nominal_area` like the per-summit method (μ_s is invariant under that scaling).
+//! * **Trust**: `load_share_beyond_fit` (spots outside the law's validated range),
+//!   `load_share_one_pixel` and `one_pixel_spots` (resolution-limited spots),
+//!   `load_share_without_radius` and `spots_without_radius` (no convex radius: no Q, a lower
+//!   bound), spot-area and local-μ quantiles over the spots.
+
+use std::collections::BTreeMap;
+
+use ndarray::{ArrayView2, Ix2};
+
+use crate::engine::artifact::{Artifact, Table};
+use crate::engine::node::NodeError;
+use crate::engine::value::Field;
+use crate::friction::contact_spots::{adhesion_from_gap, contact_spots, Connectivity, ContactSpot};
+use crate::friction::per_summit::quantile;
+use crate::friction::{
+    per_spot_friction, AsperityModel, ModelLaws, PerSpotResult, SpotLaw, SpotLoad,
+};
+use crate::units::Dimension;
+
+use super::{beyond_fit_field, coefficient_fields, float_metric, FrictionModel, FrictionTask};
+
+/// How the section is read.
+pub(super) struct Section {
+    pub nominal_area: Option<f64>,
+    pub periodic: bool,
+    pub connectivity: Connectivity,
+    pub spots_table: bool,
+}
+
+fn field<'a>(contact: &'a Artifact, name: &str) -> Result<ArrayView2<'a, f64>, NodeError> {
+    let array = contact.arrays.get(name).ok_or_else(|| {
+        NodeError::new(format!(
+            "the contact node stored no '{name}' array: run it with `fields: true`"
+        ))
+    })?;
+    array
+        .view()
+        .into_dimensionality::<Ix2>()
+        .map_err(|e| NodeError::new(format!("contact array {name}: {e}")))
+}
+
+impl FrictionTask {
+    /// The law applied to each spot.
+    fn spot_law(&self) -> Result<SpotLaw, NodeError> {
+        let fail = |e: crate::friction::FrictionError| NodeError::new(format!("friction law: {e}"));
+        Ok(match self.model {
+            FrictionModel::JunctionShear => SpotLaw::JunctionShear {
+                shear_strength: self
+                    .shear_strength
+                    .ok_or_else(|| NodeError::new("junction shear without a shear strength"))?,
+            },
+            FrictionModel::Asperity(AsperityModel::FullStick) => SpotLaw::FullStick {
+                law: self.options.full_stick.law(&self.material).map_err(fail)?,
+                composite_modulus: self.material.composite_modulus,
+            },
+            FrictionModel::Asperity(model) => SpotLaw::Interference {
+                laws: ModelLaws::new(model, &self.material, self.options).map_err(fail)?,
+                material: self.material,
+            },
+        })
+    }
+}
+
+pub(super) fn compute(
+    task: &FrictionTask,
+    contact: &Artifact,
+    section: Section,
+    metrics: &mut Vec<Field>,
+    tables: &mut BTreeMap<String, Table>,
+) -> Result<(), NodeError> {
+    let pressure = field(contact, "pressure")?;
+    let gap = field(contact, "gap")?;
+    let height = field(contact, crate::nodes::contact::COMPOSITE_HEIGHT)?;
+    let dx = float_metric(contact, "dx", "contact")?;
+    let dy = float_metric(contact, "dy", "contact")?;
+    let fail = |what: &str, e: crate::friction::FrictionError| {
+        NodeError::new(format!("per-spot friction, {what}: {e}"))
+    };
+    let spots = contact_spots(
+        pressure,
+        height,
+        dx,
+        dy,
+        section.periodic,
+        section.connectivity,
+    )
+    .map_err(|e| fail("contact spots", e))?;
+    let adhesion =
+        adhesion_from_gap(gap, pressure, dx, dy, task.adhesion).map_err(|e| fail("adhesion", e))?;
+    let loads: Vec<SpotLoad> = spots
+        .iter()
+        .map(|s| SpotLoad {
+            load: s.load,
+            area: s.area,
+            radius: s.radius,
+            pixels: s.pixels,
+        })
+        .collect();
+    let result =
+        per_spot_friction(&loads, &task.spot_law()?, adhesion).map_err(|e| fail("law", e))?;
+    let mu_s = result.mu_s.ok_or_else(|| {
+        NodeError::new(format!(
+            "no compressive net force on the contact spots (sum P = {} N, F_a = {} N): the section carries no friction",
+            result.total_normal_force, result.adhesion_force
+        ))
+    })?;
+    let (ny, nx) = pressure.dim();
+    let section_area = nx as f64 * dx * ny as f64 * dy;
+    let area = section.nominal_area.unwrap_or(section_area);
+    metrics.extend(coefficient_fields(mu_s));
+    metrics.push(beyond_fit_field(
+        result.load_beyond_fit,
+        result.total_normal_force,
+    ));
+    let nominal_pressure = float_metric(contact, "nominal_pressure", "contact")?;
+    push_forces(
+        metrics,
+        &result,
+        area / section_area,
+        nominal_pressure * area,
+    );
+    push_spot_statistics(metrics, &spots, &result, section_area, area);
+    if let Some(tau) = task.shear_strength {
+        metrics.push(Field::float("shear_strength", tau, Dimension::Pressure));
+    }
+    if section.spots_table {
+        tables.insert(String::from("spots"), spots_table(&spots, &result, dx, dy));
+    }
+    Ok(())
+}
+
+/// The force columns, scaled from the section to the nominal area.
+fn push_forces(
+    metrics: &mut Vec<Field>,
+    result: &PerSpotResult,
+    scale: f64,
+    contact_normal_load: f64,
+) {
+    let force = |name: &str, v: f64| Field::float(name, scale * v, Dimension::Force);
+    metrics.extend([
+        force(
+            "external_load",
+            result.total_normal_force - result.adhesion_force,
+        ),
+        force("normal_load", result.total_normal_force),
+        force("adhesion_force", result.adhesion_force),
+        force("friction_force", result.total_friction_force.max(0.0)),
+        Field::float("contact_normal_load", contact_normal_load, Dimension::Force),
+    ]);
+}
+
+/// Area, spot counts, the resolution and radius shares and the quantiles over the spots.
+fn push_spot_statistics(
+    metrics: &mut Vec<Field>,
+    spots: &[ContactSpot],
+    result: &PerSpotResult,
+    section_area: f64,
+    area: f64,
+) {
+    let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
+    let share = |load: f64| {
+        if result.total_normal_force > 0.0 {
+            load / result.total_normal_force
+        } else {
+            0.0
+        }
+    };
+    let area_fraction = result.total_area / section_area;
+    metrics.extend([
+        Field::float("real_area", area_fraction * area, Dimension::Area),
+        n("area_fraction", area_fraction),
+        Field::float("apparent_area", area, Dimension::Area),
+        Field::float("section_area", section_area, Dimension::Area),
+        Field::int("spot_count", spots.len() as i64),
+        Field::int("one_pixel_spots", result.one_pixel_spots as i64),
+        n("load_share_one_pixel", share(result.load_one_pixel)),
+        Field::int("spots_without_radius", result.spots_without_radius as i64),
+        n(
+            "load_share_without_radius",
+            share(result.load_without_radius),
+        ),
+    ]);
+    let mut areas: Vec<f64> = spots.iter().map(|s| s.area).collect();
+    areas.sort_by(f64::total_cmp);
+    let mut local: Vec<f64> = spots
+        .iter()
+        .zip(&result.spots)
+        .filter(|(s, _)| s.load > 0.0)
+        .map(|(s, f)| f.friction_force / s.load)
+        .collect();
+    local.sort_by(f64::total_cmp);
+    if !areas.is_empty() {
+        for (name, q) in [("p10", 0.1), ("median", 0.5), ("p90", 0.9)] {
+            metrics.push(Field::float(
+                format!("spot_area_{name}"),
+                quantile(&areas, q),
+                Dimension::Area,
+            ));
+        }
+    }
+    if !local.is_empty() {
+        for (name, q) in [("p10", 0.1), ("median", 0.5), ("p90", 0.9)] {
+            metrics.push(n(&format!("local_mu_{name}"), quantile(&local, q)));
+        }
+    }
+}
+
+/// One row per spot: peak position, size, load, radius (0 with `radius_status` `not_convex`),
+/// load measure (P* for full stick, x for KE/CEB, 0 where the law has none), friction and
+/// whether the spot is inside the law's validated range (section values).
+fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) -> Table {
+    let pairs: Vec<_> = spots.iter().zip(&result.spots).collect();
+    let float = |f: &dyn Fn(&ContactSpot, &crate::friction::SpotFriction) -> f64| {
+        pairs.iter().map(|(s, r)| f(s, r)).collect::<Vec<f64>>()
+    };
+    let mut t = Table::default();
+    t.push_int("spot", (0..spots.len() as i64).collect());
+    t.push_int("peak_ix", spots.iter().map(|s| s.peak.1 as i64).collect());
+    t.push_int("peak_iy", spots.iter().map(|s| s.peak.0 as i64).collect());
+    t.push_float(
+        "peak_x",
+        Dimension::Length,
+        float(&|s, _| s.peak.1 as f64 * dx),
+    );
+    t.push_float(
+        "peak_y",
+        Dimension::Length,
+        float(&|s, _| s.peak.0 as f64 * dy),
+    );
+    t.push_int("pixels", spots.iter().map(|s| s.pixels as i64).collect());
+    t.push_float("area", Dimension::Area, float(&|s, _| s.area));
+    t.push_float("normal_force", Dimension::Force, float(&|s, _| s.load));
+    t.push_float(
+        "max_pressure",
+        Dimension::Pressure,
+        float(&|s, _| s.max_pressure),
+    );
+    t.push_float(
+        "radius",
+        Dimension::Length,
+        float(&|s, _| s.radius.unwrap_or(0.0)),
+    );
+    t.push_text(
+        "radius_status",
+        spots
+            .iter()
+            .map(|s| {
+                String::from(if s.radius.is_some() {
+                    "convex"
+                } else {
+                    "not_convex"
+                })
+            })
+            .collect(),
+    );
+    t.push_float(
+        "load_measure",
+        Dimension::Dimensionless,
+        float(&|_, r| r.load_measure.unwrap_or(0.0)),
+    );
+    t.push_float(
+        "friction_force",
+        Dimension::Force,
+        float(&|_, r| r.friction_force),
+    );
+    t.push_float(
+        "local_mu",
+        Dimension::Dimensionless,
+        float(&|s, r| {
+            if s.load > 0.0 {
+                r.friction_force / s.load
+            } else {
+                0.0
+            }
+        }),
+    );
+    t.push_text(
+        "fit",
+        pairs
+            .iter()
+            .map(|(_, r)| String::from(if r.beyond_fit { "beyond" } else { "inside" }))
+            .collect(),
+    );
+    t
+}

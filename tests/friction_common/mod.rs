@@ -1,0 +1,87 @@
+//! Helpers of the friction-node tests: run a study text through the engine on a fresh cache
+//! and read the outcomes' metrics and tables.
+#![allow(dead_code)]
+
+use asperity::engine::artifact::ColumnData;
+use asperity::engine::cache::Cache;
+use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, NodeOutcome, RunReport};
+use asperity::engine::plan::Plan;
+use asperity::engine::study::Study;
+use asperity::engine::value::Value;
+use asperity::nodes::TribologyNode;
+
+pub fn study(text: &str) -> Study<TribologyNode> {
+    Study::<TribologyNode>::from_source(std::path::Path::new("friction.yaml"), text.to_string())
+        .unwrap()
+}
+
+pub fn run(text: &str, name: &str) -> (Plan, RunReport) {
+    let dir = std::env::temp_dir().join(format!("asperity-friction-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let study = study(text);
+    let plan = Plan::build(&study).unwrap();
+    let options = ExecuteOptions {
+        tables: study.outputs.clone(),
+        memory_budget: 1 << 32,
+        tool_version: String::from("test"),
+    };
+    let report = execute(&plan, &Cache::open(&dir).unwrap(), &options, &NoProgress).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    (plan, report)
+}
+
+pub fn plan_error(text: &str) -> String {
+    match Study::<TribologyNode>::from_source(std::path::Path::new("f.yaml"), text.to_string()) {
+        Ok(study) => Plan::build(&study)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default(),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// The outcomes of every instance of `kind`, in plan order.
+pub fn outcomes<'a>(plan: &Plan, report: &'a RunReport, kind: &str) -> Vec<&'a NodeOutcome> {
+    plan.nodes
+        .iter()
+        .zip(&report.outcomes)
+        .filter(|(n, _)| n.task.kind() == kind)
+        .map(|(_, o)| o.as_ref().unwrap())
+        .collect()
+}
+
+pub fn float(o: &NodeOutcome, name: &str) -> f64 {
+    match o.metrics.iter().find(|f| f.name == name).map(|f| &f.value) {
+        Some(Value::Float(v)) => *v,
+        other => panic!("metric {name}: {other:?}"),
+    }
+}
+
+pub fn int(o: &NodeOutcome, name: &str) -> i64 {
+    match o.metrics.iter().find(|f| f.name == name).map(|f| &f.value) {
+        Some(Value::Int(v)) => *v,
+        other => panic!("metric {name}: {other:?}"),
+    }
+}
+
+pub fn boolean(o: &NodeOutcome, name: &str) -> bool {
+    match o.metrics.iter().find(|f| f.name == name).map(|f| &f.value) {
+        Some(Value::Bool(v)) => *v,
+        other => panic!("metric {name}: {other:?}"),
+    }
+}
+
+pub fn text<'a>(o: &'a NodeOutcome, name: &str) -> &'a str {
+    match o.metrics.iter().find(|f| f.name == name).map(|f| &f.value) {
+        Some(Value::Text(v)) => v,
+        other => panic!("metric {name}: {other:?}"),
+    }
+}
+
+pub fn column(o: &NodeOutcome, table: &str, name: &str) -> Vec<f64> {
+    let t = &o.tables[table];
+    match &t.columns.iter().find(|c| c.name == name).unwrap().data {
+        ColumnData::Float(v) => v.clone(),
+        other => panic!("{name}: {other:?}"),
+    }
+}
