@@ -1,6 +1,7 @@
 //! Contact spots (`cargo bench --bench contact_spots`): `contact_spots` (labelling, per-spot sums
-//! and paraboloid radii) and `label_spots` alone, 8-connected on a periodic grid, at 512² and
-//! 3512². Prints the input (contact fraction, spots, one-pixel spots, spots without a radius) and
+//! and paraboloid radii), `label_spots` alone, and the whole per-spot friction model (spots, the
+//! Lennard-Jones adhesion across the gap and the full-stick law per spot), 8-connected on a
+//! periodic grid, at 512² and 3512². Prints the input (contact fraction, spots, one-pixel spots, spots without a radius) and
 //! the median of the individual runs; criterion's own estimates follow.
 //!
 //! Input: a periodic self-affine surface (H = 0.8, roll-off 50 µm, 1 mm period, Sq = 1 µm)
@@ -11,7 +12,12 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use asperity::friction::contact_spots::{contact_spots, label_spots, Connectivity};
+use asperity::friction::contact_spots::{
+    adhesion_from_gap, contact_spots, label_spots, Connectivity,
+};
+use asperity::friction::{
+    per_spot_friction, AdhesionParameters, FullStickLaw, SpotLaw, SpotLoad, StickFrictionLaw,
+};
 use asperity::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
 use criterion::{criterion_group, criterion_main, Bencher, Criterion, SamplingMode};
 use ndarray::Array2;
@@ -53,6 +59,29 @@ fn timed<T>(b: &mut Bencher, runs: &mut Vec<Duration>, mut f: impl FnMut() -> T)
         }
         total
     });
+}
+
+/// The per-spot model as the `friction` node runs it: spots, adhesion, full-stick law (S235JR).
+fn per_spot_model(z: &Array2<f64>, p: &Array2<f64>, gap: &Array2<f64>, dx: f64) -> Option<f64> {
+    let spots = contact_spots(p.view(), z.view(), dx, dx, true, Connectivity::Eight).ok()?;
+    let adhesion = AdhesionParameters::new(0.5, 0.158e-9).ok()?;
+    let f_a = adhesion_from_gap(gap.view(), p.view(), dx, dx, adhesion).ok()?;
+    let e = 210e9 / (2.0 * (1.0 - 0.09));
+    let law = FullStickLaw::new(1.96e9 / 2.8, e, 0.3, StickFrictionLaw::default()).ok()?;
+    let loads: Vec<SpotLoad> = spots
+        .iter()
+        .map(|s| SpotLoad {
+            load: s.load,
+            area: s.area,
+            radius: s.radius,
+            pixels: s.pixels,
+        })
+        .collect();
+    let spot_law = SpotLaw::FullStick {
+        law,
+        composite_modulus: e,
+    };
+    per_spot_friction(&loads, &spot_law, f_a).ok()?.mu_s
 }
 
 fn median(runs: &mut [Duration]) -> Duration {
@@ -99,6 +128,23 @@ fn bench_contact_spots(c: &mut Criterion) {
             "label_spots {n}²: median {:?} over {} runs",
             median(&mut runs),
             runs.len()
+        );
+        runs.clear();
+        let cut = z
+            .iter()
+            .zip(p.iter())
+            .filter(|(_, p)| **p > 0.0)
+            .map(|(z, _)| *z)
+            .fold(f64::INFINITY, f64::min);
+        let gap = z.mapv(|v| (cut - v).max(0.0));
+        group.bench_function(format!("per_spot full stick {n}x{n}"), |b| {
+            timed(b, &mut runs, || per_spot_model(&z, &p, &gap, dx))
+        });
+        println!(
+            "per_spot full stick {n}²: median {:?} over {} runs (mu_s {:?})",
+            median(&mut runs),
+            runs.len(),
+            per_spot_model(&z, &p, &gap, dx)
         );
     }
     group.finish();

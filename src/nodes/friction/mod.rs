@@ -27,7 +27,6 @@ use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
 use crate::engine::study::{Param, ResolveContext, SpannedName, SpecError};
 use crate::engine::value::{Field, Value};
-use crate::friction::contact_spots::Connectivity;
 use crate::friction::{
     AdhesionParameters, AsperityModel, Material, ModelBasis, ModelOptions, StaticFrictionForm,
     SummitStatistics,
@@ -249,10 +248,7 @@ pub(crate) enum MethodSetup {
     },
     PerSpot {
         contact: usize,
-        nominal_area: Option<f64>,
-        periodic: bool,
-        connectivity: Connectivity,
-        spots_table: bool,
+        section: per_spot::Section,
     },
 }
 
@@ -370,21 +366,10 @@ impl NodeTask for FrictionTask {
                 &mut metrics,
                 &mut tables,
             )?,
-            MethodSetup::PerSpot {
-                contact,
-                nominal_area,
-                periodic,
-                connectivity,
-                spots_table,
-            } => per_spot::compute(
+            MethodSetup::PerSpot { contact, section } => per_spot::compute(
                 self,
                 input(inputs, *contact, "contact")?,
-                per_spot::Section {
-                    nominal_area: *nominal_area,
-                    periodic: *periodic,
-                    connectivity: *connectivity,
-                    spots_table: *spots_table,
-                },
+                section,
                 &mut metrics,
                 &mut tables,
             )?,

@@ -46,7 +46,7 @@ pub(super) fn model_and_method(
         }
         (FrictionModel::JunctionShear, Some(other)) => {
             return Err(spec_error(
-                location,
+                spec.model.as_ref().map_or(location, |m| m.location()),
                 "method",
                 format!(
                     "`{}` does not apply to `model: junction_shear`, which shears the true contact area of a contact solution: use `method: per_spot` (the default for this model) with a `contact` node",

@@ -31,7 +31,8 @@ use crate::units::Dimension;
 use super::{beyond_fit_field, coefficient_fields, float_metric, FrictionModel, FrictionTask};
 
 /// How the section is read.
-pub(super) struct Section {
+#[derive(Debug, Clone)]
+pub(crate) struct Section {
     pub nominal_area: Option<f64>,
     pub periodic: bool,
     pub connectivity: Connectivity,
@@ -75,7 +76,7 @@ impl FrictionTask {
 pub(super) fn compute(
     task: &FrictionTask,
     contact: &Artifact,
-    section: Section,
+    section: &Section,
     metrics: &mut Vec<Field>,
     tables: &mut BTreeMap<String, Table>,
 ) -> Result<(), NodeError> {

@@ -408,10 +408,12 @@ pub(super) fn instantiate(
             let (connectivity, spots_table) = model_setup::spot_options(spec, ctx, &mut params)?;
             MethodSetup::PerSpot {
                 contact,
-                nominal_area,
-                periodic,
-                connectivity,
-                spots_table,
+                section: super::per_spot::Section {
+                    nominal_area,
+                    periodic,
+                    connectivity,
+                    spots_table,
+                },
             }
         }
     };
