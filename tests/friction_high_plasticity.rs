@@ -46,6 +46,12 @@ nodes:
   shear:
     friction: {model: junction_shear, contact: pair, lower_material: s235jr,
                upper_material: s235jr}
+  stick_summits:
+    friction: {method: per_summit, model: full_stick, contact: pair,
+               lower_material: s235jr, upper_material: s235jr}
+  stick_curve:
+    friction: {model: full_stick, lower: a, upper: b, lower_material: s235jr,
+               upper_material: s235jr, nominal_pressures: [0.2 MPa, 2 MPa, 20 MPa]}
 "#;
 
 fn by_model<'a>(rows: &[&'a NodeOutcome], method: &str, model: &str) -> &'a NodeOutcome {
@@ -162,6 +168,30 @@ fn per_spot_rows_are_consistent_with_their_spots() {
         (sum - applied).abs() <= 1e-6 * applied,
         "{sum} vs {applied}"
     );
+}
+
+/// Full stick per summit carries tangential load at ground-steel ψ (KE per summit does not), and
+/// its μ(F) curve falls with the load towards the asymptote a = 0.27 of μ(P*).
+#[test]
+fn full_stick_per_summit_and_curve() {
+    let (plan, report) = run(GROUND, "ground-curve");
+    assert!(report.all_ok(), "{:?}", report.outcomes);
+    let rows = outcomes(&plan, &report, "friction");
+    let summits = by_model(&rows, "per_summit", "full_stick");
+    let mu = float(summits, "mu_s");
+    assert!(
+        (0.05..1.5).contains(&mu),
+        "per summit full stick μ_s = {mu}"
+    );
+    let curve = rows
+        .iter()
+        .find(|o| o.tables.contains_key("curve"))
+        .expect("a curve table");
+    let mu = column(curve, "curve", "mu_s");
+    assert_eq!(mu.len(), 3);
+    assert!(mu.windows(2).all(|w| w[1] < w[0]), "{mu:?}");
+    assert!(mu.iter().all(|m| *m > 0.27), "{mu:?}");
+    assert_eq!(column(curve, "curve", "mu_s_computed"), mu);
 }
 
 #[test]
