@@ -91,7 +91,8 @@ fn every_shipped_study_runs_on_its_reduced_grid() {
     }
 }
 
-/// No friction row of a shipped study has μ_s < 0; on the ground-steel studies every row of the
+/// No friction row of a shipped study has μ_s < 0 or a negative local-μ quantile; on the
+/// ground-steel studies every row of the
 /// high-plasticity models (full stick, junction shear) lies in the range of steel-steel static
 /// friction, 0.05 to 1.5.
 fn check_friction(name: &str, file: &Path) {
@@ -118,6 +119,15 @@ fn check_friction(name: &str, file: &Path) {
         .map(|s| s.unwrap_or("null").to_string())
         .collect();
     assert!(mu.iter().all(|m| *m >= 0.0), "{name}: μ_s {mu:?}");
+    for column in df.get_column_names() {
+        if column.starts_with("local_mu") {
+            let values = df.column(column).unwrap().f64().unwrap();
+            assert!(
+                values.iter().flatten().all(|m| m >= 0.0),
+                "{name}: {column} has a negative value"
+            );
+        }
+    }
     if name == "ground-validation" || name == "sq-parameter-study" {
         for (m, model) in mu.iter().zip(&models) {
             if model == "full_stick" || model == "junction_shear" {

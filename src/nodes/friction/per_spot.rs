@@ -198,7 +198,7 @@ fn push_spot_statistics(
         .iter()
         .zip(&result.spots)
         .filter(|(s, _)| s.load > 0.0)
-        .map(|(s, f)| f.friction_force / s.load)
+        .map(|(s, f)| (f.friction_force / s.load).max(0.0))
         .collect();
     local.sort_by(f64::total_cmp);
     if !areas.is_empty() {
@@ -273,14 +273,14 @@ fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) 
     t.push_float(
         "friction_force",
         Dimension::Force,
-        float(&|_, r| r.friction_force),
+        float(&|_, r| r.friction_force.max(0.0)),
     );
     t.push_float(
         "local_mu",
         Dimension::Dimensionless,
         float(&|s, r| {
             if s.load > 0.0 {
-                r.friction_force / s.load
+                (r.friction_force / s.load).max(0.0)
             } else {
                 0.0
             }

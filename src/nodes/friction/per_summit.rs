@@ -212,7 +212,13 @@ pub(super) fn compute(
         Field::int("elastic_plastic_summits", elastic_plastic as i64),
         Field::int("fully_plastic_summits", fully_plastic as i64),
     ]);
-    let mut local: Vec<f64> = result.summits.iter().filter_map(|s| s.local_mu).collect();
+    // A negative local value (the literal KE 2004 Q_max on 4.29 < x ≤ 6) counts as 0.
+    let mut local: Vec<f64> = result
+        .summits
+        .iter()
+        .filter_map(|s| s.local_mu)
+        .map(|m| m.max(0.0))
+        .collect();
     local.sort_by(f64::total_cmp);
     if !local.is_empty() {
         metrics.extend([
@@ -282,7 +288,7 @@ fn summits_table_of(
     t.push_float(
         "friction_force",
         Dimension::Force,
-        column(&|r| r.2.friction_force),
+        column(&|r| r.2.friction_force.max(0.0)),
     );
     t
 }
