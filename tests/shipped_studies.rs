@@ -92,9 +92,8 @@ fn every_shipped_study_runs_on_its_reduced_grid() {
 }
 
 /// No friction row of a shipped study has μ_s < 0 or a negative local-μ quantile; on the
-/// ground-steel studies every row of the
-/// high-plasticity models (full stick, junction shear) lies in the range of steel-steel static
-/// friction, 0.05 to 1.5.
+/// ground-steel studies every row of the high-plasticity models (full stick, junction shear) lies
+/// in the range of steel-steel static friction, 0.05 to 1.5.
 fn check_friction(name: &str, file: &Path) {
     if !file.exists() {
         return;
