@@ -70,15 +70,7 @@ fn per_spot_model(z: &Array2<f64>, p: &Array2<f64>, gap: &Array2<f64>, dx: f64) 
     let f_a = adhesion_from_gap(gap.view(), p.view(), dx, dx, adhesion).ok()?;
     let e = 210e9 / (2.0 * (1.0 - 0.09));
     let law = FullStickLaw::new(1.96e9 / 2.8, e, 0.3, StickFrictionLaw::default()).ok()?;
-    let loads: Vec<SpotLoad> = spots
-        .iter()
-        .map(|s| SpotLoad {
-            load: s.load,
-            area: s.area,
-            radius: s.radius,
-            pixels: s.pixels,
-        })
-        .collect();
+    let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
     let spot_law = SpotLaw::FullStick {
         law,
         composite_modulus: e,

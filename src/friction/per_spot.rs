@@ -24,6 +24,7 @@
 //! at ω* = 110; KE/CEB x_i above [`super::ModelLaws::fit_limit`]; junction shear has no fitted
 //! range. One-pixel spots are resolution-limited: their number and load are reported.
 
+use super::contact_spots::ContactSpot;
 use super::error::FrictionError;
 use super::full_stick::FullStickLaw;
 use super::material::Material;
@@ -104,19 +105,27 @@ pub struct PerSpotResult {
     pub one_pixel_spots: usize,
 }
 
-impl SpotLaw {
-    /// Whether the law needs each spot's radius.
-    pub fn needs_radius(&self) -> bool {
-        !matches!(self, Self::JunctionShear { .. })
+impl From<&ContactSpot> for SpotLoad {
+    fn from(spot: &ContactSpot) -> Self {
+        Self {
+            load: spot.load,
+            area: spot.area,
+            radius: spot.radius,
+            pixels: spot.pixels,
+        }
     }
+}
 
-    /// Q and the load measure of one spot with a radius (or none needed).
-    fn friction(&self, spot: &SpotLoad, radius: f64) -> SpotFriction {
-        match self {
+impl SpotLaw {
+    /// Q and the load measure of one spot; `None` when the law needs a radius (every law but
+    /// junction shear) and the spot has none.
+    fn friction(&self, spot: &SpotLoad, radius: Option<f64>) -> Option<SpotFriction> {
+        Some(match self {
             Self::FullStick {
                 law,
                 composite_modulus,
             } => {
+                let radius = radius?;
                 let stick_load =
                     law.stick_load_factor * law.critical_values(radius, *composite_modulus).load;
                 let p_star = spot.load / stick_load;
@@ -132,7 +141,7 @@ impl SpotLaw {
                 beyond_fit: false,
             },
             Self::Interference { laws, material } => {
-                let critical = material.critical_values(radius).load;
+                let critical = material.critical_values(radius?).load;
                 let x = interference_for_load(laws, spot.load / critical);
                 SpotFriction {
                     friction_force: critical * laws.friction_ratio(x),
@@ -140,7 +149,7 @@ impl SpotLaw {
                     beyond_fit: x > laws.fit_limit(),
                 }
             }
-        }
+        })
     }
 }
 
@@ -192,10 +201,9 @@ pub fn per_spot_friction(
     for spot in spots {
         check_spot(spot)?;
         let radius = spot.radius.filter(|r| r.is_finite() && *r > 0.0);
-        let friction = match (radius, law.needs_radius()) {
-            (Some(r), _) => law.friction(spot, r),
-            (None, false) => law.friction(spot, f64::NAN),
-            (None, true) => {
+        let friction = match law.friction(spot, radius) {
+            Some(friction) => friction,
+            None => {
                 result.load_without_radius += spot.load;
                 result.spots_without_radius += 1;
                 SpotFriction {

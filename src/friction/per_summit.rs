@@ -149,6 +149,18 @@ pub fn summit_friction(
         material.poisson_ratio,
     )?;
     let adhesion = &AdhesionParameters::new(adhesion.energy, adhesion.equilibrium_distance)?;
+    let laws = ModelLaws::new(model, material, *options)?;
+    forces_of(summit, &laws, material, adhesion, options)
+}
+
+/// [`summit_friction`] with validated inputs and the model's laws built once.
+fn forces_of(
+    summit: &SummitContact,
+    laws: &ModelLaws,
+    material: &Material,
+    adhesion: &AdhesionParameters,
+    options: &ModelOptions,
+) -> Result<SummitFriction, FrictionError> {
     let radius = require_positive("summit radius", summit.radius)?;
     if !summit.interference.is_finite() {
         return Err(FrictionError::InvalidParameter {
@@ -160,7 +172,6 @@ pub fn summit_friction(
     let critical = material.critical_values(radius);
     let x = summit.interference / critical.interference;
     let adhesion_unit = 2.0 * std::f64::consts::PI * radius * adhesion.energy;
-    let laws = ModelLaws::new(model, material, *options)?;
     let (normal, friction) = (laws.load_ratio(x), laws.friction_ratio(x));
     let adhesion_ratio = if x > 0.0 {
         contacting_adhesion_ratio(
@@ -200,14 +211,15 @@ pub fn per_summit_friction(
     )?;
     let adhesion = AdhesionParameters::new(adhesion.energy, adhesion.equilibrium_distance)?;
     let (material, adhesion) = (&material, &adhesion);
+    let laws = ModelLaws::new(model, material, *options)?;
     let per: Vec<SummitFriction> = summits
         .iter()
-        .map(|s| summit_friction(s, model, material, adhesion, options))
+        .map(|s| forces_of(s, &laws, material, adhesion, options))
         .collect::<Result<_, _>>()?;
     let total_normal_force: f64 = per.iter().map(|s| s.normal_force).sum();
     let total_adhesion_force: f64 = per.iter().map(|s| s.adhesion_force).sum();
     let total_friction_force: f64 = per.iter().map(|s| s.friction_force).sum();
-    let fit_limit = ModelLaws::new(model, material, *options)?.fit_limit();
+    let fit_limit = laws.fit_limit();
     let load_beyond_fit: f64 = per
         .iter()
         .filter(|s| s.interference_ratio > fit_limit)

@@ -99,15 +99,7 @@ pub(super) fn compute(
     .map_err(|e| fail("contact spots", e))?;
     let adhesion =
         adhesion_from_gap(gap, pressure, dx, dy, task.adhesion).map_err(|e| fail("adhesion", e))?;
-    let loads: Vec<SpotLoad> = spots
-        .iter()
-        .map(|s| SpotLoad {
-            load: s.load,
-            area: s.area,
-            radius: s.radius,
-            pixels: s.pixels,
-        })
-        .collect();
+    let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
     let result =
         per_spot_friction(&loads, &task.spot_law()?, adhesion).map_err(|e| fail("law", e))?;
     let mu_s = result.mu_s.ok_or_else(|| {
