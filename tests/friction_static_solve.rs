@@ -2,8 +2,8 @@
 
 use asperity::friction::{
     net_load, static_friction, static_friction_at_pressure, static_friction_curve,
-    AdhesionParameters, AsperityModel, FrictionError, Material, ModelOptions, NetLoadGrid,
-    SolveSettings, StatisticalModel, SummitStatistics,
+    static_friction_on_grid, AdhesionParameters, AsperityModel, FrictionError, Material,
+    ModelOptions, NetLoadGrid, SolveSettings, StatisticalModel, SummitStatistics,
 };
 
 /// Steel-like model (σ = 1 µm, β = 0.04, E = 115 GPa, H = 2 GPa, ν = 0.3, A_n = 1 cm²) with a
@@ -111,7 +111,7 @@ fn very_high_plasticity_index_reaches_fully_plastic_branch() {
 fn load_below_pull_off_is_a_typed_error() {
     let m = model(0.5, 1.0, AsperityModel::KogutEtsion);
     let settings = SolveSettings::default();
-    let grid = NetLoadGrid::new(&m, &settings).unwrap_or_else(|e| panic!("{e}"));
+    let mut grid = NetLoadGrid::new(&m, &settings).unwrap_or_else(|e| panic!("{e}"));
     let pull_off = grid.pull_off_load(&m).unwrap_or_else(|e| panic!("{e}"));
     assert!(pull_off < 0.0);
     match static_friction(&m, 2.0 * pull_off, &settings) {
@@ -260,4 +260,87 @@ fn inconsistent_inputs_and_settings_are_rejected() {
         ..SolveSettings::default()
     };
     assert!(static_friction(&m, 1.0, &bad).is_err());
+}
+
+/// The lazy grid decides most points of a compressive load by P alone, yet gives the solution of
+/// the fully evaluated grid bit for bit (same brackets, same roots counted, same Brent steps):
+/// the fully evaluated grid is made by asking for the pull-off load first.
+#[test]
+fn lazy_grid_gives_the_fully_tabulated_solution() {
+    let settings = SolveSettings::default();
+    let cases = [
+        (model(2.0, 0.5, AsperityModel::KogutEtsion), 1e-4),
+        (model(2.0, 0.5, AsperityModel::FullStick), 1e-2),
+        (model(50.0, 0.5, AsperityModel::FullStick), 1e-2),
+        (model(0.5, 0.5, AsperityModel::ChangEtsionBogy), 1e-6),
+        (model(1.0, 0.0, AsperityModel::KogutEtsion), 1e-4),
+    ];
+    for (m, ratio) in cases {
+        for load in [ratio * an_h(&m), 1e-3 * ratio * an_h(&m)] {
+            let mut lazy = NetLoadGrid::new(&m, &settings).unwrap_or_else(|e| panic!("{e}"));
+            let mut full = lazy.clone();
+            full.pull_off_load(&m).unwrap_or_else(|e| panic!("{e}"));
+            let a = static_friction_on_grid(&m, &mut lazy, load, &settings);
+            let b = static_friction_on_grid(&m, &mut full, load, &settings);
+            assert_eq!(a, b, "{:?} psi {} load {load}", m.model, m.plasticity_index);
+            let evaluated = lazy.evaluations();
+            assert!(
+                evaluated.net_load < evaluated.points / 2,
+                "{:?} psi {}: {evaluated:?}",
+                m.model,
+                m.plasticity_index
+            );
+            // Brute force: every grid point evaluated, sign changes counted.
+            let top = 12.0 * m.summit_std_star();
+            let g: Vec<f64> = (0..)
+                .map(|k| -3.0 + 0.5 * f64::from(k))
+                .take_while(|d| *d <= top + 0.25)
+                .map(|d| net_load(&m, d).unwrap_or_else(|e| panic!("{e}")) - load)
+                .collect();
+            let changes = g.windows(2).filter(|w| w[0] * w[1] < 0.0).count();
+            let solved = a.unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!(solved.status.roots_found, changes);
+            assert!(g[0] > 0.0, "the load needs no extension of the grid");
+        }
+    }
+    // A tensile load between pull-off and 0 needs every point (and finds two roots).
+    let m = model(1.0, 0.5, AsperityModel::KogutEtsion);
+    let mut lazy = NetLoadGrid::new(&m, &settings).unwrap_or_else(|e| panic!("{e}"));
+    let mut full = lazy.clone();
+    let pull_off = full.pull_off_load(&m).unwrap_or_else(|e| panic!("{e}"));
+    let a = static_friction_on_grid(&m, &mut lazy, 0.5 * pull_off, &settings);
+    let b = static_friction_on_grid(&m, &mut full, 0.5 * pull_off, &settings);
+    assert_eq!(a, b);
+    assert_eq!(a.map(|r| r.status.roots_found).ok(), Some(2));
+}
+
+/// The bound the lazy scan stops on: P/P_c(x′) ≤ P/P_c(x)/κ for every x′ ≤ x, checked on a dense
+/// sample of x ∈ (0, 1e5] for every model (κ < 1 only for full stick, whose hand-over drops).
+#[test]
+fn load_laws_drop_by_at_most_their_bound() {
+    for (kind, psi) in [
+        (AsperityModel::KogutEtsion, 2.0),
+        (AsperityModel::ChangEtsionBogy, 2.0),
+        (AsperityModel::FullStick, 2.0),
+        (AsperityModel::FullStick, 50.0),
+    ] {
+        let laws = model(psi, 0.5, kind).laws;
+        let kappa = laws.load_drop_bound();
+        assert!(kappa > 0.0 && kappa <= 1.0, "{kind:?}: {kappa}");
+        assert_eq!(
+            kappa < 1.0,
+            kind == AsperityModel::FullStick,
+            "{kind:?}: {kappa}"
+        );
+        let mut running_max: f64 = 0.0;
+        for i in 0..=40_000 {
+            let x = 1e-3 * 10f64.powf(8.0 * f64::from(i) / 40_000.0);
+            let p = laws.load_ratio(x);
+            running_max = running_max.max(p);
+            assert!(
+                running_max <= p / kappa * (1.0 + 1e-12),
+                "{kind:?} x {x}: {running_max} > {p}/{kappa}"
+            );
+        }
+    }
 }

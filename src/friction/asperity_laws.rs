@@ -206,6 +206,24 @@ pub fn contacting_adhesion_ratio(x: f64, eps_over_omega_c: f64, beyond: Adhesion
     a * x_eval.powf(b) * eps_over_omega_c.powf(c)
 }
 
+/// The largest F_s/(2πRΔγ) of a contacting summit over all x: every piece of the KE 2003 fit
+/// grows with x (b > 0), so the maximum sits at the upper end of a piece (x = 1, 6 or 110).
+/// `None` with [`AdhesionBeyondFits::ExtendLastFit`], which grows without bound.
+pub fn contacting_adhesion_ratio_max(
+    eps_over_omega_c: f64,
+    beyond: AdhesionBeyondFits,
+) -> Option<f64> {
+    match beyond {
+        AdhesionBeyondFits::ExtendLastFit => None,
+        AdhesionBeyondFits::HoldAtX110 => Some(
+            [1.0, 6.0, 110.0]
+                .into_iter()
+                .map(|x| contacting_adhesion_ratio(x, eps_over_omega_c, beyond))
+                .fold(0.0, f64::max),
+        ),
+    }
+}
+
 /// DMT / Lennard-Jones adhesion force of a non-contacting sphere, f(h)/(2πRΔγ) =
 /// (4/3)(ε/h)² − (1/3)(ε/h)⁸, as a function of `h_over_eps` = h/ε ≥ 1 (gap h = ε + separation).
 pub fn lennard_jones_adhesion_ratio(h_over_eps: f64) -> f64 {

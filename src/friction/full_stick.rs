@@ -117,6 +117,8 @@ pub struct FullStickLaw {
     pub critical_interference_over_radius: f64,
     /// The Jackson–Green laws beyond the stick fit and for the area.
     pub jackson_green: JacksonGreenLaw,
+    /// P_c,JG/P_c = (ω_c,JG/ω_c)^{3/2}, the scale of the Jackson–Green load in slip units.
+    pub jackson_green_load_scale: f64,
     /// μ(P*) of a sticking asperity.
     pub friction_law: StickFrictionLaw,
 }
@@ -136,13 +138,18 @@ impl FullStickLaw {
         let critical_factor = 1.234 + 1.256 * poisson_ratio;
         let ratio =
             std::f64::consts::PI * critical_factor * yield_strength / (2.0 * composite_modulus);
+        let critical_interference_over_radius = ratio * ratio;
+        let jackson_green_load_scale = (jackson_green.critical_interference_over_radius
+            / critical_interference_over_radius)
+            .powf(1.5);
         Ok(Self {
             critical_factor,
             stick_interference_factor: omega_bar,
             stick_load_factor: load_bar,
             stick_exponent: 0.174 + 0.08 * poisson_ratio,
-            critical_interference_over_radius: ratio * ratio,
+            critical_interference_over_radius,
             jackson_green,
+            jackson_green_load_scale,
             friction_law,
         })
     }
@@ -195,10 +202,7 @@ impl FullStickLaw {
         if w_stick <= STICK_LOAD_FIT_LIMIT {
             self.stick_load_factor * self.stick_load_fit(w_stick)
         } else {
-            let jg_over_slip = (self.jackson_green.critical_interference_over_radius
-                / self.critical_interference_over_radius)
-                .powf(1.5);
-            jg_over_slip
+            self.jackson_green_load_scale
                 * self
                     .jackson_green
                     .load_ratio(self.jackson_green_interference(w))

@@ -16,6 +16,7 @@
 //!   and how far its constants are confirmed ([`ModelBasis`]);
 //! * [`statistical_integrals`] — P(d*), A(d*), F_s(d*), Q_max(d*), N(d*) and the load beyond the
 //!   validated range, for every model;
+//! * [`net_load_grid`] — P − F_s on a d* grid, evaluated lazily (most points need P only);
 //! * [`mod@static_friction`] — solve F = P − F_s for d*, μ_s = Q_max/F, μ(F) curves;
 //! * [`per_summit`] — the same laws applied per identified summit, force-weighted μ and the
 //!   homogenization to the whole surface;
@@ -37,6 +38,7 @@ pub mod gw_functions;
 pub mod jackson_green;
 pub mod material;
 pub mod model_laws;
+pub mod net_load_grid;
 pub mod per_spot;
 pub mod per_summit;
 pub(crate) mod quadrature;
@@ -53,14 +55,15 @@ pub use gw_functions::{gw_function, upper_tail_probability, INTEGRAL_REL_TOL};
 pub use jackson_green::JacksonGreenLaw;
 pub use material::{AdhesionParameters, CriticalValues, Material, TABOR_FACTOR};
 pub use model_laws::{ModelBasis, ModelLaws};
+pub use net_load_grid::{net_load, GridEvaluations, NetLoadGrid};
 pub use per_spot::{per_spot_friction, PerSpotResult, SpotFriction, SpotLaw, SpotLoad};
 pub use per_summit::{
     per_summit_friction, summit_friction, PerSummitResult, SummitContact, SummitFriction,
 };
 pub use quadrature::QuadratureOutcome;
 pub use static_friction::{
-    net_load, static_friction, static_friction_at_pressure, static_friction_curve,
-    static_friction_on_grid, NetLoadGrid, SolveSettings, SolveStatus, StaticFrictionResult,
+    static_friction, static_friction_at_pressure, static_friction_curve, static_friction_on_grid,
+    SolveSettings, SolveStatus, StaticFrictionResult,
 };
 pub use statistical_integrals::{
     AdhesionForce, FullStickOptions, IntegralValue, ModelOptions, StatisticalModel,

@@ -54,8 +54,16 @@ pub struct ModelLaws {
     model: AsperityModel,
     hardness_factor: f64,
     options: ModelOptions,
-    /// The full-stick laws and r = ω_c,BKE/ω_c,KE.
-    full_stick: Option<(FullStickLaw, f64)>,
+    /// The full-stick laws in KE ratios.
+    full_stick: Option<ScaledStickLaw>,
+}
+
+/// The full-stick laws with r = ω_c,BKE/ω_c,KE and r^{3/2} (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ScaledStickLaw {
+    law: FullStickLaw,
+    r: f64,
+    r_pow_1_5: f64,
 }
 
 impl ModelLaws {
@@ -70,7 +78,12 @@ impl ModelLaws {
             AsperityModel::FullStick => {
                 let law = options.full_stick.law(material)?;
                 let ke = material.critical_values(1.0).interference;
-                Some((law, law.critical_interference_over_radius / ke))
+                let r = law.critical_interference_over_radius / ke;
+                Some(ScaledStickLaw {
+                    law,
+                    r,
+                    r_pow_1_5: r.powf(1.5),
+                })
             }
             AsperityModel::KogutEtsion | AsperityModel::ChangEtsionBogy => None,
         };
@@ -89,7 +102,7 @@ impl ModelLaws {
 
     /// The full-stick laws, for that model.
     pub fn full_stick(&self) -> Option<&FullStickLaw> {
-        self.full_stick.as_ref().map(|(law, _)| law)
+        self.full_stick.as_ref().map(|s| &s.law)
     }
 
     /// How far the model's constants are confirmed.
@@ -105,7 +118,7 @@ impl ModelLaws {
     /// P/P_c at x.
     pub fn load_ratio(&self, x: f64) -> f64 {
         match (self.model, self.full_stick) {
-            (AsperityModel::FullStick, Some((law, r))) => r.powf(1.5) * law.load_ratio(x / r),
+            (AsperityModel::FullStick, Some(s)) => s.r_pow_1_5 * s.law.load_ratio(x / s.r),
             (AsperityModel::ChangEtsionBogy, _) => ceb_load_ratio(x),
             _ => ke_load_ratio(x, self.hardness_factor),
         }
@@ -114,7 +127,7 @@ impl ModelLaws {
     /// A/A_c at x.
     pub fn area_ratio(&self, x: f64) -> f64 {
         match (self.model, self.full_stick) {
-            (AsperityModel::FullStick, Some((law, r))) => r * law.area_ratio(x / r),
+            (AsperityModel::FullStick, Some(s)) => s.r * s.law.area_ratio(x / s.r),
             (AsperityModel::ChangEtsionBogy, _) => ceb_area_ratio(x),
             _ => ke_area_ratio(x),
         }
@@ -123,7 +136,7 @@ impl ModelLaws {
     /// Q_max/P_c at x.
     pub fn friction_ratio(&self, x: f64) -> f64 {
         match (self.model, self.full_stick) {
-            (AsperityModel::FullStick, Some((law, r))) => r.powf(1.5) * law.friction_ratio(x / r),
+            (AsperityModel::FullStick, Some(s)) => s.r_pow_1_5 * s.law.friction_ratio(x / s.r),
             (AsperityModel::ChangEtsionBogy, _) => ceb_static_friction_ratio(x),
             _ => ke_static_friction_ratio(x, self.options.static_friction_form),
         }
@@ -132,12 +145,30 @@ impl ModelLaws {
     /// Breaks in x of the load and area laws (smooth between them).
     pub fn load_breaks(&self) -> Vec<f64> {
         match (self.model, self.full_stick) {
-            (AsperityModel::FullStick, Some((law, r))) => {
-                law.breakpoints().iter().map(|w| w * r).collect()
+            (AsperityModel::FullStick, Some(s)) => {
+                s.law.breakpoints().iter().map(|w| w * s.r).collect()
             }
             (AsperityModel::ChangEtsionBogy, _) => vec![1.0],
             _ => vec![1.0, 6.0, 110.0],
         }
+    }
+
+    /// κ ∈ (0, 1] with P/P_c(x′) ≤ P/P_c(x)/κ for every x′ ≤ x: the load laws increase between
+    /// their breaks, so κ is the product of the drops at the breaks (1 when the law never drops;
+    /// the full-stick hand-over to Jackson–Green at ω* = 110 drops by a few per cent).
+    pub fn load_drop_bound(&self) -> f64 {
+        self.load_breaks()
+            .iter()
+            .map(|&b| {
+                let before = self.load_ratio(b);
+                let after = self.load_ratio(b * (1.0 + 1e-12));
+                if before > 0.0 {
+                    (after / before).min(1.0)
+                } else {
+                    1.0
+                }
+            })
+            .product()
     }
 
     /// Breaks in x of the friction law below [`Self::friction_support`].
@@ -161,8 +192,8 @@ impl ModelLaws {
     /// The x beyond which the friction law is outside its validated range (see the module docs).
     pub fn fit_limit(&self) -> f64 {
         match (self.model, self.full_stick) {
-            (AsperityModel::FullStick, Some((law, r))) => {
-                r * law.stick_interference_factor * STICK_LOAD_FIT_LIMIT
+            (AsperityModel::FullStick, Some(s)) => {
+                s.r * s.law.stick_interference_factor * STICK_LOAD_FIT_LIMIT
             }
             (AsperityModel::ChangEtsionBogy, _) => 1.0,
             _ => 6.0,

@@ -2,8 +2,9 @@
 //! solve **F = P(d*) − F_s(d*)** for the separation d*, then **μ_s = Q_max(d*) / F**.
 //!
 //! F(d*) → 0⁻ as d* → ∞ (adhesion outlasts contact) and has a minimum, the pull-off load. The net
-//! load P − F_s is evaluated on a grid of d* (default [−3, 12 σ_s/σ], step 0.5; the lower end is
-//! extended in steps of 3 down to −30 when the load needs it), every sign change of
+//! load P − F_s is known on a grid of d* (default [−3, 12 σ_s/σ], step 0.5; the lower end is
+//! extended in steps of 3 down to −30 when the load needs it; the points are evaluated only as far
+//! as the sign of P − F_s − F needs, see [`super::net_load_grid`]), every sign change of
 //! P − F_s − F between grid points is counted as a root ([`SolveStatus::roots_found`]). **The
 //! root with the smallest d\* is taken** and refined with Brent, run on ln((P − F_s)/F) when the
 //! bracket is compressive at both ends and on P − F_s − F otherwise; it stops at an x tolerance
@@ -24,7 +25,8 @@
 
 use super::asperity_laws::AsperityModel;
 use super::error::FrictionError;
-use super::root_finding::{brent, golden_minimum, BrentTolerances};
+use super::net_load_grid::NetLoadGrid;
+use super::root_finding::{brent, BrentTolerances};
 use super::statistical_integrals::{AdhesionForce, IntegralValue, StatisticalModel};
 
 /// Brent also stops once the relative load residual |P − F_s − F|/|F| (or |ln((P − F_s)/F)|) is
@@ -156,142 +158,6 @@ pub struct StaticFrictionResult {
     pub status: SolveStatus,
 }
 
-/// Net load P − F_s (N) tabulated on a d* grid, reusable across loads of the SAME model (the
-/// table must only hold exact evaluations of that model; the solver keeps it so).
-#[derive(Debug, Clone, PartialEq)]
-pub struct NetLoadGrid {
-    /// Grid d* (ascending).
-    pub d_star: Vec<f64>,
-    /// P − F_s at each grid point (N).
-    pub net_load: Vec<f64>,
-}
-
-/// Net load P(d*) − F_s(d*) in N.
-pub fn net_load(model: &StatisticalModel, d_star: f64) -> Result<f64, FrictionError> {
-    Ok(model.contact_load(d_star)?.value - model.adhesion_force(d_star)?.total())
-}
-
-impl NetLoadGrid {
-    /// Tabulate P − F_s on the default range of `settings`.
-    pub fn new(model: &StatisticalModel, settings: &SolveSettings) -> Result<Self, FrictionError> {
-        let step = settings.validated()?.grid_step;
-        let hi = settings.d_star_max_in_summit_std * model.summit_std_star();
-        let mut d_star = Vec::new();
-        let mut net = Vec::new();
-        let mut d = settings.d_star_min;
-        while d <= hi + 0.5 * step {
-            d_star.push(d);
-            net.push(net_load(model, d)?);
-            d += step;
-        }
-        Ok(Self {
-            d_star,
-            net_load: net,
-        })
-    }
-
-    /// Extend the grid downward (steps of 3) until the net load at its low end exceeds `load`.
-    fn cover_load(
-        &mut self,
-        model: &StatisticalModel,
-        load: f64,
-        settings: &SolveSettings,
-    ) -> Result<(), FrictionError> {
-        loop {
-            let (Some(&d0), Some(&f0)) = (self.d_star.first(), self.net_load.first()) else {
-                return Ok(());
-            };
-            if f0 > load {
-                return Ok(());
-            }
-            if d0 - 3.0 < settings.d_star_floor {
-                return Err(FrictionError::LoadAboveSearchRange {
-                    load,
-                    max_load: f0,
-                    d_star_min: d0,
-                });
-            }
-            let mut lower_d = Vec::new();
-            let mut lower_f = Vec::new();
-            let mut d = d0 - 3.0;
-            while d < d0 - 0.5 * settings.grid_step {
-                lower_d.push(d);
-                lower_f.push(net_load(model, d)?);
-                d += settings.grid_step;
-            }
-            lower_d.append(&mut self.d_star);
-            lower_f.append(&mut self.net_load);
-            self.d_star = lower_d;
-            self.net_load = lower_f;
-        }
-    }
-
-    /// Add exact evaluations (d*, P − F_s) to the table, keeping it sorted; later loads of a curve
-    /// then start from narrower brackets.
-    fn insert(&mut self, points: &[(f64, f64)]) {
-        for &(d, net) in points {
-            let index = self.d_star.partition_point(|&x| x < d);
-            if self.d_star.get(index) != Some(&d) {
-                self.d_star.insert(index, d);
-                self.net_load.insert(index, net);
-            }
-        }
-    }
-
-    /// Brackets [d_i, d_{i+1}] where P − F_s − load changes sign (or is zero at d_i).
-    fn brackets(&self, load: f64) -> Vec<usize> {
-        let g: Vec<f64> = self.net_load.iter().map(|n| n - load).collect();
-        g.windows(2)
-            .enumerate()
-            .filter(|(_, w)| w[0] == 0.0 || w[0] * w[1] < 0.0)
-            .map(|(i, _)| i)
-            .collect()
-    }
-
-    /// Number of distinct roots among `brackets`: sign changes in a cluster of consecutive table
-    /// intervals spanning less than 1e-6 in d* (points left by an earlier Brent refinement at the
-    /// same load, where quadrature noise can flip the sign) count as one root.
-    fn count_roots(&self, brackets: &[usize]) -> usize {
-        let mut roots = 0;
-        let mut cluster_start: Option<f64> = None;
-        let mut previous: Option<usize> = None;
-        for &i in brackets {
-            let (Some(&lo), Some(&hi)) = (self.d_star.get(i), self.d_star.get(i + 1)) else {
-                continue;
-            };
-            let continues = previous.is_some_and(|p| p + 1 == i)
-                && cluster_start.is_some_and(|start| hi - start < 1e-6);
-            if !continues {
-                roots += 1;
-                cluster_start = Some(lo);
-            }
-            previous = Some(i);
-        }
-        roots
-    }
-
-    /// Pull-off load: the minimum of P − F_s, refined by golden section around the grid minimum.
-    pub fn pull_off_load(&self, model: &StatisticalModel) -> Result<f64, FrictionError> {
-        let Some((i_min, _)) = self
-            .net_load
-            .iter()
-            .enumerate()
-            .min_by(|a, b| a.1.total_cmp(b.1))
-        else {
-            return Ok(0.0);
-        };
-        let lo = self
-            .d_star
-            .get(i_min.saturating_sub(1))
-            .copied()
-            .unwrap_or(0.0);
-        let hi = self.d_star.get(i_min + 1).copied().unwrap_or(lo);
-        let (_, f_min, _) = golden_minimum(&mut |d| net_load(model, d), lo, hi, 1e-9)?;
-        let grid_min = self.net_load.get(i_min).copied().unwrap_or(f_min);
-        Ok(f_min.min(grid_min))
-    }
-}
-
 /// Solve for one external load `load` (N) using (and extending) a precomputed grid.
 pub fn static_friction_on_grid(
     model: &StatisticalModel,
@@ -309,33 +175,28 @@ pub fn static_friction_on_grid(
     if load > 0.0 {
         grid.cover_load(model, load, settings)?;
     }
-    let brackets = grid.brackets(load);
+    let brackets = grid.brackets(model, load)?;
     let Some(&first) = brackets.first() else {
-        let pull_off = grid.pull_off_load(model)?;
         return Err(if load < 0.0 {
+            let pull_off = grid.pull_off_load(model)?;
             FrictionError::LoadBelowPullOff { load, pull_off }
         } else {
-            let max_load = grid.net_load.first().copied().unwrap_or(0.0);
-            let d_star_min = grid.d_star.first().copied().unwrap_or(settings.d_star_min);
             FrictionError::LoadAboveSearchRange {
                 load,
-                max_load,
-                d_star_min,
+                max_load: grid.net_load_at(model, 0)?,
+                d_star_min: grid.d_star(0).unwrap_or(settings.d_star_min),
             }
         });
     };
-    let (Some(&a), Some(&b), Some(&fa), Some(&fb)) = (
-        grid.d_star.get(first),
-        grid.d_star.get(first + 1),
-        grid.net_load.get(first),
-        grid.net_load.get(first + 1),
-    ) else {
+    let (Some(a), Some(b)) = (grid.d_star(first), grid.d_star(first + 1)) else {
         return Err(FrictionError::InvalidParameter {
             name: "grid",
             value: first as f64,
             expected: "a bracket inside the grid",
         });
     };
+    let fa = grid.net_load_at(model, first)?;
+    let fb = grid.net_load_at(model, first + 1)?;
     // Brent runs on ln(net/F) when the whole bracket carries a compressive net load (F > 0): the
     // net load falls off like a Gaussian tail, so its logarithm is nearly linear in d* and Brent's
     // interpolation converges in fewer steps. Otherwise it runs on net − F.
@@ -354,7 +215,7 @@ pub fn static_friction_on_grid(
             let p = model.contact_load(d)?;
             let fs = model.adhesion_force(d)?;
             let net = p.value - fs.total();
-            evaluated.push((d, net));
+            evaluated.push((d, p.value, net));
             last = Some((d, p, fs));
             if logarithmic && net <= 0.0 {
                 // Not expected inside a bracket positive at both ends (P − F_s is monotone there);

@@ -24,8 +24,8 @@
 //! with no absolute tolerance (only an exactly-zero integrand stops on error = 0).
 
 use super::asperity_laws::{
-    contacting_adhesion_ratio, lennard_jones_adhesion_ratio, AdhesionBeyondFits, AsperityModel,
-    StaticFrictionForm,
+    contacting_adhesion_ratio, contacting_adhesion_ratio_max, lennard_jones_adhesion_ratio,
+    AdhesionBeyondFits, AsperityModel, StaticFrictionForm,
 };
 use super::error::{require_positive, FrictionError};
 use super::full_stick::{FullStickLaw, StickFrictionLaw};
@@ -326,6 +326,20 @@ impl StatisticalModel {
             contacting,
             non_contacting,
         })
+    }
+
+    /// An upper bound of F_s(d*) (N) for every d*: each summit adheres with at most
+    /// 2πRΔγ · max(1, max_x F_s/(2πRΔγ) of a contacting summit) (the Lennard-Jones force of a
+    /// non-contacting summit peaks at 2πRΔγ at h = ε). `None` when the contacting law is unbounded
+    /// ([`AdhesionBeyondFits::ExtendLastFit`]); 0 without adhesion.
+    pub fn adhesion_force_bound(&self) -> Option<f64> {
+        if self.adhesion.energy == 0.0 {
+            return Some(0.0);
+        }
+        let eps_over_wc = self.adhesion.equilibrium_distance / self.critical.interference;
+        let contacting =
+            contacting_adhesion_ratio_max(eps_over_wc, self.options.adhesion_beyond_fits)?;
+        Some(self.adhesion_scale() * contacting.max(1.0))
     }
 
     /// ∫_{−∞}^{d*} f(h)/(2πRΔγ) φ*(z*) dz* with h = ε(1 + t), z* = d* − (ε/σ) t, taken in
