@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use asperity::engine::execute::{
     execute, execute_nodes, ExecuteOptions, NodeOutcome, NodeStatus, RunReport,
 };
-use asperity::engine::output::{write_summaries, write_tables, OutputMetadata};
+use asperity::engine::output::{write_summaries, write_tables, write_timings, OutputMetadata};
 use asperity::engine::plan::Plan;
 use asperity::engine::shard::{Shard, ShardPlan};
 
@@ -99,6 +99,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         &study.file.summaries,
         &meta,
     )?);
+    files.push(write_timings(&out, &plan, &report, &meta)?);
     report_failures(&plan, &report);
     println!(
         "{}: {} computed, {} reused from cache, {} failed, {} skipped{} in {:.2} s",

@@ -2,8 +2,14 @@
 //! kinds' long tables (`<table>_<name>.parquet`), each with units in column names (`sq_m`) and in
 //! the file metadata, plus the study name, study-file hash and tool version.
 //!
-//! Rows are in plan order and cached values are written exactly as computed, so rerunning an
-//! unchanged study rewrites identical files. Each file is written to a temporary name and renamed.
+//! **Byte-reproducible.** The tables hold results only: cached values are written exactly as
+//! computed and nothing of the run (times, dates, thread count, cache state) enters them, so the
+//! same study, inputs and version give identical bytes, computed or cached. Rows are in a stable
+//! order: `scenarios` by scenario; a kind table by the first scenario that uses an instance, then
+//! by the study file's order of the node names (an instance shared by several scenarios or names
+//! appears once, where it first appears); a long table follows its kind table. Run timings go to
+//! the separate `timings.parquet` ([`write_timings`]), the one file that differs between runs.
+//! Each file is written to a temporary name and renamed.
 
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -16,10 +22,10 @@ use polars::prelude::{
 };
 
 use crate::engine::artifact::{ColumnData, Table};
-use crate::engine::execute::{NodeOutcome, RunReport};
+use crate::engine::execute::{NodeOutcome, NodeStatus, RunReport};
 use crate::engine::plan::Plan;
 use crate::engine::study::{Located, SCENARIOS_TABLE};
-use crate::engine::summary::{summary_columns, SummarySpec};
+use crate::engine::summary::{summary_columns, SummarySpec, RUN_TIME_METRIC};
 use crate::engine::value::{column_name, Field, ParamValue, Value};
 use crate::units::Dimension;
 
@@ -200,7 +206,8 @@ fn kind_tables(
 ) -> (RowTable, BTreeMap<String, RowTable>) {
     let mut main = RowTable::default();
     let mut long: BTreeMap<String, RowTable> = BTreeMap::new();
-    for (i, node) in plan.nodes.iter().enumerate() {
+    for i in row_order(plan) {
+        let node = &plan.nodes[i];
         if node.task.table() != table {
             continue;
         }
@@ -224,15 +231,66 @@ fn kind_tables(
         cells.extend(outcome.metrics.iter().map(field_cell));
         cells.push(text("status", outcome.status.label()));
         cells.push(text("message", outcome.status.message()));
-        cells.push((
-            String::from("compute_seconds"),
-            Dimension::Dimensionless,
-            Some(Value::Float(outcome.compute_seconds)),
-        ));
         main.push_row(cells);
         add_long_tables(&mut long, &key, outcome);
     }
     (main, long)
+}
+
+/// Instances in the documented row order: by the first scenario that uses them, then by the
+/// study file's order of node names.
+fn row_order(plan: &Plan) -> Vec<usize> {
+    let mut seen = vec![false; plan.nodes.len()];
+    let mut order = Vec::with_capacity(plan.nodes.len());
+    for row in &plan.scenario_nodes {
+        for &instance in row {
+            if let Some(false) = seen.get(instance) {
+                seen[instance] = true;
+                order.push(instance);
+            }
+        }
+    }
+    order.extend((0..plan.nodes.len()).filter(|&i| !seen[i]));
+    order
+}
+
+/// The name of the run-timing table.
+pub const TIMINGS_TABLE: &str = "timings";
+
+/// Writes `timings.parquet`: one row per instance the run needed, in the kind tables' row order,
+/// with `key`, `kind`, `nodes`, `status`, `from_cache` and `compute_seconds` (the time of the
+/// computation that produced the result, also when it was read from the cache). It describes the
+/// run, not the results, and is the one output that is not byte-reproducible.
+pub fn write_timings(
+    dir: &Path,
+    plan: &Plan,
+    report: &RunReport,
+    meta: &OutputMetadata,
+) -> Result<PathBuf, OutputError> {
+    let mut t = RowTable::default();
+    for i in row_order(plan) {
+        let Some(outcome) = report.outcomes.get(i).and_then(Option::as_ref) else {
+            continue;
+        };
+        let node = &plan.nodes[i];
+        t.push_row(vec![
+            text("key", node.key.to_hex()),
+            text("kind", node.task.kind()),
+            text("nodes", node.names.join(",")),
+            text("status", outcome.status.label()),
+            (
+                String::from("from_cache"),
+                Dimension::Dimensionless,
+                Some(Value::Bool(matches!(outcome.status, NodeStatus::Cached))),
+            ),
+            (
+                String::from(RUN_TIME_METRIC),
+                Dimension::Dimensionless,
+                Some(Value::Float(outcome.compute_seconds)),
+            ),
+        ]);
+    }
+    write_parquet(dir, TIMINGS_TABLE, t, meta)
 }
 
 fn add_long_tables(long: &mut BTreeMap<String, RowTable>, key: &str, outcome: &NodeOutcome) {

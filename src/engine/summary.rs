@@ -29,13 +29,13 @@ pub struct SummarySpec {
     #[serde(default)]
     pub by: Vec<Located<String>>,
     /// Metrics to aggregate, as `node.metric` with the metric's name as in the node's table but
-    /// without its unit suffix (`contact.area_fraction`, `contact.mean_contact_pressure`), or
-    /// `node.compute_seconds` (the node's compute time).
+    /// without its unit suffix (`contact.area_fraction`, `contact.mean_contact_pressure`). Run
+    /// times are not results: they are in `timings.parquet`, not in summaries.
     pub metrics: Vec<Located<String>>,
 }
 
-/// The pseudo-metric of every node: the time of its original computation, seconds.
-pub const COMPUTE_SECONDS: &str = "compute_seconds";
+/// The run-time column of `timings.parquet`, refused as a summary metric (see [`SummarySpec`]).
+pub const RUN_TIME_METRIC: &str = "compute_seconds";
 
 /// A metric reference `node.metric`, split.
 pub fn split_metric(reference: &str) -> Option<(&str, &str)> {
@@ -125,11 +125,6 @@ pub fn summary_columns(
                         let outcome = report.outcomes.get(instance)?.as_ref()?;
                         if available.is_empty() {
                             available = outcome.metrics.iter().map(|f| f.name.clone()).collect();
-                            available.push(String::from(COMPUTE_SECONDS));
-                        }
-                        if field == COMPUTE_SECONDS {
-                            dimension = Some(Dimension::Dimensionless);
-                            return Some(outcome.compute_seconds);
                         }
                         let f = outcome.metrics.iter().find(|f| f.name == field)?;
                         dimension = Some(f.dimension);

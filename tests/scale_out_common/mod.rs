@@ -88,23 +88,20 @@ pub fn ok(output: &Output) -> String {
 }
 
 fn read_table(path: &Path) -> DataFrame {
-    let df = ParquetReader::new(std::fs::File::open(path).unwrap())
+    ParquetReader::new(std::fs::File::open(path).unwrap())
         .finish()
-        .unwrap();
-    // Compute times differ between a run that computed a node and one that loaded it.
-    match df.column("compute_seconds") {
-        Ok(_) => df.drop("compute_seconds").unwrap(),
-        Err(_) => df,
-    }
+        .unwrap()
 }
 
-/// The Parquet files of an output folder, sorted by name.
+/// The result tables of an output folder (every Parquet file but `timings.parquet`), sorted by
+/// name.
 pub fn tables(out: &Path) -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(out)
         .unwrap()
         .flatten()
         .map(|e| e.path())
         .filter(|p| p.extension().is_some_and(|e| e == "parquet"))
+        .filter(|p| !p.ends_with("timings.parquet"))
         .collect();
     v.sort();
     v
@@ -125,6 +122,12 @@ pub fn assert_same_tables(a: &Path, b: &Path) {
         assert!(
             read_table(x).equals_missing(&read_table(y)),
             "{} and {} differ",
+            x.display(),
+            y.display()
+        );
+        assert!(
+            std::fs::read(x).unwrap() == std::fs::read(y).unwrap(),
+            "{} and {} hold the same cells but differ in bytes",
             x.display(),
             y.display()
         );

@@ -2,6 +2,7 @@
 //! references, cycles, outputs). Node bodies are typed by the application's [`NodeSpec`].
 
 mod error;
+mod file_axis;
 mod located;
 mod overrides;
 mod param;
@@ -22,7 +23,7 @@ use petgraph::graph::DiGraph;
 use serde::Deserialize;
 
 use crate::engine::node::NodeSpec;
-use crate::engine::summary::{split_metric, SummarySpec};
+use crate::engine::summary::{split_metric, SummarySpec, RUN_TIME_METRIC};
 
 /// Name of the scenarios table, always available in `outputs`.
 pub const SCENARIOS_TABLE: &str = "scenarios";
@@ -322,7 +323,7 @@ fn check_summaries<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, Chec
             ));
         }
         for metric in &summary.value.metrics {
-            let Some((node, _)) = split_metric(&metric.value) else {
+            let Some((node, field)) = split_metric(&metric.value) else {
                 return Err((
                     metric.location,
                     format!("{context}.metrics"),
@@ -332,6 +333,18 @@ fn check_summaries<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, Chec
                     ),
                 ));
             };
+            if field == RUN_TIME_METRIC {
+                return Err((
+                    metric.location,
+                    format!("{context}.metrics"),
+                    format!(
+                        "'{}': run times are not results (they differ between runs and would \
+                         make this table differ too); every run writes them per node instance \
+                         to timings.parquet (join on its `key` column)",
+                        metric.value
+                    ),
+                ));
+            }
             let Some(spec) = file.nodes.get(node) else {
                 return Err((
                     metric.location,
