@@ -450,7 +450,7 @@ fn npy_round_trip_of_a_real_map() {
     }
     let t = asperity::surface::io::parse_topography(std::path::Path::new("a.npy"), &bytes)
         .expect("npy must parse");
-    assert_eq!(t.metadata["spacing_assumed"], "true");
+    assert_eq!(t.spacing, asperity::surface::io::ScaleSource::Assumed);
     let TopographyData::Areal(back) = t.data else {
         panic!("expected an areal map")
     };

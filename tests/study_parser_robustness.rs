@@ -92,7 +92,7 @@ fn check(text: &str) {
     if study
         .file
         .parameters
-        .expand()
+        .expand(std::path::Path::new("."))
         .is_ok_and(|s| s.rows.len() <= 10_000)
     {
         let _ = Plan::build(&study);

@@ -315,6 +315,7 @@ fn harmonic_fill_reproduces_a_plane_in_interior_holes() {
     let strict = FillOptions {
         tolerance: 1e-12,
         max_iterations: 1,
+        ..FillOptions::default()
     };
     assert!(matches!(
         fill_missing(&map, strict),

@@ -7,7 +7,9 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
-use asperity::surface::io::{detect_format, parse_topography, LineScan, TopographyData};
+use asperity::surface::io::{
+    detect_format, parse_topography, LineScan, ScaleSource, TopographyData,
+};
 use asperity::surface::{amplitude_statistics, Boundary, HeightMap};
 
 /// Arguments of `asperity inspect`.
@@ -32,7 +34,7 @@ pub fn inspect(args: InspectArgs) -> Result<ExitCode> {
         println!("channel:   {channel}");
     }
     match &topo.data {
-        TopographyData::Areal(map) => describe_map(map)?,
+        TopographyData::Areal(map) => describe_map(map, topo.spacing, topo.height_unit)?,
         TopographyData::Line(line) => describe_line(line),
     }
     for (k, v) in &topo.metadata {
@@ -52,17 +54,35 @@ pub fn inspect(args: InspectArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn describe_map(map: &HeightMap) -> Result<()> {
+fn describe_map(map: &HeightMap, spacing: ScaleSource, height_unit: ScaleSource) -> Result<()> {
     let (lx, ly) = map.size();
     println!("kind:      areal map");
     println!("grid:      {} × {} points (nx × ny)", map.nx(), map.ny());
-    println!(
-        "spacing:   dx = {:.6e} m, dy = {:.6e} m",
-        map.dx(),
-        map.dy()
-    );
-    println!("size:      {lx:.6e} m × {ly:.6e} m");
-    println!("units:     heights and lengths in metres (converted from the file's units)");
+    match spacing {
+        ScaleSource::File => {
+            println!(
+                "spacing:   dx = {:.6e} m, dy = {:.6e} m",
+                map.dx(),
+                map.dy()
+            );
+            println!("size:      {lx:.6e} m × {ly:.6e} m");
+        }
+        ScaleSource::Assumed => {
+            println!("spacing:   not in the file (this format stores no lateral calibration)");
+            println!(
+                "           give it in the surface node: `pixel_size: 0.5 um` (or [dx, dy]) or \
+                 `size: [Lx, Ly]`"
+            );
+        }
+    }
+    match height_unit {
+        ScaleSource::File => {
+            println!("units:     heights and lengths in metres (converted from the file's units)")
+        }
+        ScaleSource::Assumed => println!(
+            "units:     height unit not in the file: the values are read as metres (check them)"
+        ),
+    }
     let a = amplitude_statistics(map, Boundary::Open)?;
     println!(
         "missing:   {} of {} points ({:.3} %)",
@@ -79,6 +99,10 @@ fn describe_map(map: &HeightMap) -> Result<()> {
     let opt = |v: Option<f64>| v.map_or(String::from("undefined"), |v| format!("{v:.7}"));
     println!("  Ssk = {}", opt(a.ssk));
     println!("  Sku = {}", opt(a.sku));
+    if spacing == ScaleSource::Assumed {
+        println!("  Sdq, Sdr: need the spacing");
+        return Ok(());
+    }
     println!("  Sdq = {} (central differences)", opt(a.sdq));
     println!(
         "  Sdr = {} %",

@@ -45,7 +45,7 @@ pub struct Plan {
 impl Plan {
     /// Builds the plan of a study.
     pub fn build<N: NodeSpec>(study: &Study<N>) -> Result<Self, StudyError> {
-        let scenarios = study.file.parameters.expand().map_err(|e| {
+        let scenarios = study.file.parameters.expand(study.dir()).map_err(|e| {
             study.error(e.location, format!("parameters.{}", e.parameter), e.message)
         })?;
         let node_names: Vec<String> = study.file.nodes.keys().cloned().collect();

@@ -24,14 +24,18 @@ pub struct FillOptions {
     pub tolerance: f64,
     /// Maximum number of conjugate-gradient iterations.
     pub max_iterations: usize,
+    /// Smallest share of valid points filled from: below it the "surface" would be invented
+    /// from almost nothing (a map with one valid point becomes a constant plane).
+    pub min_valid_fraction: f64,
 }
 
 impl Default for FillOptions {
-    /// `tolerance = 1e-10`, `max_iterations = 100 000`.
+    /// `tolerance = 1e-10`, `max_iterations = 100 000`, `min_valid_fraction = 0.01`.
     fn default() -> Self {
         Self {
             tolerance: 1e-10,
             max_iterations: 100_000,
+            min_valid_fraction: 0.01,
         }
     }
 }
@@ -54,6 +58,15 @@ pub struct FilledSurface {
 pub enum FillError {
     #[error("the height map has no valid point to fill from")]
     NoValidPoints,
+    #[error(
+        "only {valid} of {total} points are valid (less than {:.0} %): filling would invent the \
+         surface; crop to the measured region", 100.0 * min_fraction
+    )]
+    TooFewValidPoints {
+        valid: usize,
+        total: usize,
+        min_fraction: f64,
+    },
     #[error("tolerance must be finite and > 0, got {tolerance}")]
     BadTolerance { tolerance: f64 },
     #[error("harmonic fill did not converge: relative residual {relative_residual:e} after {iterations} iterations")]
@@ -85,6 +98,14 @@ pub fn fill_missing(map: &HeightMap, options: FillOptions) -> Result<FilledSurfa
     }
     if missing.len() == z.len() {
         return Err(FillError::NoValidPoints);
+    }
+    let valid = z.len() - missing.len();
+    if (valid as f64) < options.min_valid_fraction * z.len() as f64 {
+        return Err(FillError::TooFewValidPoints {
+            valid,
+            total: z.len(),
+            min_fraction: options.min_valid_fraction,
+        });
     }
     // Stencil weights scaled by dx²: 1 along x, (dx/dy)² along y.
     let wy = (map.dx() / map.dy()).powi(2);

@@ -224,30 +224,119 @@ impl ResolveContext<'_> {
             field: field.to_string(),
             message,
         };
-        let (value, origin) = match param.raw.as_reference() {
-            Some(name) => {
-                let index = self.names.iter().position(|n| n == name).ok_or_else(|| {
-                    error(format!(
-                        "unknown parameter '${{{name}}}'{}; declared parameters: {}",
-                        did_you_mean(name, self.names.iter().map(String::as_str)),
-                        if self.names.is_empty() {
-                            String::from("none")
-                        } else {
-                            self.names.join(", ")
-                        }
-                    ))
-                })?;
-                self.used.borrow_mut()[index] = true;
+        let (value, origin) = match (&param.raw, param.raw.as_reference()) {
+            (_, Some(name)) => {
+                let index = self.parameter_index(name).map_err(&error)?;
                 (
                     self.values[index].clone(),
                     format!(" (from parameter '{name}')"),
                 )
             }
-            None => (param.raw.to_param_value().map_err(&error)?, String::new()),
+            (RawValue::Text(text), None) if text.contains("${") => {
+                let (substituted, names) = self.interpolate(text).map_err(&error)?;
+                let origin = format!(
+                    " ('{text}' with parameter{} {})",
+                    if names.len() == 1 { "" } else { "s" },
+                    names.join(", ")
+                );
+                let value = RawValue::Text(substituted.clone())
+                    .to_param_value()
+                    .unwrap_or(ParamValue::Text(substituted));
+                (value, origin)
+            }
+            (raw, None) => match (raw.to_param_value(), raw) {
+                (Ok(value), _) => (value, String::new()),
+                // Text that is not a valid quantity ("3 um.x3p") is still text to a text field.
+                (Err(m), RawValue::Text(t)) => {
+                    let text = ParamValue::Text(t.clone());
+                    if T::from_param(&text).is_err() {
+                        return Err(error(m));
+                    }
+                    (text, String::new())
+                }
+                (Err(m), _) => return Err(error(m)),
+            },
         };
-        let typed = T::from_param(&value).map_err(|m| error(format!("{m}{origin}")))?;
+        let typed = match (T::from_param(&value), &value) {
+            (Ok(typed), _) => typed,
+            // Text that reads like a quantity ("01-upper.x3p") is still text to a text field.
+            (Err(m), ParamValue::Quantity(_) | ParamValue::Number(_) | ParamValue::Int(_)) => {
+                match &param.raw {
+                    RawValue::Text(_) => T::from_param(&ParamValue::Text(
+                        self.text_as_written(&param.raw).map_err(&error)?,
+                    ))
+                    .map_err(|_| error(format!("{m}{origin}")))?,
+                    _ => return Err(error(format!("{m}{origin}"))),
+                }
+            }
+            (Err(m), _) => return Err(error(format!("{m}{origin}"))),
+        };
         check(&typed).map_err(|m| error(format!("{value} {m}{origin}")))?;
         Ok(typed)
+    }
+
+    /// The index of parameter `name` (marked as used), or an error with a suggestion.
+    fn parameter_index(&self, name: &str) -> Result<usize, String> {
+        let index = self.names.iter().position(|n| n == name).ok_or_else(|| {
+            format!(
+                "unknown parameter '${{{name}}}'{}; declared parameters: {}",
+                did_you_mean(name, self.names.iter().map(String::as_str)),
+                if self.names.is_empty() {
+                    String::from("none")
+                } else {
+                    self.names.join(", ")
+                }
+            )
+        })?;
+        self.used.borrow_mut()[index] = true;
+        Ok(index)
+    }
+
+    /// `text` with every `${name}` replaced by the scenario's value of `name` (text as is,
+    /// numbers as written, quantities in SI); returns the names used.
+    fn interpolate(&self, text: &str) -> Result<(String, Vec<String>), String> {
+        let mut out = String::with_capacity(text.len());
+        let mut names = Vec::new();
+        let mut rest = text;
+        while let Some(start) = rest.find("${") {
+            out.push_str(&rest[..start]);
+            let after = &rest[start + 2..];
+            let end = after.find('}').ok_or_else(|| {
+                format!("'{text}': '${{' without a closing '}}'; write ${{name}}")
+            })?;
+            let name = after[..end].trim();
+            if !is_parameter_name(name) {
+                return Err(format!(
+                    "'{text}': '${{{name}}}' is not a parameter name (letters, digits, '_')"
+                ));
+            }
+            let value = &self.values[self.parameter_index(name)?];
+            match value {
+                ParamValue::Text(s) => out.push_str(s),
+                ParamValue::List(_) => {
+                    return Err(format!(
+                        "'{text}': parameter '{name}' is a list ({value}); only a single value \
+                         can be written into text"
+                    ))
+                }
+                other => out.push_str(&other.to_string()),
+            }
+            if !names.iter().any(|n| n == name) {
+                names.push(name.to_string());
+            }
+            rest = &after[end + 1..];
+        }
+        out.push_str(rest);
+        Ok((out, names))
+    }
+
+    /// A text field as written, after substitution.
+    fn text_as_written(&self, raw: &RawValue) -> Result<String, String> {
+        match raw {
+            RawValue::Text(t) if t.contains("${") => self.interpolate(t).map(|(s, _)| s),
+            RawValue::Text(t) => Ok(t.clone()),
+            other => Err(format!("expected text, got {other:?}")),
+        }
     }
 
     /// The `i`-th upstream task (in [`crate::engine::node::NodeSpec::upstream`] order).
@@ -282,6 +371,12 @@ impl ResolveContext<'_> {
             .insert(path.to_path_buf(), hash.clone());
         hash
     }
+}
+
+fn is_parameter_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
 /// " (did you mean 'x'?)" when a candidate is close to `name`, else "".

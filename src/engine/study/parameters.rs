@@ -1,5 +1,7 @@
-//! Parameter spaces: axes (lists, `range`, `linspace`, `logspace`) combined by `product` and
-//! `zip`, plus seeded Latin-hypercube sampling, expanded into scenarios.
+//! Parameter spaces: axes (lists, `range`, `linspace`, `logspace`, `glob` over files) combined
+//! by `product` and `zip`, plus seeded Latin-hypercube sampling, expanded into scenarios.
+
+use std::path::Path;
 
 use indexmap::IndexMap;
 use rand_chacha::rand_core::{Rng, SeedableRng};
@@ -46,12 +48,13 @@ impl schemars::JsonSchema for Axis {
     fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
         let endpoint = schemars::json_schema!({"type": ["number", "string"]});
         schemars::json_schema!({
-            "description": "A parameter axis: a list of values (numbers, quantities such as '1.19 um', text, lists), or one of {range: [first, last, step?]} (integers or quantities, both ends included), {linspace: [first, last, count]}, {logspace: [first, last, count]} (geometric spacing between the two end VALUES, not exponents).",
+            "description": "A parameter axis: a list of values (numbers, quantities such as '1.19 um', text, lists), or one of {range: [first, last, step?]} (integers or quantities, both ends included), {linspace: [first, last, count]}, {logspace: [first, last, count]} (geometric spacing between the two end VALUES, not exponents), {glob: 'scans/*-upper.x3p', values: paths|stems} (the matching files, sorted; relative to the study file; stems: the text the one '*' matched).",
             "anyOf": [
                 {"type": "array"},
                 {"type": "object", "properties": {"range": {"type": "array", "items": endpoint, "minItems": 2, "maxItems": 3}}, "required": ["range"], "additionalProperties": false},
                 {"type": "object", "properties": {"linspace": {"type": "array", "minItems": 3, "maxItems": 3}}, "required": ["linspace"], "additionalProperties": false},
-                {"type": "object", "properties": {"logspace": {"type": "array", "minItems": 3, "maxItems": 3}}, "required": ["logspace"], "additionalProperties": false}
+                {"type": "object", "properties": {"logspace": {"type": "array", "minItems": 3, "maxItems": 3}}, "required": ["logspace"], "additionalProperties": false},
+                {"type": "object", "properties": {"glob": {"type": "string"}, "values": {"enum": ["paths", "stems"]}}, "required": ["glob"], "additionalProperties": false}
             ]
         })
     }
@@ -93,20 +96,21 @@ pub struct Scenarios {
 pub const MAX_SCENARIOS: usize = 10_000_000;
 
 impl ParameterSpace {
-    /// Expands the space into scenarios (a study with no parameters has one scenario).
-    pub fn expand(&self) -> Result<Scenarios, ParameterError> {
+    /// Expands the space into scenarios (a study with no parameters has one scenario); `glob`
+    /// patterns are relative to `base`, the study file's folder.
+    pub fn expand(&self, base: &Path) -> Result<Scenarios, ParameterError> {
         let mut groups: Vec<Group> = Vec::new();
         for (name, axis) in &self.product {
             groups.push(Group {
                 names: vec![(name.clone(), axis.location)],
-                rows: axis_values(name, axis)?
+                rows: axis_values(name, axis, base)?
                     .into_iter()
                     .map(|v| vec![v])
                     .collect(),
             });
         }
         for group in &self.zip {
-            groups.push(zip_group(group)?);
+            groups.push(zip_group(group, base)?);
         }
         if let Some(lhs) = &self.latin_hypercube {
             groups.push(latin_hypercube(lhs)?);
@@ -162,10 +166,13 @@ struct Group {
     rows: Vec<Vec<ParamValue>>,
 }
 
-fn zip_group(group: &Located<IndexMap<String, Located<Axis>>>) -> Result<Group, ParameterError> {
+fn zip_group(
+    group: &Located<IndexMap<String, Located<Axis>>>,
+    base: &Path,
+) -> Result<Group, ParameterError> {
     let mut columns = Vec::new();
     for (name, axis) in &group.value {
-        columns.push((name.clone(), axis.location, axis_values(name, axis)?));
+        columns.push((name.clone(), axis.location, axis_values(name, axis, base)?));
     }
     let Some(first) = columns.first() else {
         return Err(ParameterError {
@@ -196,7 +203,11 @@ fn zip_group(group: &Located<IndexMap<String, Located<Axis>>>) -> Result<Group, 
     })
 }
 
-fn axis_values(name: &str, axis: &Located<Axis>) -> Result<Vec<ParamValue>, ParameterError> {
+fn axis_values(
+    name: &str,
+    axis: &Located<Axis>,
+    base: &Path,
+) -> Result<Vec<ParamValue>, ParameterError> {
     let err = |message: String| ParameterError {
         location: axis.location,
         parameter: name.to_string(),
@@ -213,6 +224,9 @@ fn axis_values(name: &str, axis: &Located<Axis>) -> Result<Vec<ParamValue>, Para
             .map(RawValue::to_param_value)
             .collect::<Result<Vec<_>, _>>()
             .map_err(&err)?,
+        RawValue::Map(map) if map.contains_key("glob") => {
+            super::file_axis::glob_values(map, base).map_err(&err)?
+        }
         RawValue::Map(map) if map.len() == 1 => {
             let (form, args) = map.first().ok_or_else(|| err(String::new()))?;
             let args = match args {
@@ -229,10 +243,10 @@ fn axis_values(name: &str, axis: &Located<Axis>) -> Result<Vec<ParamValue>, Para
                 "logspace" => spaced(&args, true).map_err(&err)?,
                 other => {
                     return Err(err(format!(
-                        "unknown axis form '{other}'{}; use range, linspace or logspace",
+                        "unknown axis form '{other}'{}; use range, linspace, logspace or glob",
                         crate::engine::study::param::did_you_mean(
                             other,
-                            ["range", "linspace", "logspace"].into_iter()
+                            ["range", "linspace", "logspace", "glob"].into_iter()
                         )
                     )))
                 }
@@ -240,7 +254,7 @@ fn axis_values(name: &str, axis: &Located<Axis>) -> Result<Vec<ParamValue>, Para
         }
         _ => {
             return Err(err(String::from(
-                "an axis is a list of values or one of {range: [...]}, {linspace: [...]}, {logspace: [...]}",
+                "an axis is a list of values or one of {range: [...]}, {linspace: [...]}, {logspace: [...]}, {glob: 'scans/*.x3p'}",
             )))
         }
     };

@@ -1,6 +1,9 @@
 //! `surface: {file: {...}}`: a measured topography and its preprocessing into the "S-F" (or
 //! "S-L") surface of ISO 25178.
 //!
+//! The lateral scale comes first: the file's calibration, or `pixel_size`/`size` for a file
+//! without one (see [`super::lateral_scale`]; nothing is guessed).
+//!
 //! Steps, in this order, each optional: crop (pixel window) → decimate (keep every n-th point) →
 //! form removal (least-squares polynomial of the given degree; 1 = plane) → S-filter (Gaussian
 //! low-pass, removes wavelengths shorter than λs) → L-filter (Gaussian high-pass, removes
@@ -14,13 +17,17 @@ use serde::Deserialize;
 use crate::engine::node::NodeError;
 use crate::engine::study::{Param, ResolveContext, SpecError};
 use crate::engine::value::Field;
-use crate::surface::io::{read_topography, TopographyData};
+use crate::surface::io::{read_topography, ScaleSource, TopographyData};
 use crate::surface::{
     crop, decimate, fill_missing, gaussian_high_pass, gaussian_low_pass, remove_polynomial_form,
     FillOptions, HeightMap, MAX_FORM_DEGREE,
 };
 use crate::units::{Dimension, Length, Quantity};
 
+use super::lateral_scale::{
+    apply_lateral_calibration, calibration_fields, lateral_scale_warning, LateralCalibration,
+    LateralLengths,
+};
 use super::synthetic::positive_length;
 use super::{SurfaceSource, SurfaceTask};
 
@@ -31,6 +38,18 @@ pub struct FileSpec {
     /// Topography file (x3p, sdf, sur, plu, dat, opd, di, gsf, gwy, al3d, zon, txt/csv, npy);
     /// relative paths are relative to the study file.
     pub path: Param<String>,
+    /// Pixel size: one length (square pixels) or `[dx, dy]`. Required for a file without a
+    /// lateral calibration (npy, a bare text/CSV matrix, a GSF without `XReal`/`YReal`); for a
+    /// calibrated file it must agree with the file to 1e-6 (or set `override_file_spacing`).
+    #[serde(default)]
+    pub pixel_size: Option<Box<Param<LateralLengths>>>,
+    /// Instead of `pixel_size`: the size of the whole map as read, one length (square) or
+    /// `[Lx, Ly]`; dx = Lx/nx, dy = Ly/ny.
+    #[serde(default)]
+    pub size: Option<Box<Param<LateralLengths>>>,
+    /// Use `pixel_size`/`size` although the file's own calibration differs. Default: false.
+    #[serde(default)]
+    pub override_file_spacing: Option<Box<Param<bool>>>,
     /// Pixel window `[ix0, iy0, nx, ny]`.
     #[serde(default)]
     pub crop: Option<[Param<usize>; 4]>,
@@ -56,6 +75,8 @@ pub struct FileSpec {
 pub(crate) struct MeasuredSource {
     path: PathBuf,
     file_bytes: u64,
+    lateral: Option<LateralCalibration>,
+    override_file_spacing: bool,
     crop: Option<[usize; 4]>,
     decimate: Option<[usize; 2]>,
     form_degree: Option<usize>,
@@ -84,6 +105,11 @@ impl FileSpec {
             Field::text("source", "file"),
             Field::text("file_blake3", hash),
         ];
+        let (lateral, override_file_spacing) = self.lateral_calibration(ctx)?;
+        if let Some(given) = lateral {
+            params.extend(calibration_fields(given));
+            params.push(Field::bool("override_file_spacing", override_file_spacing));
+        }
         let crop = match &self.crop {
             Some(c) => {
                 let mut v = [0usize; 4];
@@ -157,6 +183,8 @@ impl FileSpec {
             source: SurfaceSource::Measured(MeasuredSource {
                 path,
                 file_bytes,
+                lateral,
+                override_file_spacing,
                 crop,
                 decimate,
                 form_degree,
@@ -168,6 +196,61 @@ impl FileSpec {
     }
 }
 
+impl FileSpec {
+    /// `pixel_size` or `size` (not both), and `override_file_spacing` (only with one of them).
+    fn lateral_calibration(
+        &self,
+        ctx: &ResolveContext<'_>,
+    ) -> Result<(Option<LateralCalibration>, bool), SpecError> {
+        let pixel = self
+            .pixel_size
+            .as_ref()
+            .map(|p| ctx.resolve(p, "file.pixel_size"))
+            .transpose()?;
+        let size = self
+            .size
+            .as_ref()
+            .map(|p| ctx.resolve(p, "file.size"))
+            .transpose()?;
+        let override_file = self
+            .override_file_spacing
+            .as_ref()
+            .map(|p| ctx.resolve(p, "file.override_file_spacing"))
+            .transpose()?;
+        let location =
+            |p: &Option<Box<Param<_>>>| p.as_ref().map_or(self.path.location(), |p| p.location());
+        let lateral = match (pixel, size) {
+            (Some(_), Some(_)) => {
+                return Err(SpecError {
+                    location: location(&self.size),
+                    field: String::from("file.size"),
+                    message: String::from(
+                        "give the pixel size or the map size, not both (remove `size` or \
+                         `pixel_size`)",
+                    ),
+                })
+            }
+            (Some(LateralLengths(d)), None) => Some(LateralCalibration::PixelSize(d)),
+            (None, Some(LateralLengths(l))) => Some(LateralCalibration::Size(l)),
+            (None, None) => None,
+        };
+        if lateral.is_none() && override_file.is_some() {
+            return Err(SpecError {
+                location: self
+                    .override_file_spacing
+                    .as_ref()
+                    .map_or(self.path.location(), |p| p.location()),
+                field: String::from("file.override_file_spacing"),
+                message: String::from(
+                    "overrides the file's spacing with `pixel_size` or `size`, and neither is \
+                     given",
+                ),
+            });
+        }
+        Ok((lateral, override_file.unwrap_or(false)))
+    }
+}
+
 impl MeasuredSource {
     /// A file levelled by a polynomial of `form_degree` with its missing points filled.
     pub(super) fn levelled_and_filled(path: PathBuf, form_degree: usize) -> Self {
@@ -175,6 +258,8 @@ impl MeasuredSource {
         Self {
             path,
             file_bytes,
+            lateral: None,
+            override_file_spacing: false,
             crop: None,
             decimate: None,
             form_degree: Some(form_degree),
@@ -191,9 +276,17 @@ impl MeasuredSource {
 
     /// Reads and preprocesses the surface.
     pub(super) fn load(&self) -> Result<HeightMap, NodeError> {
+        self.load_with_scale_report().map(|(map, _)| map)
+    }
+
+    /// Reads and preprocesses the surface; also returns the metrics that say how far its scales
+    /// can be trusted: `height_unit_from_file` and `lateral_scale_warning` (see
+    /// [`super::lateral_scale::lateral_scale_warning`]).
+    pub(super) fn load_with_scale_report(&self) -> Result<(HeightMap, Vec<Field>), NodeError> {
         let fail = |step: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{step}: {e}"));
         let topography = read_topography(&self.path).map_err(|e| fail("reading", &e))?;
-        let mut map = match topography.data {
+        let height_unit_from_file = topography.height_unit == ScaleSource::File;
+        let map = match topography.data {
             TopographyData::Areal(map) => map,
             TopographyData::Line(_) => {
                 return Err(NodeError::new(format!(
@@ -202,6 +295,13 @@ impl MeasuredSource {
                 )))
             }
         };
+        let mut map = apply_lateral_calibration(
+            map,
+            topography.spacing,
+            self.lateral,
+            self.override_file_spacing,
+            &self.path,
+        )?;
         if let Some([ix0, iy0, nx, ny]) = self.crop {
             map = crop(&map, ix0, iy0, nx, ny).map_err(|e| fail("crop", &e))?;
         }
@@ -224,11 +324,44 @@ impl MeasuredSource {
                 .map_err(|e| fail("filling missing points", &e))?
                 .surface;
         }
-        Ok(map)
+        check_not_degenerate(&map, &self.path)?;
+        let report = vec![
+            Field::bool("height_unit_from_file", height_unit_from_file),
+            Field::text("lateral_scale_warning", lateral_scale_warning(&map)),
+        ];
+        Ok((map, report))
     }
 
     /// File size plus working arrays (≈ 8 f64 per point, 4 bytes per stored point assumed).
     pub(super) fn memory_estimate(&self) -> u64 {
         self.file_bytes.saturating_mul(16)
     }
+}
+
+/// A map with no valid point, or whose valid heights are all equal, is a broken export (or a
+/// wrongly chosen channel), not a surface: the node fails and says so.
+fn check_not_degenerate(map: &HeightMap, path: &std::path::Path) -> Result<(), NodeError> {
+    let (low, high) = map
+        .heights()
+        .iter()
+        .filter(|z| !z.is_nan())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &z| {
+            (lo.min(z), hi.max(z))
+        });
+    if low > high {
+        return Err(NodeError::new(format!(
+            "{}: the map has no valid (measured) point after preprocessing; check the file, the \
+             channel and the crop",
+            path.display()
+        )));
+    }
+    if low == high {
+        return Err(NodeError::new(format!(
+            "{}: the map is perfectly flat (every valid height is {low:e} m after \
+             preprocessing): there is no roughness to measure; for a smooth rigid counter-body \
+             leave `upper` out of the contact node",
+            path.display()
+        )));
+    }
+    Ok(())
 }

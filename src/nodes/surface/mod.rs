@@ -10,6 +10,7 @@ use crate::engine::value::Field;
 use crate::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
 use crate::surface::{Boundary, HeightMap};
 
+mod lateral_scale;
 mod measured;
 mod metrics;
 mod synthetic;
@@ -29,7 +30,7 @@ pub(crate) const HEIGHTS: &str = "heights";
 
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
 /// computed statistics change, so stale cache entries are never reused.
-pub const SURFACE_KIND_VERSION: u32 = 4;
+pub const SURFACE_KIND_VERSION: u32 = 5;
 
 /// `surface:` — where the heights come from.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -75,7 +76,9 @@ impl SurfaceTask {
             SurfaceSource::Synthetic(spec) => generate_synthetic_surface(spec)
                 .map(|m| (m, Boundary::Periodic, Vec::new()))
                 .map_err(|e| NodeError::new(e.to_string())),
-            SurfaceSource::Measured(m) => m.load().map(|map| (map, Boundary::Open, Vec::new())),
+            SurfaceSource::Measured(m) => m
+                .load_with_scale_report()
+                .map(|(map, report)| (map, Boundary::Open, report)),
             SurfaceSource::Twin(t) => t
                 .generate()
                 .map(|(map, extra)| (map, Boundary::Periodic, extra)),

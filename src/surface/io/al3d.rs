@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 
 use ndarray::Array2;
 
-use super::{ParseError, Topography, TopographyData};
+use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const MAGIC: &[u8] = b"AliconaImaging\0\r\n";
@@ -153,6 +153,8 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         }
     }
     Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some("depth".into()),
         metadata,

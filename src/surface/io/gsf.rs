@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 
 use ndarray::Array2;
 
-use super::{ParseError, Topography, TopographyData};
+use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const MAGIC: &[u8] = b"Gwyddion Simple Field 1.0\n";
@@ -86,6 +86,17 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let z_factor = unit_factor(fields.get("ZUnits"), "ZUnits")?;
     let dx = real("XReal")? * xy_factor / nx as f64;
     let dy = real("YReal")? * xy_factor / ny as f64;
+    // The format lets XReal/YReal default to 1: a file without them has no lateral calibration.
+    let spacing = if fields.contains_key("XReal") && fields.contains_key("YReal") {
+        ScaleSource::File
+    } else {
+        ScaleSource::Assumed
+    };
+    let height_unit = if fields.contains_key("ZUnits") {
+        ScaleSource::File
+    } else {
+        ScaleSource::Assumed
+    };
     let n_bytes = nx
         .checked_mul(ny)
         .and_then(|n| n.checked_mul(4))
@@ -116,6 +127,8 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let channel = fields.remove("Title");
     fields.retain(|k, _| !matches!(k.as_str(), "XRes" | "YRes"));
     Ok(Topography {
+        spacing,
+        height_unit,
         data: TopographyData::Areal(map),
         channel,
         metadata: fields,

@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::gsf::length_unit_factor;
-use super::{ParseError, Topography, TopographyData};
+use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const MAGIC: &[u8] = b"GWYP";
@@ -333,6 +333,8 @@ pub fn parse_channel(bytes: &[u8], title: Option<&str>) -> Result<Topography, Pa
         metadata.insert("original_filename".into(), f.clone());
     }
     Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some(name.clone()),
         metadata,

@@ -17,7 +17,7 @@ use std::collections::BTreeMap;
 
 use ndarray::Array2;
 
-use super::{ParseError, Topography, TopographyData};
+use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 /// Magic numbers of header formats 1, 2 and 3.
@@ -176,6 +176,8 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     metadata.insert("data_inverted".into(), inverted.to_string());
     metadata.retain(|_, v| !v.is_empty());
     Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some("phase".into()),
         metadata,

@@ -25,7 +25,7 @@ mod x3p_xml;
 pub mod zon;
 
 pub use error::{ParseError, ReadError};
-pub use topography::{LineScan, Topography, TopographyData};
+pub use topography::{LineScan, ScaleSource, Topography, TopographyData};
 
 use std::path::Path;
 
@@ -54,16 +54,17 @@ pub enum Format {
     /// Digital Surf `.sur` (uncompressed, int16/int32; non-measured points → NaN).
     Sur,
     /// NumPy `.npy` (f4/f8/i1/i2/i4/u1/u2/u4, either byte order): heights in metres, `NaN` =
-    /// missing. A plain `.npy` has no spacing: it is read as **1 pixel = 1 m** and the metadata
-    /// key `spacing_assumed` is `"true"`; the caller must apply the real pixel size.
+    /// missing. A plain `.npy` has no spacing: it is read as **1 pixel = 1 m** with
+    /// [`Topography::spacing`] = [`ScaleSource::Assumed`]; the caller must apply the real pixel
+    /// size.
     Npy,
     /// Sensofar `.plu` (float32 µm heights; 1 000 001 µm = not measured).
     Plu,
     /// Text/CSV: a matrix grid (header styles `h= w=` / `pixel size=` /
     /// `height conversion factor (-> m)=`, or Gwyddion `# Width:` / `# Value units:`), x y z
     /// triples, or a 2-column line scan (returned as [`TopographyData::Line`]). Without a
-    /// spacing or height unit in the file, 1 m is assumed and the metadata keys
-    /// `spacing_assumed` / `height_unit_assumed` are `"true"`.
+    /// spacing or height unit in the file, 1 m is assumed and [`Topography::spacing`] /
+    /// [`Topography::height_unit`] say [`ScaleSource::Assumed`].
     Text,
 }
 

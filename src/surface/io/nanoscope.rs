@@ -18,7 +18,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::gsf::length_unit_factor;
-use super::{ParseError, Topography, TopographyData};
+use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const MAGIC: &[u8] = b"\\*File list";
@@ -253,6 +253,8 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
     }
     metadata.insert("original_z_unit".into(), unit);
     Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some(name.clone()),
         metadata,

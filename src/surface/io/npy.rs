@@ -5,10 +5,12 @@
 //! `{'descr': '<f8', 'fortran_order': False, 'shape': (ny, nx), }` and the raw data.
 //!
 //! Conventions, since a plain `.npy` carries no physical metadata:
-//! * heights are **metres**; `NaN` marks a missing point;
+//! * heights are **metres** (asperity's convention for `.npy`; [`Topography::height_unit`] is
+//!   [`ScaleSource::Assumed`] all the same); `NaN` and ±inf mark a missing point;
 //! * a 2-D array is `[iy, ix]` (rows are y, x fastest in C order; Fortran order is honoured);
-//! * **spacing: 1 pixel = 1 m**, and the metadata key `spacing_assumed` is `"true"` so that a
-//!   caller (e.g. the surface node's pixel-size option) knows it must supply the real spacing;
+//! * **spacing: a placeholder of 1 pixel = 1 m** with [`Topography::spacing`] =
+//!   [`ScaleSource::Assumed`], so that a caller (e.g. the surface node, which then requires
+//!   `pixel_size` or `size`) knows it must supply the real spacing;
 //! * a 1-D array is a line scan with x = i · 1 m (same flag).
 //!
 //! Supported `descr`: `f4`, `f8`, `i1`, `i2`, `i4`, `u1`, `u2`, `u4`, little (`<`), big (`>`)
@@ -19,7 +21,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
-use super::{LineScan, ParseError, Topography, TopographyData};
+use super::{LineScan, ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const MAGIC: &[u8] = b"\x93NUMPY";
@@ -69,7 +71,6 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         .map(|v| if v.is_finite() { v } else { f64::NAN })
         .collect();
     let mut metadata = BTreeMap::new();
-    metadata.insert("spacing_assumed".to_string(), "true".to_string());
     metadata.insert("npy_descr".to_string(), descr.to_string());
     let data = match shape.as_slice() {
         [len] => TopographyData::Line(LineScan {
@@ -97,6 +98,8 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         }
     };
     Ok(Topography {
+        spacing: ScaleSource::Assumed,
+        height_unit: ScaleSource::Assumed,
         data,
         channel: None,
         metadata,
@@ -198,7 +201,7 @@ mod tests {
         assert_eq!((m.nx(), m.ny()), (3, 2));
         assert_eq!(m.heights()[[1, 0]], 4.0);
         assert_eq!(m.heights()[[0, 2]], 3.0);
-        assert_eq!(t.metadata["spacing_assumed"], "true");
+        assert_eq!(t.spacing, ScaleSource::Assumed);
     }
 
     #[test]

@@ -17,7 +17,7 @@ use std::collections::BTreeMap;
 
 use ndarray::Array2;
 
-use super::{ParseError, Topography, TopographyData};
+use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 /// Size of one directory entry in bytes.
@@ -184,6 +184,8 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         metadata.insert("magnification".into(), m.to_string());
     }
     Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some(array.name.clone()),
         metadata,

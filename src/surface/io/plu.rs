@@ -21,7 +21,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
-use super::{ParseError, Topography, TopographyData};
+use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 /// Byte offset of the `rows`, `cols` pair in front of the height data.
@@ -97,6 +97,8 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let map = HeightMap::new(grid, mppx * MICROMETRE, mppy * MICROMETRE)
         .map_err(|e| ParseError::malformed(format!("plu: {e}")))?;
     Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: None,
         metadata: meta,

@@ -17,7 +17,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
-use super::{ParseError, Topography, TopographyData};
+use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 /// `true` for an ASCII or binary ISO SDF header.
@@ -120,6 +120,8 @@ impl SdfHeader {
         let map = HeightMap::new(grid, self.x_scale, self.y_scale)
             .map_err(|e| ParseError::malformed(format!("sdf: {e}")))?;
         Ok(Topography {
+            spacing: ScaleSource::File,
+            height_unit: ScaleSource::File,
             data: TopographyData::Areal(map),
             channel: None,
             metadata,

@@ -28,7 +28,7 @@ use ndarray::Array2;
 
 use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
 use super::text_units::length_unit_to_metres;
-use super::{ParseError, Topography, TopographyData};
+use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const HEADER_SIZE: usize = 512;
@@ -173,6 +173,8 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let map =
         HeightMap::new(grid, dx_m, dy_m).map_err(|e| ParseError::malformed(format!("sur: {e}")))?;
     Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: None,
         metadata: meta,

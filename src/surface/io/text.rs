@@ -16,9 +16,10 @@
 //!   * Gwyddion ASCII export: `# Width: 10.00 µm`, `# Height: 10.00 µm`, `# Value units: m`,
 //!     `# Channel: ZSensor` (dx = Width / columns, dy = Height / rows).
 //!
-//! Without a spacing in the header the spacing is 1 m per pixel and the metadata key
-//! `spacing_assumed` is `"true"`; without a height unit heights are metres and
-//! `height_unit_assumed` is `"true"`. The caller must then supply the real values.
+//! Without a spacing in the header the spacing is a placeholder of 1 m per pixel and
+//! [`Topography::spacing`] is [`ScaleSource::Assumed`]; without a height unit heights are metres
+//! and [`Topography::height_unit`] is [`ScaleSource::Assumed`]. The caller must then supply the
+//! real values.
 //! `nan` values are missing points.
 
 use std::collections::BTreeMap;
@@ -26,7 +27,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::text_header::{column_units, TextHeader};
-use super::{LineScan, ParseError, Topography, TopographyData};
+use super::{LineScan, ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 /// File extensions handled by this reader.
@@ -134,12 +135,15 @@ fn line_scan(rows: &[Vec<f64>], column_header: Option<&str>) -> Result<Topograph
             "text: a line scan needs at least 2 points",
         ));
     }
-    let mut metadata = BTreeMap::new();
-    if assumed {
-        metadata.insert("spacing_assumed".into(), "true".into());
-        metadata.insert("height_unit_assumed".into(), "true".into());
-    }
+    let metadata = BTreeMap::new();
+    let source = if assumed {
+        ScaleSource::Assumed
+    } else {
+        ScaleSource::File
+    };
     Ok(Topography {
+        spacing: source,
+        height_unit: source,
         data: TopographyData::Line(LineScan { x, z }),
         channel: None,
         metadata,
@@ -171,10 +175,11 @@ fn xyz_grid(rows: &[Vec<f64>]) -> Result<Option<Topography>, ParseError> {
         .map_err(|e| ParseError::malformed(format!("text: x y z grid: {e}")))?;
     let mut metadata = BTreeMap::new();
     metadata.insert("layout".into(), "xyz".into());
-    metadata.insert("height_unit_assumed".into(), "true".into());
     metadata.insert("x_offset_m".into(), xs.start.to_string());
     metadata.insert("y_offset_m".into(), ys.start.to_string());
     Ok(Some(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::Assumed,
         data: TopographyData::Areal(map),
         channel: None,
         metadata,
@@ -231,20 +236,14 @@ fn matrix(
             )));
         }
     }
-    let mut metadata = header.metadata.clone();
-    let (dx, dy) = match header.spacing(columns, n_rows) {
-        Some(s) => s,
-        None => {
-            metadata.insert("spacing_assumed".into(), "true".into());
-            (1.0, 1.0)
-        }
+    let metadata = header.metadata.clone();
+    let ((dx, dy), spacing) = match header.spacing(columns, n_rows) {
+        Some(s) => (s, ScaleSource::File),
+        None => ((1.0, 1.0), ScaleSource::Assumed),
     };
-    let z_factor = match header.height_factor()? {
-        Some(f) => f,
-        None => {
-            metadata.insert("height_unit_assumed".into(), "true".into());
-            1.0
-        }
+    let (z_factor, height_unit) = match header.height_factor()? {
+        Some(f) => (f, ScaleSource::File),
+        None => (1.0, ScaleSource::Assumed),
     };
     let values: Vec<f64> = rows.into_iter().flatten().map(|v| v * z_factor).collect();
     let grid = Array2::from_shape_vec((n_rows, columns), values)
@@ -252,6 +251,8 @@ fn matrix(
     let map =
         HeightMap::new(grid, dx, dy).map_err(|e| ParseError::malformed(format!("text: {e}")))?;
     Ok(Topography {
+        spacing,
+        height_unit,
         data: TopographyData::Areal(map),
         channel: header.channel.clone(),
         metadata,

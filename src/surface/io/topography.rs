@@ -20,10 +20,25 @@ pub enum TopographyData {
     Line(LineScan),
 }
 
+/// Where a physical scale of a [`Topography`] came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ScaleSource {
+    /// Stated by the file.
+    File,
+    /// Not in the file: the reader used 1 m per pixel (spacing) or metres (heights), a
+    /// placeholder the caller must replace with the real value (e.g. a surface node's
+    /// `pixel_size`), never a result.
+    Assumed,
+}
+
 /// A topography read from a file: data in SI units plus what the file says about itself.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Topography {
     pub data: TopographyData,
+    /// Where the lateral spacing (or the x positions of a line scan) came from.
+    pub spacing: ScaleSource,
+    /// Where the height unit came from.
+    pub height_unit: ScaleSource,
     /// Name of the channel read, for multi-channel files (e.g. "ZSensor").
     pub channel: Option<String>,
     /// Free-form metadata from the file header (instrument, date, original units, …).

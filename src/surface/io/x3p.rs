@@ -26,7 +26,7 @@ use zip::ZipArchive;
 
 use super::byte_cursor::{decode_samples, Endian, SampleType};
 use super::x3p_xml::X3pDocument;
-use super::{LineScan, ParseError, Topography, TopographyData};
+use super::{LineScan, ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 /// Largest ratio of uncompressed to compressed size that deflate can reach (about 1032:1);
@@ -135,6 +135,8 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         TopographyData::Areal(map)
     };
     Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
         data,
         channel: None,
         metadata,

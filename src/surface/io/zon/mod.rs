@@ -23,7 +23,7 @@ use ndarray::Array2;
 
 mod archive;
 
-use super::{ParseError, Topography, TopographyData};
+use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const HEIGHT_UUID: &str = "4cdb0c75-5706-48cc-a9a1-adf395d609ae";
@@ -233,6 +233,8 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         }
     }
     Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some("height".into()),
         metadata,
