@@ -28,13 +28,15 @@ fn run() -> Result<(), String> {
     let index = |s: &String| s.parse::<usize>().map_err(|e| format!("'{s}': {e}"));
     let topography = read_topography(input.as_ref()).map_err(|e| e.to_string())?;
     if topography.spacing != ScaleSource::File || topography.height_unit != ScaleSource::File {
-        return Err(format!("{input} is not calibrated; the example needs a calibrated file"));
+        return Err(format!(
+            "{input} is not calibrated; the example needs a calibrated file"
+        ));
     }
     let TopographyData::Areal(map) = topography.data else {
         return Err(format!("{input} is a line scan"));
     };
-    let window = crop(&map, index(ix0)?, index(iy0)?, index(nx)?, index(ny)?)
-        .map_err(|e| e.to_string())?;
+    let window =
+        crop(&map, index(ix0)?, index(iy0)?, index(nx)?, index(ny)?).map_err(|e| e.to_string())?;
     let (width, height) = window.size();
     let mut text = format!(
         "# Channel: Height\n# Width: {:.9e} m\n# Height: {:.9e} m\n# Value units: m\n",

@@ -168,7 +168,9 @@ fn corrupted_payload_is_detected_discarded_and_recomputed() {
     // Flip one byte in the middle of one heights payload.
     let cache = Cache::open(&cache_dir).unwrap();
     let node = &first.plan.nodes[0];
-    let payload = cache.entry_dir("surface", &node.key).join("heights.npy");
+    let payload = cache
+        .entry_dir("surface", &node.key)
+        .join("heights.npy.zst");
     let mut bytes = std::fs::read(&payload).unwrap();
     let mid = bytes.len() / 2;
     bytes[mid] ^= 0x40;

@@ -237,13 +237,13 @@ fn a_friction_table_is_plotted_and_replicate_axes_can_be_named() {
         .join("entries/contact")
         .join(&contact[..2])
         .join(contact)
-        .join("pressure.npy");
+        .join("pressure.npy.zst");
     let mut bytes = std::fs::read(&npy).unwrap();
     let last = bytes.len() - 1;
     bytes[last] ^= 0xff;
     std::fs::write(&npy, bytes).unwrap();
     let html = report(&cache, &results, &["--scenario", "0"]);
-    assert!(html.contains("pressure.npy: checksum mismatch"));
+    assert!(html.contains("pressure.npy.zst: checksum mismatch"));
     assert!(html.contains("Heights of surface &#39;lower&#39;"));
     assert!(!html.contains("Contact pressure of"));
 

@@ -124,7 +124,7 @@ fn cache_commands_list_size_verify_and_collect_garbage() {
     // Flip one byte of one array: verify names the entry and fails; --delete removes it.
     let npy = walk(&cache.join("entries/surface"))
         .into_iter()
-        .find(|p| p.extension().is_some_and(|e| e == "npy"))
+        .find(|p| p.extension().is_some_and(|e| e == "zst"))
         .unwrap();
     let mut bytes = std::fs::read(&npy).unwrap();
     let last = bytes.len() - 1;

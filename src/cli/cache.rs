@@ -26,7 +26,7 @@ enum CacheAction {
         #[command(flatten)]
         cache: CacheArg,
     },
-    /// Sizes per kind and in total.
+    /// Sizes per kind and in total: array payloads (compressed), everything else, and both.
     Du {
         #[command(flatten)]
         cache: CacheArg,
@@ -84,19 +84,43 @@ pub fn cache(args: CacheArgs) -> Result<ExitCode> {
         }
         CacheAction::Du { cache } => {
             let cache = cache.open()?;
-            let mut per_kind: BTreeMap<String, (usize, u64)> = BTreeMap::new();
+            // Per kind: entries, bytes of array payloads, bytes of everything.
+            let mut per_kind: BTreeMap<String, (usize, u64, u64)> = BTreeMap::new();
             for e in list_entries(&cache)? {
+                let arrays: u64 = e.manifest.as_ref().map_or(0, |m| {
+                    m.payloads
+                        .iter()
+                        .filter(|p| p.file.ends_with(".npy") || p.file.ends_with(".npy.zst"))
+                        .map(|p| p.bytes)
+                        .sum()
+                });
                 let slot = per_kind.entry(e.kind).or_default();
                 slot.0 += 1;
-                slot.1 += e.bytes;
+                slot.1 += arrays;
+                slot.2 += e.bytes;
             }
-            let (mut n, mut bytes) = (0, 0);
-            for (kind, (count, size)) in &per_kind {
-                println!("{kind:<10} {count:>8} entries {:>12}", human(*size));
-                n += count;
-                bytes += size;
+            println!(
+                "{:<10} {:>8} {:>12} {:>12} {:>12}",
+                "kind", "entries", "arrays", "other", "total"
+            );
+            let mut sum = (0, 0, 0);
+            for (kind, (count, arrays, total)) in &per_kind {
+                println!(
+                    "{kind:<10} {count:>8} {:>12} {:>12} {:>12}",
+                    human(*arrays),
+                    human(total - arrays),
+                    human(*total)
+                );
+                sum = (sum.0 + count, sum.1 + arrays, sum.2 + total);
             }
-            println!("{:<10} {n:>8} entries {:>12}", "total", human(bytes));
+            println!(
+                "{:<10} {:>8} {:>12} {:>12} {:>12}",
+                "total",
+                sum.0,
+                human(sum.1),
+                human(sum.2 - sum.1),
+                human(sum.2)
+            );
         }
         CacheAction::Verify { cache, delete } => {
             let cache = cache.open()?;

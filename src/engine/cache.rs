@@ -2,7 +2,11 @@
 //! every read.
 //!
 //! Layout: `<root>/entries/<kind>/<key[..2]>/<key>/` holds `manifest.json`, `manifest.blake3`
-//! (the manifest's own checksum) and the payloads: `<array>.npy` and `tables.json`.
+//! (the manifest's own checksum) and the payloads: `<array>.npy.zst` (a NumPy `.npy` file,
+//! zstd-compressed: lossless, and a contact's mostly-zero pressure and plastic-penetration maps
+//! shrink by orders of magnitude; `zstd -d` gives the `.npy`) and `tables.json`. Entries written
+//! before compression hold plain `<array>.npy` and are read as well. A node kind may keep its
+//! arrays out of the cache altogether ([`crate::engine::node::ArrayStorage::Regenerate`]).
 //! An entry is written in `<root>/tmp/` (same filesystem), every file fsynced, then renamed into
 //! place in one step; an entry that already exists counts as success, so concurrent runs need no
 //! lock. A read verifies the manifest checksum and every payload's size and blake3 checksum; an
@@ -71,6 +75,9 @@ fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CacheError + '_ {
         source,
     }
 }
+
+/// zstd level of array payloads: the fastest, since dense float fields gain little from more.
+const ZSTD_LEVEL: i32 = 1;
 
 /// How old a temporary directory of another host must be before it is considered abandoned.
 const FOREIGN_TMP_MAX_AGE: Duration = Duration::from_secs(24 * 3600);
@@ -154,7 +161,15 @@ impl Cache {
             {
                 return Err(corrupt(format!("{}: checksum mismatch", payload.file)));
             }
-            if let Some(name) = payload.file.strip_suffix(".npy") {
+            if let Some(name) = payload.file.strip_suffix(".npy.zst") {
+                if !with_arrays {
+                    continue;
+                }
+                let npy_bytes = zstd::stream::decode_all(bytes.as_slice())
+                    .map_err(|e| corrupt(format!("{}: {e}", payload.file)))?;
+                let array = npy::decode(&npy_bytes).map_err(|e| corrupt(e.to_string()))?;
+                artifact.arrays.insert(name.to_string(), array);
+            } else if let Some(name) = payload.file.strip_suffix(".npy") {
                 if !with_arrays {
                     continue;
                 }
@@ -205,10 +220,12 @@ impl Cache {
     ) -> Result<bool, CacheError> {
         manifest.payloads.clear();
         for (name, array) in &artifact.arrays {
-            let file = format!("{name}.npy");
+            let file = format!("{name}.npy.zst");
+            let compressed = zstd::stream::encode_all(npy::encode(array).as_slice(), ZSTD_LEVEL)
+                .map_err(io_err(&tmp.join(&file)))?;
             manifest
                 .payloads
-                .push(write_synced(tmp, &file, &npy::encode(array))?);
+                .push(write_synced(tmp, &file, &compressed)?);
         }
         if !artifact.tables.is_empty() {
             let bytes = serde_json::to_vec(&artifact.tables).map_err(|e| CacheError::Io {

@@ -12,8 +12,8 @@ use std::time::{Instant, SystemTime, UNIX_EPOCH};
 use rayon::prelude::*;
 
 use crate::engine::artifact::{Artifact, Table};
-use crate::engine::cache::{Cache, CacheError, Manifest};
-use crate::engine::node::NodeError;
+use crate::engine::cache::{Cache, CacheError, CachedEntry, Manifest};
+use crate::engine::node::{ArrayStorage, NodeError};
 use crate::engine::plan::{Plan, PlannedNode};
 use crate::engine::shard::upstream_closure;
 use crate::engine::value::Field;
@@ -252,6 +252,11 @@ impl RunContext<'_> {
         }
         let mut discarded = false;
         match self.cache.load(kind, &node.key, with_payload) {
+            Ok(Some(entry))
+                if with_payload && node.task.array_storage() == ArrayStorage::Regenerate =>
+            {
+                return self.regenerate(node, entry);
+            }
             Ok(Some(entry)) => {
                 let outcome = NodeOutcome {
                     status: NodeStatus::Cached,
@@ -281,15 +286,29 @@ impl RunContext<'_> {
         (outcome, artifact, discarded)
     }
 
-    fn compute(&self, node: &PlannedNode) -> (NodeOutcome, Option<Arc<Artifact>>) {
+    /// Computes a node from its upstream artifacts (loading any that are not in memory), under
+    /// the memory budget, turning a panic into a failure. Returns the result and its time.
+    fn run_compute(&self, node: &PlannedNode) -> (Result<Artifact, NodeOutcome>, f64) {
         let mut inputs: Vec<Arc<Artifact>> = Vec::with_capacity(node.upstream.len());
         for (role, u) in &node.upstream {
             let upstream = &self.plan.nodes[*u];
             // Present when loaded with arrays or computed in this run; otherwise (it was loaded
             // metrics-only because its dependants were cached, then one turned out corrupt) the
-            // upstream entry is read again with its arrays.
+            // upstream entry is read again with its arrays, or recomputed if they are not stored.
             let artifact = match &self.artifacts[*u] {
                 Some(a) => a.clone(),
+                None if upstream.task.array_storage() == ArrayStorage::Regenerate => {
+                    match self.run_compute(upstream) {
+                        (Ok(artifact), _) => Arc::new(artifact),
+                        (Err(failed), _) => {
+                            let message = format!(
+                                "cannot regenerate upstream {role} node: {}",
+                                failed.status.message()
+                            );
+                            return (Err(failed_outcome(NodeStatus::Failed(message))), 0.0);
+                        }
+                    }
+                }
                 None => match self.cache.load(upstream.task.kind(), &upstream.key, true) {
                     Ok(Some(entry)) => Arc::new(entry.artifact),
                     other => {
@@ -297,12 +316,8 @@ impl RunContext<'_> {
                             Err(e) => e.to_string(),
                             _ => String::from("it is no longer in the cache"),
                         };
-                        return (
-                            failed_outcome(NodeStatus::Failed(format!(
-                                "cannot load upstream {role} node: {why}"
-                            ))),
-                            None,
-                        );
+                        let message = format!("cannot load upstream {role} node: {why}");
+                        return (Err(failed_outcome(NodeStatus::Failed(message))), 0.0);
                     }
                 },
             };
@@ -323,40 +338,103 @@ impl RunContext<'_> {
                 )))
             });
         let seconds = start.elapsed().as_secs_f64();
-        match result {
-            Ok(artifact) => {
-                let manifest = Manifest {
-                    key: node.key.to_hex(),
-                    kind: node.task.kind().to_string(),
-                    version: node.task.version(),
-                    params: node.task.params().to_vec(),
-                    upstream: node
-                        .upstream
-                        .iter()
-                        .map(|(r, u)| (r.to_string(), self.plan.nodes[*u].key.to_hex()))
-                        .collect(),
-                    metrics: artifact.metrics.clone(),
-                    payloads: Vec::new(),
-                    compute_seconds: seconds,
-                    tool_version: self.options.tool_version.clone(),
-                    created_unix: SystemTime::now()
-                        .duration_since(UNIX_EPOCH)
-                        .map_or(0, |d| d.as_secs()),
-                };
-                if let Err(e) = self.cache.store(manifest, &artifact) {
-                    self.progress.warn(&format!(
-                        "result not cached ({e}); it is still used in this run"
-                    ));
-                }
-                let outcome = NodeOutcome {
-                    status: NodeStatus::Computed,
+        (
+            result.map_err(|e| failed_outcome(NodeStatus::Failed(e.message))),
+            seconds,
+        )
+    }
+
+    fn compute(&self, node: &PlannedNode) -> (NodeOutcome, Option<Arc<Artifact>>) {
+        match self.run_compute(node) {
+            (Ok(artifact), seconds) => self.store_computed(node, artifact, seconds),
+            (Err(failed), _) => (failed, None),
+        }
+    }
+
+    /// Stores a computed artifact (without its arrays under [`ArrayStorage::Regenerate`]) and
+    /// makes its outcome.
+    fn store_computed(
+        &self,
+        node: &PlannedNode,
+        artifact: Artifact,
+        seconds: f64,
+    ) -> (NodeOutcome, Option<Arc<Artifact>>) {
+        let manifest = Manifest {
+            key: node.key.to_hex(),
+            kind: node.task.kind().to_string(),
+            version: node.task.version(),
+            params: node.task.params().to_vec(),
+            upstream: node
+                .upstream
+                .iter()
+                .map(|(r, u)| (r.to_string(), self.plan.nodes[*u].key.to_hex()))
+                .collect(),
+            metrics: artifact.metrics.clone(),
+            payloads: Vec::new(),
+            compute_seconds: seconds,
+            tool_version: self.options.tool_version.clone(),
+            created_unix: SystemTime::now()
+                .duration_since(UNIX_EPOCH)
+                .map_or(0, |d| d.as_secs()),
+        };
+        let stored = match node.task.array_storage() {
+            ArrayStorage::Store => self.cache.store(manifest, &artifact),
+            ArrayStorage::Regenerate => {
+                let without_arrays = Artifact {
                     metrics: artifact.metrics.clone(),
                     tables: artifact.tables.clone(),
-                    compute_seconds: seconds,
+                    ..Artifact::default()
                 };
-                (outcome, Some(Arc::new(artifact)))
+                self.cache.store(manifest, &without_arrays)
             }
-            Err(e) => (failed_outcome(NodeStatus::Failed(e.message)), None),
+        };
+        if let Err(e) = stored {
+            self.progress.warn(&format!(
+                "result not cached ({e}); it is still used in this run"
+            ));
+        }
+        let outcome = NodeOutcome {
+            status: NodeStatus::Computed,
+            metrics: artifact.metrics.clone(),
+            tables: artifact.tables.clone(),
+            compute_seconds: seconds,
+        };
+        (outcome, Some(Arc::new(artifact)))
+    }
+
+    /// The arrays of a cached [`ArrayStorage::Regenerate`] entry, recomputed. The recomputed
+    /// metrics must equal the cached ones; if they do not, the entry is replaced and the node
+    /// counts as computed (the third value says an entry was discarded).
+    fn regenerate(
+        &self,
+        node: &PlannedNode,
+        entry: CachedEntry,
+    ) -> (NodeOutcome, Option<Arc<Artifact>>, bool) {
+        match self.run_compute(node) {
+            (Ok(artifact), _) if artifact.metrics == entry.manifest.metrics => {
+                let outcome = NodeOutcome {
+                    status: NodeStatus::Cached,
+                    metrics: entry.manifest.metrics,
+                    tables: entry.artifact.tables,
+                    compute_seconds: entry.manifest.compute_seconds,
+                };
+                (outcome, Some(Arc::new(artifact)), false)
+            }
+            (Ok(artifact), seconds) => {
+                self.progress.warn(&format!(
+                    "{} node '{}' ({}): recomputing its arrays did not reproduce its cached \
+                     metrics; the cache entry is replaced",
+                    node.task.kind(),
+                    node.names.join(", "),
+                    node.key.short()
+                ));
+                if let Err(e) = self.cache.discard(node.task.kind(), &node.key) {
+                    self.progress.warn(&e.to_string());
+                }
+                let (outcome, artifact) = self.store_computed(node, artifact, seconds);
+                (outcome, artifact, true)
+            }
+            (Err(failed), _) => (failed, None, false),
         }
     }
 }

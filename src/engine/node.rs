@@ -50,8 +50,24 @@ pub trait NodeTask: Send + Sync + std::fmt::Debug {
     fn params(&self) -> &[Field];
     /// Estimated peak memory of [`NodeTask::compute`] in bytes, for the memory-aware limit.
     fn memory_estimate(&self) -> u64;
+    /// How the cache keeps this instance's arrays (metrics and tables are always stored).
+    fn array_storage(&self) -> ArrayStorage {
+        ArrayStorage::Store
+    }
     /// Computes the node from its upstream artifacts (in [`NodeSpec::upstream`] order).
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError>;
+}
+
+/// The cache's storage policy for a node's arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArrayStorage {
+    /// Stored (losslessly compressed) and read back when a dependant needs them.
+    Store,
+    /// Not stored: cheaper to recompute than to read (e.g. a synthetic surface generated from
+    /// its key in a second, where its heights take ~100 MB). A dependant that needs them gets them
+    /// by recomputing the node, which must then be deterministic: the engine checks that the
+    /// recomputed metrics equal the cached ones.
+    Regenerate,
 }
 
 /// A node failed to compute; only its dependants fail with it.

@@ -123,7 +123,10 @@ fn height_figure(cache: &Cache, key: &str, node: &str, context: &str) -> MapResu
         .arrays
         .get("heights")
         .and_then(as_map)
-        .ok_or("the entry has no 2-D height array")?;
+        .ok_or(
+            "the entry holds no height array (synthetic surfaces above 1024² points are \
+             regenerated when needed, not cached)",
+        )?;
     let figure = MapFigure {
         title: format!("Heights of surface '{node}'"),
         values: heights,

@@ -4,7 +4,7 @@
 use serde::Deserialize;
 
 use crate::engine::artifact::Artifact;
-use crate::engine::node::{NodeError, NodeTask};
+use crate::engine::node::{ArrayStorage, NodeError, NodeTask};
 use crate::engine::study::{ResolveContext, SpecError};
 use crate::engine::value::Field;
 use crate::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
@@ -31,6 +31,10 @@ pub(crate) const HEIGHTS: &str = "heights";
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
 /// computed statistics change, so stale cache entries are never reused.
 pub const SURFACE_KIND_VERSION: u32 = 5;
+
+/// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
+/// cache but regenerated when a dependant needs their heights.
+pub const REGENERATE_ABOVE_POINTS: usize = 1 << 20;
 
 /// `surface:` — where the heights come from.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -101,6 +105,19 @@ impl NodeTask for SurfaceTask {
 
     fn params(&self) -> &[Field] {
         &self.params
+    }
+
+    /// Synthetic heights above [`REGENERATE_ABOVE_POINTS`] are regenerated from the key (about
+    /// a second at 3512², where they take ~100 MB); smaller ones cost little to keep and stay
+    /// readable by the report and numpy. Measured and twin surfaces depend on files that may
+    /// move, so they are stored.
+    fn array_storage(&self) -> ArrayStorage {
+        match &self.source {
+            SurfaceSource::Synthetic(s) if s.nx * s.ny > REGENERATE_ABOVE_POINTS => {
+                ArrayStorage::Regenerate
+            }
+            _ => ArrayStorage::Store,
+        }
     }
 
     fn memory_estimate(&self) -> u64 {
