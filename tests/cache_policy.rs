@@ -144,3 +144,40 @@ fn a_regenerated_node_must_reproduce_its_cached_metrics() {
     assert_same_tables(&dir.join("out-b"), &dir.join("out-fresh"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Two bodies of one material deform equally: the contact's two deformation maps are one file
+/// in the entry, and both read back.
+#[test]
+fn identical_arrays_of_an_entry_are_stored_once() {
+    let dir = scratch("dedup");
+    let cache_dir = dir.join("cache");
+    let surface = |seed: u32| {
+        format!(
+            "    surface:\n      synthetic: {{grid: [64, 64], size: [0.1 mm, 0.1 mm], sq: 1 um, \
+             hurst: 0.8, correlation_length: 20 um, seed: {seed}}}\n"
+        )
+    };
+    let text = format!(
+        "study: dedup\nnodes:\n  a:\n{}  b:\n{}  c:\n    contact:\n      lower: a\n      \
+         upper: b\n      lower_material: s235jr\n      upper_material: s235jr\n      \
+         nominal_pressures: [20 MPa]\n      fields: true\n",
+        surface(1),
+        surface(2)
+    );
+    let (plan, _) = run(&dir, &text, &cache_dir, "out");
+    let cache = Cache::open(&cache_dir).unwrap();
+    let key = &plan.nodes[2].key;
+    let entry = cache.load("contact", key, true).unwrap().unwrap();
+    let lower = &entry.artifact.arrays["deformation_lower"];
+    assert_eq!(Some(lower), entry.artifact.arrays.get("deformation_upper"));
+    let files = payloads(&cache_dir, "contact", &plan, 2);
+    let upper = files
+        .iter()
+        .find(|(f, _)| f == "deformation_lower.npy.zst")
+        .map(|(_, b)| *b);
+    assert!(upper.is_some(), "{files:?}");
+    let dir_entry = cache.entry_dir("contact", key);
+    assert!(!dir_entry.join("deformation_upper.npy.zst").exists());
+    assert!(dir_entry.join("deformation_lower.npy.zst").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -87,11 +87,14 @@ pub fn cache(args: CacheArgs) -> Result<ExitCode> {
             // Per kind: entries, bytes of array payloads, bytes of everything.
             let mut per_kind: BTreeMap<String, (usize, u64, u64)> = BTreeMap::new();
             for e in list_entries(&cache)? {
+                // Files once each: an array equal to another names the same file.
                 let arrays: u64 = e.manifest.as_ref().map_or(0, |m| {
                     m.payloads
                         .iter()
                         .filter(|p| p.file.ends_with(".npy") || p.file.ends_with(".npy.zst"))
-                        .map(|p| p.bytes)
+                        .map(|p| (p.file.as_str(), p.bytes))
+                        .collect::<BTreeMap<_, _>>()
+                        .values()
                         .sum()
                 });
                 let slot = per_kind.entry(e.kind).or_default();

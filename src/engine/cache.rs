@@ -4,8 +4,9 @@
 //! Layout: `<root>/entries/<kind>/<key[..2]>/<key>/` holds `manifest.json`, `manifest.blake3`
 //! (the manifest's own checksum) and the payloads: `<array>.npy.zst` (a NumPy `.npy` file,
 //! zstd-compressed: lossless, and a contact's mostly-zero pressure and plastic-penetration maps
-//! shrink by orders of magnitude; `zstd -d` gives the `.npy`) and `tables.json`. Entries written
-//! before compression hold plain `<array>.npy` and are read as well. A node kind may keep its
+//! shrink by orders of magnitude; `zstd -d` gives the `.npy`) and `tables.json`; an array equal to
+//! an earlier one of the entry is not written again, its manifest payload names the earlier file.
+//! Entries written before compression hold plain `<array>.npy` and are read as well. A node kind may keep its
 //! arrays out of the cache altogether ([`crate::engine::node::ArrayStorage::Regenerate`]).
 //! An entry is written in `<root>/tmp/` (same filesystem), every file fsynced, then renamed into
 //! place in one step; an entry that already exists counts as success, so concurrent runs need no
@@ -47,6 +48,24 @@ pub struct Payload {
     pub file: String,
     pub bytes: u64,
     pub blake3: String,
+    /// The array this payload holds, when it is not the file's stem: an array identical to an
+    /// earlier one of the entry (e.g. the two deformation maps of a pair of equal materials)
+    /// names that array's file instead of storing the bytes twice.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub array: Option<String>,
+}
+
+impl Payload {
+    /// The array name, if this payload is an array.
+    fn array_name(&self) -> Option<&str> {
+        match &self.array {
+            Some(name) => Some(name),
+            None => self
+                .file
+                .strip_suffix(".npy.zst")
+                .or_else(|| self.file.strip_suffix(".npy")),
+        }
+    }
 }
 
 /// A verified cache entry.
@@ -161,19 +180,17 @@ impl Cache {
             {
                 return Err(corrupt(format!("{}: checksum mismatch", payload.file)));
             }
-            if let Some(name) = payload.file.strip_suffix(".npy.zst") {
+            if let Some(name) = payload.array_name() {
                 if !with_arrays {
                     continue;
                 }
-                let npy_bytes = zstd::stream::decode_all(bytes.as_slice())
-                    .map_err(|e| corrupt(format!("{}: {e}", payload.file)))?;
+                let npy_bytes = if payload.file.ends_with(".zst") {
+                    zstd::stream::decode_all(bytes.as_slice())
+                        .map_err(|e| corrupt(format!("{}: {e}", payload.file)))?
+                } else {
+                    bytes
+                };
                 let array = npy::decode(&npy_bytes).map_err(|e| corrupt(e.to_string()))?;
-                artifact.arrays.insert(name.to_string(), array);
-            } else if let Some(name) = payload.file.strip_suffix(".npy") {
-                if !with_arrays {
-                    continue;
-                }
-                let array = npy::decode(&bytes).map_err(|e| corrupt(e.to_string()))?;
                 artifact.arrays.insert(name.to_string(), array);
             } else if payload.file == "tables.json" {
                 artifact.tables = serde_json::from_slice::<BTreeMap<String, Table>>(&bytes)
@@ -223,9 +240,15 @@ impl Cache {
             let file = format!("{name}.npy.zst");
             let compressed = zstd::stream::encode_all(npy::encode(array).as_slice(), ZSTD_LEVEL)
                 .map_err(io_err(&tmp.join(&file)))?;
-            manifest
-                .payloads
-                .push(write_synced(tmp, &file, &compressed)?);
+            let checksum = blake3::hash(&compressed).to_hex().to_string();
+            let payload = match manifest.payloads.iter().find(|p| p.blake3 == checksum) {
+                Some(same) => Payload {
+                    array: Some(name.clone()),
+                    ..same.clone()
+                },
+                None => write_synced(tmp, &file, &compressed)?,
+            };
+            manifest.payloads.push(payload);
         }
         if !artifact.tables.is_empty() {
             let bytes = serde_json::to_vec(&artifact.tables).map_err(|e| CacheError::Io {
@@ -336,6 +359,7 @@ fn write_synced(dir: &Path, file: &str, bytes: &[u8]) -> Result<Payload, CacheEr
         file: file.to_string(),
         bytes: bytes.len() as u64,
         blake3: blake3::hash(bytes).to_hex().to_string(),
+        array: None,
     })
 }
 
