@@ -162,6 +162,18 @@ fn substituted_strings_are_checked_like_whole_values() {
         }
         assert!(e.contains("nodes.s.surface.synthetic.sq"), "{e}");
     }
+    // Material names: a reference inside the name.
+    let material = |grade: &str| {
+        format!(
+            "study: m\nparameters:\n  product:\n    grade: [{grade}]\nnodes:\n  s:\n    surface:\n      \
+             synthetic: {{grid: [16, 16], size: [0.1 mm, 0.1 mm], sq: 1 um, hurst: 0.8,\n                  \
+             correlation_length: 20 um, seed: 1}}\n  c:\n    contact:\n      lower: s\n      \
+             lower_material: \"s${{grade}}jr\"\n      nominal_pressures: [20 MPa]\n"
+        )
+    };
+    assert!(plan(&dir, &material("235")).is_ok());
+    let e = plan(&dir, &material("236")).unwrap_err();
+    assert!(e.contains("unknown material 's236jr'"), "{e}");
     // A text field whose value reads like a number and an unknown unit is still a path.
     let p = plan(
         &dir,

@@ -147,10 +147,11 @@ impl<'de> Visitor<'de> for NameVisitor {
         f.write_str("a material name such as 's235jr'")
     }
 
-    /// A `${param}` reference becomes a `Param<MaterialName>` by reading it back as a YAML scalar
-    /// (a JSON string is valid YAML); anything else is the literal name.
+    /// A name holding a `${param}` reference (whole, or inside: `s${grade}jr`) becomes a
+    /// `Param<MaterialName>` by reading it back as a YAML scalar (a JSON string is valid YAML);
+    /// anything else is the literal name.
     fn visit_str<E: de::Error>(self, v: &str) -> Result<Self::Value, E> {
-        if v.trim_start().starts_with("${") {
+        if v.contains("${") {
             let scalar = serde_json::to_string(v).map_err(E::custom)?;
             serde_saphyr::from_str::<Param<MaterialName>>(&scalar)
                 .map(NameSource::Reference)
