@@ -25,10 +25,9 @@
 //! of at most one point, on which `t = g − δ` vanishes: the first step from the rigid-plastic
 //! start, taken without transforming that zero direction), the step is taken along the projected
 //! gradient `e = g − δ` on the free set and at the points that would re-enter, with its exact
-//! length for the unconstrained quadratic, `τ = Σ e² / eᵀ K e` (one more forward FFT). The
-//! earlier fallback `τ = 1/K₀₀`, exact for one isolated point, overshot by 3–5× when thousands of
-//! points re-entered at once, and the iterate fell back to contact everywhere (half the grid free
-//! for two or three iterations; measured on the rough benchmark at 256²–2048²).
+//! length for the unconstrained quadratic, `τ = Σ e² / eᵀ K e` (one more forward FFT). (A step
+//! `1/K₀₀`, exact for one isolated point, overshoots when thousands of points re-enter at once;
+//! see `docs/contact-solver-design.md`.)
 //!
 //! Convolutions: the forward FFT of `t` gives `tᵀ K t` by Parseval, `Σ_q K̂(q) |t̂(q)|²`, so the
 //! step needs no inverse transform unless the load correction term does. After a linear step the
@@ -63,12 +62,9 @@ use crate::fft2::FftFailure;
 /// (from zero pressure or from saturation) exceed this fraction of it. Polonsky & Keer restart at
 /// every entry; on rough surfaces a few points enter in almost every step until the very end, so
 /// that rule keeps the iteration at steepest descent. A handful of new points perturbs the
-/// conjugacy only slightly. Measured on the 20 MPa rough benchmark (benches/contact_error.rs),
-/// 1024² at ε = 1e-5: 68 → 32 iterations; 512² cold from 0.5 % to 95 % of `p_lim`: 35–198 →
-/// 26–60 iterations. Never restarting (or restarting at 10 %) is as good there, but takes the
-/// saturated ground pairs of `studies/ground-validation.yaml` from 3.6k to 5–6k iterations, as
-/// more load-controlled solves stall and hand over to the approach search; at 1 % they are
-/// unchanged (3.6k).
+/// conjugacy only slightly; many new points (saturated rough contacts) do, and a higher fraction
+/// makes more load-controlled solves stall. The measurements behind 1 % are in
+/// `docs/contact-solver-design.md`.
 const RESTART_FRACTION: f64 = 0.01;
 
 /// Under load control the step is `τ = Σ_F g t / (tᵀ K t − Σ_F (K t) Σ_F t / |F|)` (Polonsky &
@@ -76,34 +72,24 @@ const RESTART_FRACTION: f64 = 0.01;
 /// computed only when `|Σ_F t|` exceeds this fraction of `Σ_F |t|` (after the free set changed
 /// under a conjugate direction). Below it the step is taken without the term, and the load it
 /// moves (`τ Σ_F t`) is restored with the corrections of the step, which a changed free set
-/// brings anyway: an inverse FFT for `K t` is then mostly spent on a step whose displacement is
-/// recomputed all the same. Measured: with 1e-10, 1e-3 and 1e-2 every iteration count is the
-/// same (rough benchmark 256² and 1024² at ε = 1e-3 … 1e-9, studies/convergence.yaml 896,
-/// ground-validation 3619), and the FFT pairs per iteration of the 1024² benchmark at ε = 1e-5
-/// fall from 1.80 to 1.70 and 1.59. From 1e-2 to 1e-1 (session 6): iterations unchanged on the
-/// benchmark (±1) and in both studies (894, 3481; A/A₀ identical, θ and the approach within
-/// 2e-8), FFT pairs per iteration down by 0.05–0.15 at ε = 1e-3 (warm 1024²: 1.74 → 1.56) and
-/// by 0.01–0.08 at 1e-5 and 1e-7. At 0.3 the convergence study falls to 786 iterations but the
-/// ground study rises to 3543. Leaving the term out altogether took the saturated ground
-/// contacts of the convergence study from 896 to 1309 iterations.
+/// brings anyway: an inverse FFT for `K t` would mostly be spent on a step whose displacement is
+/// recomputed all the same. The threshold leaves iteration counts unchanged and saves FFTs;
+/// leaving the term out altogether costs iterations on saturated contacts
+/// (`docs/contact-solver-design.md`).
 const MEAN_FREE_DIRECTION: f64 = 0.1;
 
 /// Nor is the load-control term computed when the last step projected or re-entered more than
 /// this fraction of the free set and no point is saturated: the step will most likely be
 /// corrected again, and its displacement recomputed. On an elastic contact loaded from the
 /// uniform start the contact area shrinks by projection over the first steps, and `Σ_F t` of
-/// the conjugate direction is large in every one of them (Hertz on the benchmark at 64² and
-/// ε = 1e-3: the term was computed in 7 of 9 steps. At 64²–512² and ε = 1e-3: 1.85–2.0 FFT pairs
-/// per iteration before, 1.65–1.7 after; iterations the same ±1 at every tolerance, and 3 fewer
-/// at 512², ε = 1e-7). With saturated points it is always computed: skipping it there sent more
-/// of the saturated ground pairs of `studies/ground-validation.yaml` to the approach search
-/// (3481 → 3911 iterations, measured before the load restoration ranked the points out of
-/// contact by their gap).
+/// the conjugate direction is large in every one of them. With saturated points it is always
+/// computed: skipping it there sends saturated contacts to the approach search
+/// (`docs/contact-solver-design.md`).
 const CORRECTED_SHARE: f64 = 0.05;
 
 /// Two fall-backs of the load restoration are the same state when their free-set sizes and
-/// largest residuals agree within this fraction. (Exact equality of the free-set size missed
-/// cycles that moved one point per period, which then ran for `stall_iterations`.)
+/// largest residuals agree within this fraction: a cycle may move a point per period, so exact
+/// equality of the free-set size would not recognise it.
 const CYCLE_MATCH: f64 = 0.02;
 
 /// The state of `u` at the start of an iteration.

@@ -164,15 +164,11 @@ impl Workspace {
     /// would form next. `None` (nothing changed) when the ranking declines (more than
     /// `N/16` points, see `selection::lowest_ranks`) or too few points are out of contact.
     ///
-    /// It replaces, where it applies, the uniform upward shift, which gave every point out of
-    /// contact the same pressure whatever its gap: the free set became most of the grid, and the
-    /// load-controlled iteration cycled between such fall-backs until the cycle check handed
-    /// the solve to the approach search. Measured: `studies/ground-validation.yaml` 3481 → 657
-    /// iterations (the steps of 50 iterations or more, 33 of 80, now one; the largest 132 → 64),
-    /// `studies/convergence.yaml` 894 → 365; the 256² and 512² load sweeps of the benchmark
-    /// (0.5–95 % of `p_lim`) are unchanged but for two loads (+3 and +12 iterations), its 20 MPa
-    /// rows and Hertz unchanged. This branch runs 1.7 times per load step in the ground study
-    /// (136 times in 80 steps); the ranking's buffers are kept in the workspace.
+    /// Ranking by gap matters: a uniform upward shift gives every point out of contact the same
+    /// pressure whatever its gap, the free set becomes most of the grid and the load-controlled
+    /// iteration cycles between such fall-backs. The branch runs about twice per load step on
+    /// saturated contacts, so the ranking's buffers are kept in the workspace (measurements:
+    /// `docs/contact-solver-design.md`).
     fn spread_by_gap(&mut self, rest: f64, plim: f64) -> Option<Rebalanced> {
         if !plim.is_finite() {
             return None;

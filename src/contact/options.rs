@@ -66,9 +66,7 @@ pub struct SolverOptions {
     /// A solve that has not reduced its largest residual below 0.9 × its best value for this
     /// many iterations is `Stalled` (default 60: a load-controlled CG that stalls with almost all
     /// contact points saturated hands over to the approach search early instead of after
-    /// hundreds of idle iterations; on the 256²–512² ground pairs of `studies/convergence.yaml`
-    /// this cut the first load step from ~450 to ~110 iterations and a contact from 4–19 s to
-    /// 0.5–1.9 s, with identical results to 4 digits).
+    /// hundreds of idle iterations; measurements in `docs/contact-solver-design.md`).
     pub stall_iterations: usize,
     /// Algorithm choice.
     pub strategy: SolveStrategy,

@@ -7,19 +7,15 @@
 //!   them, a serial one gathers them with their indices into buffers the caller keeps, and the
 //!   `k + 1` smallest in the order of `(value, index)` are selected among those few. If the
 //!   sample misled (fewer than `k + 1` values below the bound, or far more), it declines and the
-//!   caller falls back on [`kth_smallest`]. Measured with per-phase timers on the 256² rough
-//!   benchmark (65 536 gaps, the 0.5 % rank; the gather then in parallel), the whole
-//!   rigid-plastic start fell from about 380 µs to 110–165 µs per cold solve.
+//!   caller falls back on [`kth_smallest`].
 //! * [`kth_smallest`], for any rank: radix selection on the order-preserving integer keys of the
 //!   values (the IEEE 754 total order of `f64::total_cmp`). The leading bits shared by the
 //!   smallest and the largest key are those of every key; below them each pass counts, in
 //!   parallel, the next [`DIGIT_BITS`] bits of the keys that share the digits fixed so far, and
 //!   fixes the digit whose bucket holds the wanted rank. Once that bucket holds at most
 //!   [`GATHER`] values they are gathered and the rank is selected among them (up to [`GATHER`]
-//!   values in all are copied and selected in directly). Measured on 2 cores against a copy and
-//!   `select_nth_unstable` (gaps spread over a few binades, the 0.5 % rank of the 20 MPa
-//!   benchmark; best of 5): 2²⁰ values 2.7 → 1.8 ms, 2²⁴ values (a 4096² grid) 104 → 35 ms;
-//!   2¹⁶ values 0.11 ms either way.
+//!   values in all are copied and selected in directly). Faster than a copy and
+//!   `select_nth_unstable` from 2²⁰ values on (timings: `docs/contact-solver-design.md`).
 //!
 //! Counts are exact integers and the results are values or indices, so neither depends on the
 //! thread count.

@@ -17,12 +17,12 @@
 //!   plastic) was confirmed from the KE 2002 abstract.
 //! * KE 2002 area fits A/A_c = 0.93 x^1.136 (1 < x ≤ 6), 0.94 x^1.146 (6 < x ≤ 110), 2x (x > 110):
 //!   NOT confirmed by the search tool (no primary or secondary text found); taken from the
-//!   project reference `friction_models.md`, which marks them \[check\].
+//!   project's reference notes, which mark them unchecked (status: docs/friction-models.md).
 //! * KE 2003 adhesion fits (J. Colloid Interface Sci. 261 (2003) 372) F_s/(2πRΔγ) =
-//!   a x^b (ε/ω_c)^c: NOT confirmed by the search tool; taken from the project reference. The
+//!   a x^b (ε/ω_c)^c: NOT confirmed by the search tool; taken from the project's reference notes. The
 //!   elastic piece (0.98, 0.298, −0.29) was checked independently in the test suite against a
 //!   direct DMT/Lennard-Jones integration over the Hertz gap (Johnson 1985 §3.4): agreement within
-//!   7.3 % for ω/ε = 2.5 … 2500, as the reference's consistency note expects ("a few per cent");
+//!   7.3 % for ω/ε = 2.5 … 2500, within the few per cent a fit of that form can be expected to hold;
 //!   the elastic-plastic pieces only nearly join it at x = 1 and 6 (checked for ε/ω_c = 0.004).
 //!   Beyond x = 110 no fit is published; [`AdhesionBeyondFits`] selects holding the x = 110 value
 //!   (default) or extending the 6–110 fit.
@@ -39,7 +39,7 @@
 //! * CEB (Chang, Etsion & Bogy 1987/88): Hertz for x ≤ 1; above, a volume-conserving plastic cap
 //!   A = πRω(2 − ω_c/ω), P = K H A, i.e. A/A_c = 2x − 1, P/P_c = (3/2)(2x − 1). Only elastic
 //!   asperities (x ≤ 1) carry tangential load. CEB's own Q_max comes from a first-yield analysis
-//!   of the Hamilton stress field that is not restated in the reference; the baseline here uses
+//!   of the Hamilton stress field that no source available to the project restates; the baseline uses
 //!   the KE elastic fit 0.52 x^0.982 for x ≤ 1 and 0 above (so the baseline isolates the effect
 //!   of "only elastic asperities carry tangential load").
 

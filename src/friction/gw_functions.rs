@@ -10,13 +10,13 @@ use super::quadrature::{breakpoints, integrate, pieces_graded_at_start, Quadratu
 pub(crate) const INV_SQRT_2PI: f64 = 0.398_942_280_401_432_7;
 
 /// Number of standard deviations beyond which the Gaussian is negligible (φ < 1e-300 at 40:
-/// exp(−800) underflows). Numerical note 3 of the reference.
+/// exp(−800) underflows; docs/friction-models.md, "Numerics of the statistical models").
 pub(crate) const GAUSSIAN_CUT: f64 = 40.0;
 
 /// Standard deviations of the Gaussian at which integrals get breakpoints (peak and flanks).
 pub(crate) const GAUSSIAN_FEATURES: [f64; 9] = [-8.0, -4.0, -2.0, -1.0, 0.0, 1.0, 2.0, 4.0, 8.0];
 
-/// Relative tolerance of every statistical integral (numerical note 5 of the reference).
+/// Relative tolerance of every statistical integral (docs/friction-models.md, "Numerics").
 pub const INTEGRAL_REL_TOL: f64 = 1e-10;
 
 /// Normal density with zero mean and standard deviation `std` at `z`.

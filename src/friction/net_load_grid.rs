@@ -1,5 +1,5 @@
 //! The net load P(d*) − F_s(d*) of a statistical model on a grid of the dimensionless separation
-//! d*, evaluated lazily. The separation solve of [`super::static_friction`] needs the sign of
+//! d*, evaluated lazily. The separation solve of [`mod@super::static_friction`] needs the sign of
 //! P − F_s − F at every grid point (to find the brackets and count the roots); for a compressive
 //! load F > 0 most points are decided by the contact load P alone, from two bounds:
 //!

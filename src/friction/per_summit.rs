@@ -1,5 +1,5 @@
 //! Per-summit (deterministic) static friction: the single-asperity laws applied to identified
-//! summits of a measured or synthetic surface (reference §10, workflow stage 3).
+//! summits of a measured or synthetic surface (docs/friction-models.md, "Per summit").
 //!
 //! Input per summit: radius of curvature R_i (m) and interference ω_i (m) taken from the contact
 //! solution at the summit position (ω_i ≤ 0: not in contact, gap g_i = −ω_i). With

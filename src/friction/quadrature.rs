@@ -6,8 +6,7 @@
 //! `Σ err ≤ rel_tol · |Σ value|` (or `Σ err ≤ abs_floor`, which only matters for an integral that
 //! is zero to within underflow).
 //! A piece may be *graded at its left end*: x = a + (b − a) u^k (k = 3), which turns an endpoint
-//! behaviour x^b (b > −1) into u^{k(b+1)−1}, smooth enough for Gauss rules (numerical note 2 of
-//! the reference).
+//! behaviour x^b (b > −1) into u^{k(b+1)−1}, smooth enough for Gauss rules.
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;

@@ -1,4 +1,4 @@
-//! The static friction coefficient of the statistical models (KE 2004 §8 of the reference):
+//! The static friction coefficient of the statistical models (Kogut–Etsion 2004):
 //! solve **F = P(d*) − F_s(d*)** for the separation d*, then **μ_s = Q_max(d*) / F**.
 //!
 //! F(d*) → 0⁻ as d* → ∞ (adhesion outlasts contact) and has a minimum, the pull-off load. The net

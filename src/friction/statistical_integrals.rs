@@ -14,7 +14,7 @@
 //! N   = η A_n ∫_{d*}^∞ φ* dz*
 //! ```
 //!
-//! with h = ε + σ(d* − z*) the gap of a non-contacting summit. Numerics (reference §11): contact
+//! with h = ε + σ(d* − z*) the gap of a non-contacting summit. Numerics (docs/friction-models.md): contact
 //! integrals are taken in x, split at x = 1, 6, 110 and at the Gaussian peak and flanks
 //! (z* = 0, ±s, ±2s, ±4s, ±8s), graded at x = 0 (x = x₁u³, so x^b with b < 1 is smooth in u), cut
 //! at z* = max(d*, 0) + 40s (φ* < 1e-300 beyond); the non-contacting integral uses h = ε(1 + t)

@@ -1,5 +1,5 @@
 //! Summits (asperity peaks) of a height map: 8-neighbour local maxima with their height, slope and
-//! curvature, for the deterministic per-asperity friction stage (friction_models.md §10).
+//! curvature, for the deterministic per-summit friction stage (docs/friction-models.md).
 //!
 //! **Definition.** Points are ordered by height, ties broken by raster index (`iy·nx + ix`, the earlier
 //! point counts as higher). A summit is a valid point that is higher in this order than each of its 8

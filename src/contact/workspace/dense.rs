@@ -10,7 +10,7 @@
 //!   sweep: the smallest gap is the smallest row minimum, and only the blocks whose rows reach
 //!   below `δ` are scanned for entering points.
 //! * When `u` changed otherwise (a pending update `u ← u − τ w` with a `w` kept for the step),
-//!   the pass sweeps the grid as before.
+//!   the pass sweeps the whole grid.
 //! * Both read the initial gap of the points out of contact from `g0_out` (`g₀` there, `+∞` at
 //!   the contact points; kept current by the pressure update and the rebuild of the lists), one
 //!   stream of 8 bytes per point instead of `g₀` and `p`.

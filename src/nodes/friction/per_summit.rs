@@ -1,5 +1,5 @@
 //! `method: per_summit`: the single-asperity laws per summit of the topography a contact node
-//! solved (reference §10, workflow stage 3).
+//! solved (docs/friction-models.md, "Per summit").
 //!
 //! * **Summits**: 8-neighbour maxima of the contact's composite height z₁ + z₂ (array
 //!   `composite_height`, stored with `fields: true`), periodic neighbourhoods when the contact was

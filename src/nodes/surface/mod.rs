@@ -107,7 +107,7 @@ impl NodeTask for SurfaceTask {
         &self.params
     }
 
-    /// Synthetic heights above [`REGENERATE_ABOVE_POINTS`] are regenerated from the key (about
+    /// Synthetic heights above `REGENERATE_ABOVE_POINTS` (1024²) are regenerated from the key (about
     /// a second at 3512², where they take ~100 MB); smaller ones cost little to keep and stay
     /// readable by the report and numpy. Measured and twin surfaces depend on files that may
     /// move, so they are stored.
