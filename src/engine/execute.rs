@@ -4,7 +4,7 @@
 //! within a level they run in parallel on the rayon pool, each first acquiring its memory estimate
 //! from a budget so large nodes do not run all at once. A failing node fails only its dependants.
 
-use std::collections::{BTreeMap, HashSet};
+use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
@@ -15,7 +15,6 @@ use crate::engine::artifact::{Artifact, Table};
 use crate::engine::cache::{Cache, CacheError, CachedEntry, Manifest};
 use crate::engine::node::{ArrayStorage, NodeError};
 use crate::engine::plan::{Plan, PlannedNode};
-use crate::engine::shard::upstream_closure;
 use crate::engine::value::Field;
 
 /// Receives progress events; the CLI draws a progress bar, tests ignore them.
@@ -135,8 +134,7 @@ pub fn execute_nodes(
             "removed {stale} temporary cache folder(s) left by interrupted runs"
         ));
     }
-    let all: HashSet<usize> = (0..plan.nodes.len()).collect();
-    let needed = upstream_closure(plan, nodes, &all);
+    let needed = plan.upstream_closure(nodes, None);
     let n = plan.nodes.len();
     let mut is_needed = vec![false; n];
     for &i in &needed {

@@ -9,8 +9,6 @@ use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
 use std::sync::Arc;
 
-use petgraph::graph::{DiGraph, NodeIndex};
-
 use crate::engine::hash::{node_key, NodeKey};
 use crate::engine::node::{NodeSpec, NodeTask};
 use crate::engine::study::{ResolveContext, Scenarios, Study, StudyError};
@@ -38,8 +36,6 @@ pub struct Plan {
     pub scenario_nodes: Vec<Vec<usize>>,
     /// Parameters that no node uses (a likely mistake, reported as a warning).
     pub unused_parameters: Vec<String>,
-    /// The instance DAG (edge: upstream → downstream, weighted by role).
-    pub graph: DiGraph<usize, &'static str>,
 }
 
 impl Plan {
@@ -127,36 +123,36 @@ impl Plan {
             .filter(|(_, u)| !**u)
             .map(|(n, _)| n.clone())
             .collect();
-        let mut graph = DiGraph::new();
-        let indices: Vec<NodeIndex> = (0..nodes.len()).map(|i| graph.add_node(i)).collect();
-        for (i, node) in nodes.iter().enumerate() {
-            for (role, u) in &node.upstream {
-                graph.add_edge(indices[*u], indices[i], *role);
-            }
-        }
         Ok(Self {
             scenarios,
             node_names,
             nodes,
             scenario_nodes,
             unused_parameters,
-            graph,
         })
     }
 
     /// Instance indices needed to produce `tables`: the instances writing to those tables and
     /// everything upstream of them. Sorted (upstream first).
     pub fn needed_for(&self, tables: &[String]) -> Vec<usize> {
-        let mut needed: HashSet<usize> = HashSet::new();
-        let mut stack: Vec<usize> = (0..self.nodes.len())
+        let roots: Vec<usize> = (0..self.nodes.len())
             .filter(|&i| tables.iter().any(|t| t == self.nodes[i].task.table()))
             .collect();
+        self.upstream_closure(&roots, None)
+    }
+
+    /// `roots` and every instance upstream of them (restricted to `within` when given), sorted
+    /// (upstream first: instance indices are topologically ordered): the one walk of the
+    /// instance DAG (edges: each node's `upstream` list).
+    pub fn upstream_closure(&self, roots: &[usize], within: Option<&HashSet<usize>>) -> Vec<usize> {
+        let mut seen: HashSet<usize> = HashSet::new();
+        let mut stack: Vec<usize> = roots.to_vec();
         while let Some(i) = stack.pop() {
-            if needed.insert(i) {
+            if within.is_none_or(|w| w.contains(&i)) && seen.insert(i) {
                 stack.extend(self.nodes[i].upstream.iter().map(|(_, u)| *u));
             }
         }
-        let mut v: Vec<usize> = needed.into_iter().collect();
+        let mut v: Vec<usize> = seen.into_iter().collect();
         v.sort_unstable();
         v
     }

@@ -95,7 +95,7 @@ impl ShardPlan {
             .copied()
             .filter(|i| !has_dependant.contains(i))
             .map(|sink| {
-                let closure = upstream_closure(plan, &[sink], &needed_set);
+                let closure = plan.upstream_closure(&[sink], Some(&needed_set));
                 let total = closure.iter().map(|&i| cost(i)).sum();
                 (total, plan.nodes[sink].key.to_hex(), closure)
             })
@@ -140,21 +140,6 @@ impl ShardPlan {
     pub fn nodes(&self, shard: Shard) -> &[usize] {
         self.shards.get(shard.index).map_or(&[], Vec::as_slice)
     }
-}
-
-/// `roots` and everything upstream of them, restricted to `within`, sorted (upstream first:
-/// plan indices are topologically ordered).
-pub fn upstream_closure(plan: &Plan, roots: &[usize], within: &HashSet<usize>) -> Vec<usize> {
-    let mut seen: HashSet<usize> = HashSet::new();
-    let mut stack: Vec<usize> = roots.to_vec();
-    while let Some(i) = stack.pop() {
-        if within.contains(&i) && seen.insert(i) {
-            stack.extend(plan.nodes[i].upstream.iter().map(|(_, u)| *u));
-        }
-    }
-    let mut v: Vec<usize> = seen.into_iter().collect();
-    v.sort_unstable();
-    v
 }
 
 #[cfg(test)]
