@@ -3,8 +3,8 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use crate::engine::study::located::SourceLocation;
-use crate::engine::study::param::did_you_mean;
+use crate::engine::syntax::did_you_mean;
+use crate::engine::syntax::SourceLocation;
 
 /// A problem in a study file.
 #[derive(Debug, Clone, PartialEq)]

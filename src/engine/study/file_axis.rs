@@ -14,7 +14,7 @@ use std::path::Path;
 
 use indexmap::IndexMap;
 
-use crate::engine::study::raw::RawValue;
+use crate::engine::syntax::RawValue;
 use crate::engine::value::ParamValue;
 
 /// What a `glob` axis yields.

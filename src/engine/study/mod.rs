@@ -3,18 +3,18 @@
 
 mod error;
 mod file_axis;
-mod located;
 mod overrides;
-mod param;
 mod parameters;
-mod raw;
+mod summary_spec;
 
+pub use crate::engine::resolve::ResolveContext;
+pub use crate::engine::syntax::{
+    did_you_mean, FromParamValue, Located, Param, RawValue, SourceLocation, SpannedName, SpecError,
+};
 pub use error::StudyError;
-pub use located::{Located, SourceLocation, SpannedName};
 pub use overrides::{OverrideSyntaxError, ParameterOverride};
-pub use param::{did_you_mean, FromParamValue, Param, ResolveContext, SpecError};
 pub use parameters::{Axis, LatinHypercube, ParameterError, ParameterSpace, Scenarios};
-pub use raw::RawValue;
+pub use summary_spec::{split_metric, SummarySpec, RUN_TIME_METRIC};
 
 use std::path::{Path, PathBuf};
 
@@ -23,7 +23,6 @@ use petgraph::graph::DiGraph;
 use serde::Deserialize;
 
 use crate::engine::node::NodeSpec;
-use crate::engine::summary::{split_metric, SummarySpec, RUN_TIME_METRIC};
 
 /// Name of the scenarios table, always available in `outputs`.
 pub const SCENARIOS_TABLE: &str = "scenarios";

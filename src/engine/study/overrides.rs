@@ -8,8 +8,8 @@
 use std::str::FromStr;
 
 use crate::engine::study::parameters::{Axis, ParameterSpace};
-use crate::engine::study::raw::RawValue;
 use crate::engine::study::{did_you_mean, Study, StudyError};
+use crate::engine::syntax::RawValue;
 
 /// One `NAME=VALUE` override of a parameter axis.
 #[derive(Debug, Clone, PartialEq)]

@@ -7,8 +7,8 @@ use indexmap::IndexMap;
 use rand_chacha::rand_core::{Rng, SeedableRng};
 use serde::Deserialize;
 
-use crate::engine::study::located::{Located, SourceLocation};
-use crate::engine::study::raw::RawValue;
+use crate::engine::syntax::RawValue;
+use crate::engine::syntax::{is_parameter_name, Located, SourceLocation};
 use crate::engine::value::ParamValue;
 use crate::units::Dimension;
 
@@ -213,7 +213,7 @@ fn axis_values(
         parameter: name.to_string(),
         message,
     };
-    if !is_identifier(name) {
+    if !is_parameter_name(name) {
         return Err(err(String::from(
             "parameter names must start with a letter or '_' and contain only letters, digits and '_'",
         )));
@@ -244,7 +244,7 @@ fn axis_values(
                 other => {
                     return Err(err(format!(
                         "unknown axis form '{other}'{}; use range, linspace, logspace or glob",
-                        crate::engine::study::param::did_you_mean(
+                        crate::engine::syntax::did_you_mean(
                             other,
                             ["range", "linspace", "logspace", "glob"].into_iter()
                         )
@@ -262,12 +262,6 @@ fn axis_values(
         return Err(err(String::from("an axis needs at least one value")));
     }
     Ok(values)
-}
-
-fn is_identifier(name: &str) -> bool {
-    let mut chars = name.chars();
-    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
-        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
 fn range(args: &[ParamValue]) -> Result<Vec<ParamValue>, String> {
