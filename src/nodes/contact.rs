@@ -5,10 +5,14 @@
 //! composite height z₁ + z₂ the contact was solved on are stored as arrays in the cache (the
 //! per-summit `friction` method reads them).
 
-use ndarray::Ix2;
 use serde::Deserialize;
 
+use super::contact_view::{
+    AREA_FRACTION, COMPOSITE_HEIGHT, DEFORMATION_LOWER, DEFORMATION_UPPER, DX, DY, GAP,
+    NOMINAL_PRESSURE, PLASTIC_PENETRATION, PRESSURE,
+};
 use super::material_spec::MaterialSpec;
+use super::surface_view::SurfaceView;
 use crate::contact::{
     BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
     FieldRequest, SolverOptions,
@@ -16,15 +20,12 @@ use crate::contact::{
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
 use crate::engine::study::{Param, ResolveContext, SpannedName, SpecError};
-use crate::engine::value::{Field, Value};
+use crate::engine::value::Field;
 use crate::surface::HeightMap;
 use crate::units::{format_number, Dimension, Pressure, Quantity};
 
 pub(crate) const KIND: &str = "contact";
 pub(crate) const TABLE: &str = "contacts";
-/// Name of the composite height array z₁ + z₂ (m, `[[iy, ix]]`) the contact was solved on,
-/// stored with `fields: true`.
-pub(crate) const COMPOSITE_HEIGHT: &str = "composite_height";
 
 /// Implementation version of the `contact` kind; bump whenever its numerics change.
 pub const CONTACT_KIND_VERSION: u32 = 18;
@@ -252,19 +253,7 @@ pub struct ContactTask {
 }
 
 fn height_map(input: &Artifact, role: &str) -> Result<HeightMap, NodeError> {
-    let fail = |m: String| NodeError::new(format!("{role} surface: {m}"));
-    let heights = input
-        .arrays
-        .get(super::surface::HEIGHTS)
-        .ok_or_else(|| fail(String::from("no height array")))?
-        .clone()
-        .into_dimensionality::<Ix2>()
-        .map_err(|e| fail(e.to_string()))?;
-    let spacing = |name: &str| match input.metric(name).map(|f| &f.value) {
-        Some(Value::Float(v)) => Ok(*v),
-        _ => Err(fail(format!("no {name}"))),
-    };
-    HeightMap::new(heights, spacing("dx")?, spacing("dy")?).map_err(|e| fail(e.to_string()))
+    SurfaceView::of(input, role)?.height_map(role)
 }
 
 impl NodeTask for ContactTask {
@@ -353,16 +342,8 @@ impl NodeTask for ContactTask {
                 material.composite_modulus(),
                 Dimension::Pressure,
             ),
-            Field::float(
-                "nominal_pressure",
-                last.nominal_pressure,
-                Dimension::Pressure,
-            ),
-            Field::float(
-                "area_fraction",
-                last.area_fraction,
-                Dimension::Dimensionless,
-            ),
+            Field::float(NOMINAL_PRESSURE, last.nominal_pressure, Dimension::Pressure),
+            Field::float(AREA_FRACTION, last.area_fraction, Dimension::Dimensionless),
             Field::float(
                 "mean_contact_pressure",
                 last.mean_contact_pressure,
@@ -381,8 +362,8 @@ impl NodeTask for ContactTask {
                 Dimension::Length,
             ),
             Field::float("approach", last.approach, Dimension::Length),
-            Field::float("dx", dx, Dimension::Length),
-            Field::float("dy", dy, Dimension::Length),
+            Field::float(DX, dx, Dimension::Length),
+            Field::float(DY, dy, Dimension::Length),
             Field::int("iterations", last.iterations as i64),
             Field::float("residual", last.residuals.max(), Dimension::Dimensionless),
         ];
@@ -446,11 +427,11 @@ impl NodeTask for ContactTask {
         }
         if let Some(f) = &last.fields {
             let named = [
-                ("pressure", &f.pressure),
-                ("gap", &f.gap),
-                ("deformation_lower", &f.deformation_first),
-                ("deformation_upper", &f.deformation_second),
-                ("plastic_penetration", &f.plastic_penetration),
+                (PRESSURE, &f.pressure),
+                (GAP, &f.gap),
+                (DEFORMATION_LOWER, &f.deformation_first),
+                (DEFORMATION_UPPER, &f.deformation_second),
+                (PLASTIC_PENETRATION, &f.plastic_penetration),
             ];
             for (name, array) in named {
                 if let Some(a) = array {

@@ -5,9 +5,11 @@
 //! both the engine and the numerics.
 
 mod contact;
+pub(crate) mod contact_view;
 mod friction;
 mod material_spec;
 mod surface;
+pub(crate) mod surface_view;
 
 use std::sync::Arc;
 

@@ -16,8 +16,6 @@
 
 use std::collections::BTreeMap;
 
-use ndarray::{ArrayView2, Ix2};
-
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::NodeError;
 use crate::engine::value::Field;
@@ -28,7 +26,8 @@ use crate::friction::{
 };
 use crate::units::Dimension;
 
-use super::{beyond_fit_field, coefficient_fields, float_metric, FrictionModel, FrictionTask};
+use super::{beyond_fit_field, coefficient_fields, FrictionModel, FrictionTask};
+use crate::nodes::contact_view::ContactView;
 
 /// How the section is read.
 #[derive(Debug, Clone)]
@@ -37,18 +36,6 @@ pub(crate) struct Section {
     pub periodic: bool,
     pub connectivity: Connectivity,
     pub spots_table: bool,
-}
-
-fn field<'a>(contact: &'a Artifact, name: &str) -> Result<ArrayView2<'a, f64>, NodeError> {
-    let array = contact.arrays.get(name).ok_or_else(|| {
-        NodeError::new(format!(
-            "the contact node stored no '{name}' array: run it with `fields: true`"
-        ))
-    })?;
-    array
-        .view()
-        .into_dimensionality::<Ix2>()
-        .map_err(|e| NodeError::new(format!("contact array {name}: {e}")))
 }
 
 impl FrictionTask {
@@ -80,11 +67,9 @@ pub(super) fn compute(
     metrics: &mut Vec<Field>,
     tables: &mut BTreeMap<String, Table>,
 ) -> Result<(), NodeError> {
-    let pressure = field(contact, "pressure")?;
-    let gap = field(contact, "gap")?;
-    let height = field(contact, crate::nodes::contact::COMPOSITE_HEIGHT)?;
-    let dx = float_metric(contact, "dx", "contact")?;
-    let dy = float_metric(contact, "dy", "contact")?;
+    let fields = ContactView::of(contact)?;
+    let (pressure, gap, height) = (fields.pressure, fields.gap, fields.composite_height);
+    let (dx, dy) = (fields.dx, fields.dy);
     let fail = |what: &str, e: crate::friction::FrictionError| {
         NodeError::new(format!("per-spot friction, {what}: {e}"))
     };
@@ -116,7 +101,7 @@ pub(super) fn compute(
         result.load_beyond_fit,
         result.total_normal_force,
     ));
-    let nominal_pressure = float_metric(contact, "nominal_pressure", "contact")?;
+    let nominal_pressure = fields.nominal_pressure;
     push_forces(
         metrics,
         &result,

@@ -24,7 +24,7 @@
 
 use std::collections::BTreeMap;
 
-use ndarray::{Array2, Ix2};
+use ndarray::ArrayView2;
 
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::NodeError;
@@ -34,31 +34,12 @@ use crate::friction::{per_summit_friction, DeformationState, SummitContact, Summ
 use crate::surface::{find_summits, Boundary, HeightMap, Summit, SummitOptions};
 use crate::units::Dimension;
 
-use super::{beyond_fit_field, coefficient_fields, float_metric, FrictionTask};
-
-fn array(contact: &Artifact, name: &str) -> Result<Option<Array2<f64>>, NodeError> {
-    contact
-        .arrays
-        .get(name)
-        .map(|a| {
-            a.clone()
-                .into_dimensionality::<Ix2>()
-                .map_err(|e| NodeError::new(format!("contact array {name}: {e}")))
-        })
-        .transpose()
-}
-
-fn required(contact: &Artifact, name: &str) -> Result<Array2<f64>, NodeError> {
-    array(contact, name)?.ok_or_else(|| {
-        NodeError::new(format!(
-            "the contact node stored no '{name}' array: run it with `fields: true`"
-        ))
-    })
-}
+use super::{beyond_fit_field, coefficient_fields, FrictionTask};
+use crate::nodes::contact_view::ContactView;
 
 /// The interference ω (m) of the summit at (iy, ix); see the module docs.
-fn interference(fields: &ContactMaps, iy: usize, ix: usize) -> Result<f64, NodeError> {
-    let at = |a: &Array2<f64>| {
+fn interference(fields: &ContactView, iy: usize, ix: usize) -> Result<f64, NodeError> {
+    let at = |a: &ArrayView2<f64>| {
         a.get((iy, ix))
             .copied()
             .ok_or_else(|| NodeError::new("a summit lies outside the contact fields"))
@@ -68,19 +49,11 @@ fn interference(fields: &ContactMaps, iy: usize, ix: usize) -> Result<f64, NodeE
             Some(u) => at(u)?,
             None => 0.0,
         };
-        let omega = at(&fields.deformation_lower)? + upper + at(&fields.plastic)?;
+        let omega = at(&fields.deformation_lower)? + upper + at(&fields.plastic_penetration)?;
         Ok(omega.max(0.0))
     } else {
         Ok(-at(&fields.gap)?.max(0.0))
     }
-}
-
-struct ContactMaps {
-    pressure: Array2<f64>,
-    gap: Array2<f64>,
-    deformation_lower: Array2<f64>,
-    deformation_upper: Option<Array2<f64>>,
-    plastic: Array2<f64>,
 }
 
 fn state_name(state: DeformationState) -> &'static str {
@@ -101,19 +74,11 @@ pub(super) fn compute(
     metrics: &mut Vec<Field>,
     tables: &mut BTreeMap<String, Table>,
 ) -> Result<(), NodeError> {
-    let composite = required(contact, crate::nodes::contact::COMPOSITE_HEIGHT)?;
-    let maps = ContactMaps {
-        pressure: required(contact, "pressure")?,
-        gap: required(contact, "gap")?,
-        deformation_lower: required(contact, "deformation_lower")?,
-        deformation_upper: array(contact, "deformation_upper")?,
-        plastic: required(contact, "plastic_penetration")?,
-    };
-    let dx = float_metric(contact, "dx", "contact")?;
-    let dy = float_metric(contact, "dy", "contact")?;
-    let (ny, nx) = composite.dim();
+    let maps = ContactView::of(contact)?;
+    let (dx, dy) = (maps.dx, maps.dy);
+    let (ny, nx) = maps.composite_height.dim();
     let section_area = nx as f64 * dx * ny as f64 * dy;
-    let map = HeightMap::new(composite, dx, dy)
+    let map = HeightMap::new(maps.composite_height.to_owned(), dx, dy)
         .map_err(|e| NodeError::new(format!("composite height: {e}")))?;
     let found = find_summits(
         &map,
@@ -158,8 +123,7 @@ pub(super) fn compute(
     })?;
     let area = nominal_area.unwrap_or(section_area);
     let scale = area / section_area;
-    let nominal_pressure = float_metric(contact, "nominal_pressure", "contact")?;
-    let area_fraction = float_metric(contact, "area_fraction", "contact")?;
+    let (nominal_pressure, area_fraction) = (maps.nominal_pressure, maps.area_fraction);
     let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
     let [_, elastic, elastic_plastic, fully_plastic] = result.state_counts;
     let in_contact = elastic + elastic_plastic + fully_plastic;

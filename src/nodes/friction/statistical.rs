@@ -14,11 +14,13 @@ use std::collections::BTreeMap;
 
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::NodeError;
-use crate::engine::value::{Field, Value};
+use crate::engine::value::Field;
 use crate::friction::{
     static_friction_curve, SolveSettings, SpectralMoments, StaticFrictionResult, StatisticalModel,
     SummitStatistics,
 };
+use crate::nodes::contact_view::NOMINAL_PRESSURE;
+use crate::nodes::surface_view::SurfaceView;
 use crate::units::Dimension;
 
 use super::{
@@ -26,26 +28,18 @@ use super::{
 };
 
 fn moments(surface: &Artifact, role: &str) -> Result<SpectralMoments, NodeError> {
-    let get = |name: &str| {
-        float_metric(surface, name, role).map_err(|_| {
-            NodeError::new(format!(
-                "{role} surface has no spectral moment {name} (maps with missing points have none: fill them with `fill_missing: true`)"
-            ))
-        })
-    };
-    SpectralMoments::new(get("m0")?, get("m2")?, get("m4")?)
+    let (m0, m2, m4) = SurfaceView::of(surface, role)?.moments.ok_or_else(|| {
+        NodeError::new(format!(
+            "{role} surface has no spectral moments (maps with missing points have none: fill \
+             them with `fill_missing: true`)"
+        ))
+    })?;
+    SpectralMoments::new(m0, m2, m4)
         .map_err(|e| NodeError::new(format!("{role} surface moments: {e}")))
 }
 
 fn surface_area(surface: &Artifact) -> Result<f64, NodeError> {
-    let int = |name: &str| match surface.metric(name).map(|f| &f.value) {
-        Some(Value::Int(v)) => Ok(*v as f64),
-        _ => Err(NodeError::new(format!("lower surface: no {name}"))),
-    };
-    Ok(int("grid_nx")?
-        * float_metric(surface, "dx", "lower surface")?
-        * int("grid_ny")?
-        * float_metric(surface, "dy", "lower surface")?)
+    Ok(SurfaceView::of(surface, "lower")?.area())
 }
 
 /// The summit statistics and the nominal area of the node.
@@ -100,7 +94,7 @@ pub(super) fn compute(
         Loads::Pressures(p) => p.iter().map(|p| p * area).collect(),
         Loads::Forces(f) => f.clone(),
         Loads::FromContact(c) => {
-            vec![float_metric(input(inputs, *c, "contact")?, "nominal_pressure", "contact")? * area]
+            vec![float_metric(input(inputs, *c, "contact")?, NOMINAL_PRESSURE, "contact")? * area]
         }
     };
     let settings = SolveSettings::default();

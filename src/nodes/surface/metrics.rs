@@ -18,6 +18,7 @@ use crate::engine::artifact::Table;
 use crate::engine::node::NodeError;
 use crate::engine::value::Field;
 use crate::friction::SummitStatistics as GwSummits;
+use crate::nodes::surface_view::{DX, DY, GRID_NX, GRID_NY, M0, M2, M4};
 use crate::surface::spectral::{
     autocorrelation, hurst_exponent, radial_psd, spectral_moments, texture_direction, AcfBoundary,
     HurstFitOptions, MomentMethod, Window, ISO_ACF_THRESHOLD,
@@ -50,10 +51,10 @@ pub(super) fn surface_report(
     let a = amplitude_statistics(map, boundary)
         .map_err(|e| NodeError::new(format!("statistics: {e}")))?;
     let mut metrics = vec![
-        Field::int("grid_nx", map.nx() as i64),
-        Field::int("grid_ny", map.ny() as i64),
-        len("dx", map.dx()),
-        len("dy", map.dy()),
+        Field::int(GRID_NX, map.nx() as i64),
+        Field::int(GRID_NY, map.ny() as i64),
+        len(DX, map.dx()),
+        len(DY, map.dy()),
         Field::int("missing_points", a.missing_count as i64),
         len("sq", a.sq),
         len("sa", a.sa),
@@ -97,10 +98,10 @@ fn spectral_metrics(
     };
     let m = spectral_moments(map, method).map_err(|e| fail("spectral moments", &e))?;
     for (suffix, p) in [("", m.isotropic), ("_x", m.x), ("_y", m.y)] {
-        metrics.push(Field::float(format!("m0{suffix}"), p.m0, Dimension::Area));
-        metrics.push(num(&format!("m2{suffix}"), p.m2));
+        metrics.push(Field::float(format!("{M0}{suffix}"), p.m0, Dimension::Area));
+        metrics.push(num(&format!("{M2}{suffix}"), p.m2));
         metrics.push(Field::float(
-            format!("m4{suffix}"),
+            format!("{M4}{suffix}"),
             p.m4,
             Dimension::InverseArea,
         ));

@@ -7,6 +7,7 @@ use crate::engine::artifact::Artifact;
 use crate::engine::node::{ArrayStorage, NodeError, NodeTask};
 use crate::engine::study::{ResolveContext, SpecError};
 use crate::engine::value::Field;
+use crate::nodes::surface_view::HEIGHTS;
 use crate::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
 use crate::surface::{Boundary, HeightMap};
 
@@ -25,8 +26,6 @@ use twin::TwinSource;
 
 pub(crate) const KIND: &str = "surface";
 pub(crate) const TABLE: &str = "surfaces";
-/// Name of the height array (m, `[[iy, ix]]`) in the artifact.
-pub(crate) const HEIGHTS: &str = "heights";
 
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
 /// computed statistics change, so stale cache entries are never reused.
