@@ -23,6 +23,9 @@ pub trait NodeTask: Send + Sync + std::fmt::Debug {
     fn array_storage(&self) -> ArrayStorage {
         ArrayStorage::Store
     }
+    /// The task as `Any`, so that the application's node kinds can read an upstream task of a
+    /// kind they know as its own type (the engine never does).
+    fn as_any(&self) -> &dyn std::any::Any;
     /// Computes the node from its upstream artifacts (in the order of the spec's `upstream`).
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError>;
 }

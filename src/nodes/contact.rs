@@ -252,11 +252,34 @@ pub struct ContactTask {
     memory_estimate: u64,
 }
 
+impl ContactTask {
+    /// Whether the final step's fields are kept for consumers (`fields: true`).
+    pub(crate) fn keeps_fields(&self) -> bool {
+        self.fields
+    }
+
+    /// Whether the surfaces are periodic (the contact spots wrap around the section).
+    pub(crate) fn periodic(&self) -> bool {
+        self.periodic
+    }
+
+    /// The composite compliance Σ (1 − ν²)/E of the two bodies (1/Pa; a rigid flat adds 0): the
+    /// elastic constants the contact was solved with.
+    pub(crate) fn compliance(&self) -> f64 {
+        let body = |(e, nu): (f64, f64)| (1.0 - nu * nu) / e;
+        body(self.lower) + self.upper.map_or(0.0, body)
+    }
+}
+
 fn height_map(input: &Artifact, role: &str) -> Result<HeightMap, NodeError> {
     SurfaceView::of(input, role)?.height_map(role)
 }
 
 impl NodeTask for ContactTask {
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
     fn kind(&self) -> &'static str {
         KIND
     }

@@ -299,6 +299,10 @@ impl FrictionSpec {
 }
 
 impl NodeTask for FrictionTask {
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
     fn kind(&self) -> &'static str {
         KIND
     }

@@ -4,14 +4,15 @@
 //! (`per_summit`, `per_spot`).
 
 use crate::engine::study::{ResolveContext, SourceLocation, SpecError};
-use crate::engine::value::{Field, Value};
+use crate::engine::value::Field;
 use crate::friction::contact_spots::Connectivity;
 use crate::friction::full_stick::stick_factors;
 use crate::friction::{AsperityModel, FullStickOptions, StickFrictionLaw};
 use crate::units::{format_number, Dimension};
 
-use super::setup::{positive, resolve_choice, spec_error, upstream_param, MaterialPair};
+use super::setup::{positive, resolve_choice, spec_error, MaterialPair};
 use super::{FrictionMethod, FrictionModel, FrictionSpec};
+use crate::nodes::contact::ContactTask;
 
 /// The model and the method of the node; junction shear defaults to (and needs) `per_spot`.
 pub(super) fn model_and_method(
@@ -210,7 +211,17 @@ pub(super) fn contact_solution(
             ),
         ));
     };
-    if let Some(Value::Bool(false)) | None = upstream_param(ctx, index, "fields") {
+    let contact_task = ctx
+        .upstream(index)
+        .and_then(|t| t.as_any().downcast_ref::<ContactTask>())
+        .ok_or_else(|| {
+            spec_error(
+                name.location,
+                "contact",
+                format!("node '{}' is not a contact node", name.value),
+            )
+        })?;
+    if !contact_task.keeps_fields() {
         return Err(spec_error(
             name.location,
             "contact",
@@ -221,33 +232,22 @@ pub(super) fn contact_solution(
             ),
         ));
     }
-    check_same_modulus(spec, ctx, index, &name.value, pair)?;
-    let periodic = !matches!(
-        upstream_param(ctx, index, "periodic"),
-        Some(Value::Bool(false))
-    );
-    Ok((index, periodic))
+    check_same_modulus(spec, contact_task, &name.value, pair)?;
+    Ok((index, contact_task.periodic()))
 }
 
 /// The contact solution was computed with the contact's materials: the friction node's must
 /// give the same composite modulus.
 fn check_same_modulus(
     spec: &FrictionSpec,
-    ctx: &ResolveContext<'_>,
-    index: usize,
+    contact: &ContactTask,
     name: &str,
     pair: &MaterialPair,
 ) -> Result<(), SpecError> {
-    let float = |n: &str| match upstream_param(ctx, index, n) {
-        Some(Value::Float(v)) => Some(*v),
-        _ => None,
-    };
     let compliance =
         |body: Option<(f64, f64)>| body.map_or(0.0, |(e, nu): (f64, f64)| (1.0 - nu * nu) / e);
-    let contact_lower = float("lower_youngs_modulus").zip(float("lower_poisson_ratio"));
-    let contact_upper = float("upper_youngs_modulus").zip(float("upper_poisson_ratio"));
     let ours = compliance(Some(pair.lower)) + compliance(pair.upper);
-    let theirs = compliance(contact_lower) + compliance(contact_upper);
+    let theirs = contact.compliance();
     if (ours - theirs).abs() > 1e-9 * theirs.abs() {
         return Err(spec_error(
             spec.lower_material.location(),

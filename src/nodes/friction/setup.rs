@@ -6,7 +6,7 @@
 //! lower body against a rigid one), which must have a hardness.
 
 use crate::engine::study::{ResolveContext, SourceLocation, SpecError};
-use crate::engine::value::{Field, Value};
+use crate::engine::value::Field;
 use crate::friction::{
     AdhesionParameters, AsperityModel, Material, ModelOptions, StaticFrictionForm, SummitStatistics,
 };
@@ -37,19 +37,6 @@ pub(super) fn positive(v: f64, unit: &str) -> Result<(), String> {
     } else {
         Err(format!("is out of range: must be > 0 {unit}"))
     }
-}
-
-/// The value of a parameter of an upstream task.
-pub(super) fn upstream_param<'a>(
-    ctx: &'a ResolveContext<'_>,
-    index: usize,
-    name: &str,
-) -> Option<&'a Value> {
-    ctx.upstream(index)?
-        .params()
-        .iter()
-        .find(|f| f.name == name)
-        .map(|f| &f.value)
 }
 
 /// Young's modulus (Pa) and Poisson's ratio of one body.

@@ -90,6 +90,10 @@ impl SurfaceTask {
 }
 
 impl NodeTask for SurfaceTask {
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+
     fn kind(&self) -> &'static str {
         KIND
     }
