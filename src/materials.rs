@@ -19,6 +19,13 @@
 //!   indentation size effect at small depths) can differ substantially, so measured
 //!   near-surface values should override them where available.
 
+/// Half-space compliance c = (1 − ν²)/E (1/Pa) of an isotropic elastic body: the composite
+/// modulus of two bodies is E* = 1/(c₁ + c₂) (Johnson, Contact Mechanics, 1985, eq. 4.22), a
+/// rigid body adding 0. The one definition every stage uses.
+pub fn half_space_compliance(youngs_modulus: f64, poisson_ratio: f64) -> f64 {
+    (1.0 - poisson_ratio * poisson_ratio) / youngs_modulus
+}
+
 /// One built-in material (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BuiltinMaterial {

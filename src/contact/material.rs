@@ -38,7 +38,10 @@ impl BodyElasticity {
                 if !(poisson_ratio > -1.0 && poisson_ratio <= 0.5) {
                     return Err(MaterialError::BadPoissonRatio { poisson_ratio });
                 }
-                Ok((1.0 - poisson_ratio * poisson_ratio) / youngs_modulus)
+                Ok(crate::materials::half_space_compliance(
+                    youngs_modulus,
+                    poisson_ratio,
+                ))
             }
             BodyElasticity::PlaneStrain { modulus } => {
                 if !(modulus.is_finite() && modulus > 0.0) {

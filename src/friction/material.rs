@@ -13,6 +13,7 @@
 //! standard deviation σ_s (as KE 2003/2004 do), so that ω_c/σ_s = 1/ψ².
 
 use super::error::{require_positive, FrictionError};
+use crate::materials::half_space_compliance;
 
 /// Tabor's constraint factor: hardness H ≈ 2.8 × yield strength Y of a metal (Tabor, The Hardness
 /// of Metals, 1951), the rule used for Y when a material gives only H.
@@ -91,7 +92,7 @@ impl Material {
         let e2 = require_positive("e2", e2)?;
         let nu1 = require_poisson("nu1", nu1)?;
         let nu2 = require_poisson("nu2", nu2)?;
-        let compliance = (1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2;
+        let compliance = half_space_compliance(e1, nu1) + half_space_compliance(e2, nu2);
         let nu = if softer_is_first { nu1 } else { nu2 };
         Self::new(1.0 / compliance, hardness, nu)
     }

@@ -21,6 +21,7 @@ use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
 use crate::engine::study::{Param, ResolveContext, SpannedName, SpecError};
 use crate::engine::value::Field;
+use crate::materials::half_space_compliance;
 use crate::surface::HeightMap;
 use crate::units::{format_number, Dimension, Pressure, Quantity};
 
@@ -266,7 +267,7 @@ impl ContactTask {
     /// The composite compliance Σ (1 − ν²)/E of the two bodies (1/Pa; a rigid flat adds 0): the
     /// elastic constants the contact was solved with.
     pub(crate) fn compliance(&self) -> f64 {
-        let body = |(e, nu): (f64, f64)| (1.0 - nu * nu) / e;
+        let body = |(e, nu): (f64, f64)| half_space_compliance(e, nu);
         body(self.lower) + self.upper.map_or(0.0, body)
     }
 }

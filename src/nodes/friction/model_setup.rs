@@ -12,6 +12,7 @@ use crate::units::{format_number, Dimension};
 
 use super::setup::{positive, resolve_choice, spec_error, MaterialPair};
 use super::{FrictionMethod, FrictionModel, FrictionSpec};
+use crate::materials::half_space_compliance;
 use crate::nodes::contact::ContactTask;
 
 /// The model and the method of the node; junction shear defaults to (and needs) `per_spot`.
@@ -245,7 +246,7 @@ fn check_same_modulus(
     pair: &MaterialPair,
 ) -> Result<(), SpecError> {
     let compliance =
-        |body: Option<(f64, f64)>| body.map_or(0.0, |(e, nu): (f64, f64)| (1.0 - nu * nu) / e);
+        |body: Option<(f64, f64)>| body.map_or(0.0, |(e, nu)| half_space_compliance(e, nu));
     let ours = compliance(Some(pair.lower)) + compliance(pair.upper);
     let theirs = contact.compliance();
     if (ours - theirs).abs() > 1e-9 * theirs.abs() {

@@ -10,6 +10,7 @@ use crate::engine::value::Field;
 use crate::friction::{
     AdhesionParameters, AsperityModel, Material, ModelOptions, StaticFrictionForm, SummitStatistics,
 };
+use crate::materials::half_space_compliance;
 
 use super::model_setup;
 use crate::units::{format_number, Dimension};
@@ -64,8 +65,7 @@ fn resolve_material(
         Some(m) => Some(m.resolve(ctx, "upper_material")?),
         None => None,
     };
-    let compliance = |e: f64, nu: f64| (1.0 - nu * nu) / e;
-    let mut total = compliance(lower.youngs_modulus, lower.poisson_ratio);
+    let mut total = half_space_compliance(lower.youngs_modulus, lower.poisson_ratio);
     let mut softer = (
         lower.hardness,
         lower.poisson_ratio,
@@ -73,7 +73,7 @@ fn resolve_material(
         &lower,
     );
     if let Some(u) = &upper {
-        total += compliance(u.youngs_modulus, u.poisson_ratio);
+        total += half_space_compliance(u.youngs_modulus, u.poisson_ratio);
         if let Some(hu) = u.hardness {
             if lower.hardness.is_none_or(|hl| hu < hl) {
                 softer = (Some(hu), u.poisson_ratio, "upper_material", u);
