@@ -184,5 +184,5 @@ grep -q "slurm-test: 0 computed, 13 reused from cache" "${collect_logs[0]}" ||
 log "single-process reference run"
 "$BIN" run "$WORK/study.yaml" --cache "$WORK/cache-single" --out "$WORK/out-single" --quiet >/dev/null
 ASPERITY_TABLES_A="$WORK/out-slurm" ASPERITY_TABLES_B="$WORK/out-single" \
-    cargo test --quiet --test table_equality -- --ignored --exact same_tables_in_two_folders
+    cargo test --quiet --test engine -- --ignored --exact table_equality::same_tables_in_two_folders
 log "OK: Slurm job array + collect job gave the single-process tables"

@@ -1,5 +1,7 @@
 //! Helpers shared by the integration tests.
 
+#![allow(dead_code)] // each test binary uses a different subset of these helpers
+
 use std::path::{Path, PathBuf};
 
 /// The shared topography folder with the measured instrument files: `$ASPERITY_TEST_DATA`, else

@@ -149,7 +149,7 @@ fn check_all(m: &StatisticalModel, d: f64) {
             Box::new(ceb_static_friction_ratio),
         ),
         AsperityModel::FullStick => {
-            // The laws themselves are checked in tests/friction_full_stick.rs; here only the
+            // The laws themselves are checked in tests/friction/friction_full_stick.rs; here only the
             // integration over the summit heights.
             let laws = m.laws;
             (

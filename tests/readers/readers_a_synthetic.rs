@@ -1,8 +1,7 @@
 //! Readers on small files built in memory: X3P profiles and layout errors, Digital Surf int16
 //! with unit names and non-measured points, Sensofar's not-measured marker.
 
-mod readers_a_common;
-
+use crate::readers_a_common;
 use asperity::surface::io::TopographyData;
 use readers_a_common::assert_rel;
 

@@ -4,8 +4,7 @@
 //! Data folder as in `readers_b.rs`: `$ASPERITY_TEST_DATA`, else
 //! `CARGO_MANIFEST_DIR/../shared/data/topography`; missing → fail under `CI`, skip otherwise.
 
-mod common;
-
+use crate::common;
 use std::path::{Path, PathBuf};
 
 use asperity::surface::io::{parse_topography, ReadError, TopographyData};

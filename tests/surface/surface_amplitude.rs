@@ -1,8 +1,7 @@
 //! Amplitude and hybrid statistics, form removal, Gaussian filter, filling and resampling on analytic
 //! surfaces, plus reference values of two real text-matrix files.
 
-mod common;
-
+use crate::common;
 use asperity::surface::{
     amplitude_statistics, crop, decimate, fill_missing, gaussian_band_pass, gaussian_high_pass,
     gaussian_low_pass, gradient_statistics, remove_plane, remove_polynomial_form,

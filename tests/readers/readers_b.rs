@@ -5,8 +5,7 @@
 //! Data folder: `$ASPERITY_TEST_DATA`, else `CARGO_MANIFEST_DIR/../shared/data/topography`.
 //! When it is missing the data tests fail if `CI` is set and are skipped (with a note) otherwise.
 
-mod common;
-
+use crate::common;
 use std::path::Path;
 
 use asperity::surface::io::{

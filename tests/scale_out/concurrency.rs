@@ -2,8 +2,7 @@
 //! succeed (publishing second is success), their tables are identical, every entry verifies and
 //! no temporary folder is left.
 
-mod scale_out_common;
-
+use crate::scale_out_common;
 use std::process::Stdio;
 
 use scale_out_common::*;

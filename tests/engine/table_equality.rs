@@ -2,8 +2,7 @@
 //! `scripts/slurm-test.sh` (tables of a Slurm run against a single-process run):
 //! `ASPERITY_TABLES_A=DIR ASPERITY_TABLES_B=DIR cargo test --test table_equality -- --ignored`
 
-mod scale_out_common;
-
+use crate::scale_out_common;
 #[test]
 #[ignore = "compares two folders named by ASPERITY_TABLES_A/_B (scripts/slurm-test.sh sets them)"]
 fn same_tables_in_two_folders() {

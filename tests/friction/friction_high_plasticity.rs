@@ -2,8 +2,7 @@
 //! library), per contact spot (full stick, junction shear, KE) on a ground-steel contact, the
 //! honest-output columns and the spec errors.
 
-mod friction_common;
-
+use crate::friction_common;
 use asperity::engine::execute::NodeOutcome;
 use asperity::friction::{
     static_friction, AdhesionParameters, AsperityModel, FullStickOptions, Material, ModelOptions,

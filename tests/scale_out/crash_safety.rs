@@ -5,8 +5,7 @@
 //! CI runs 20 kills. For more (e.g. 200, another seed):
 //! `ASPERITY_CRASH_KILLS=200 ASPERITY_CRASH_SEED=7 cargo test --test crash_safety -- --nocapture`
 
-mod scale_out_common;
-
+use crate::scale_out_common;
 use std::process::Stdio;
 use std::time::{Duration, Instant};
 

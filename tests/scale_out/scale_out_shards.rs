@@ -1,7 +1,6 @@
 //! Shards (`run --shard I/N`) and the cache commands (`cache ls|du|verify|gc`) end to end.
 
-mod scale_out_common;
-
+use crate::scale_out_common;
 use std::collections::HashSet;
 
 use asperity::engine::plan::Plan;

@@ -2,8 +2,7 @@
 //! surfaces (against the library), μ(F) curve tables, per-summit on a small contact, materials
 //! by name with overrides, and the spec errors.
 
-mod friction_common;
-
+use crate::friction_common;
 use asperity::engine::execute::NodeOutcome;
 use asperity::engine::plan::Plan;
 use asperity::engine::value::Value;

@@ -7,9 +7,8 @@
 //! differences are ~1e-12); spacings relative 1e-6 (several files store them as float32,
 //! whose rounding, ~6e-8, is well inside); SDF ramps absolute 1e-13 m as sdfio asserts.
 
-mod common;
-mod readers_a_common;
-
+use crate::common;
+use crate::readers_a_common;
 use asperity::surface::io::{detect_format, read_topography, Format, TopographyData};
 use readers_a_common::{
     assert_rel, fixture, plain_stats, read_areal, rms_gradient, rq_profiles_along_x,

@@ -12,9 +12,8 @@
 //!   boundary is not detectable; for them (and for every random flip) the test asserts only
 //!   that no panic happens.
 
-mod common;
-mod readers_a_common;
-
+use crate::common;
+use crate::readers_a_common;
 use std::path::{Path, PathBuf};
 
 use asperity::surface::io::parse_topography;

@@ -2,8 +2,7 @@
 //! Uses `../shared/data/topography` (or `ASPERITY_TEST_DATA`); fails when `CI` is set and the data
 //! is missing, skips with a note otherwise.
 
-mod common;
-
+use crate::common;
 use std::path::{Path, PathBuf};
 
 use asperity::engine::cache::Cache;

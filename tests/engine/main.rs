@@ -1,0 +1,10 @@
+//! The engine: end-to-end runs, byte-reproducible tables, the cache policy, node keys and the schema, the architecture invariants.
+
+mod architecture;
+mod cache_policy;
+mod engine_end_to_end;
+mod reproducible_tables;
+#[path = "../scale_out_common/mod.rs"]
+mod scale_out_common;
+mod schema_and_keys;
+mod table_equality;

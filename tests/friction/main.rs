@@ -1,0 +1,13 @@
+//! Stage 3: single-asperity laws, statistical integrals and the separation solve, per summit and per spot, the friction node.
+
+mod friction_asperity_laws;
+#[path = "../friction_common/mod.rs"]
+mod friction_common;
+mod friction_contact_spots;
+mod friction_full_stick;
+mod friction_gw_summits;
+mod friction_high_plasticity;
+mod friction_integrals;
+mod friction_node;
+mod friction_per_summit;
+mod friction_static_solve;

@@ -1,0 +1,12 @@
+//! Topography readers: every format against its reference values, robustness against broken and hostile files, synthetic round trips.
+
+#[path = "../common/mod.rs"]
+mod common;
+mod readers_a;
+#[path = "../readers_a_common/mod.rs"]
+mod readers_a_common;
+mod readers_a_robustness;
+mod readers_a_synthetic;
+mod readers_b;
+mod readers_b_fixtures;
+mod readers_b_robustness;

@@ -1,0 +1,8 @@
+//! The study format: broken studies, parameter references inside strings and glob axes, overrides, parser robustness, summaries, input traps of measured files.
+
+mod input_traps;
+mod study_errors;
+mod study_interpolation;
+mod study_overrides;
+mod study_parser_robustness;
+mod study_summaries;
