@@ -15,7 +15,7 @@ use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
 use crate::contact::{
     BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
-    FieldRequest, SolverOptions,
+    FieldRequest, LoadCurve, LoadStep, SolverOptions,
 };
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
@@ -303,6 +303,58 @@ impl NodeTask for ContactTask {
 
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
         let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
+        let setup = self.problem(inputs)?;
+        let options = SolverOptions {
+            tolerance: self.tolerance,
+            fields: if self.fields {
+                FieldRequest::ALL
+            } else {
+                FieldRequest::NONE
+            },
+            ..SolverOptions::default()
+        };
+        let mut solver =
+            ContactSolver::new(setup.problem, options).map_err(|e| fail("solver", &e))?;
+        let curve = solver
+            .solve_load_steps(&self.pressures)
+            .map_err(|e| fail("contact solve", &e))?;
+        let last = curve
+            .steps
+            .last()
+            .ok_or_else(|| NodeError::new("no load step was solved"))?;
+        let mut artifact = Artifact {
+            metrics: final_step_metrics(last, setup.composite_modulus, setup.spacing),
+            ..Artifact::default()
+        };
+        artifact
+            .tables
+            .insert(String::from("load_curve"), load_curve_table(&curve));
+        if let Some(z) = setup.composite {
+            artifact
+                .arrays
+                .insert(String::from(COMPOSITE_HEIGHT), z.into_dyn());
+        }
+        if let Some(f) = &last.fields {
+            store_fields(&mut artifact, f);
+        }
+        Ok(artifact)
+    }
+}
+
+/// The contact problem of a task's upstream surfaces, with what the outputs need of it.
+struct ProblemSetup {
+    problem: ContactProblem,
+    composite_modulus: f64,
+    /// (dx, dy) of the grid (m).
+    spacing: (f64, f64),
+    /// z₁ + z₂ (or the lower heights against a flat), kept when the fields are.
+    composite: Option<ndarray::Array2<f64>>,
+}
+
+impl ContactTask {
+    /// The gap of the upstream surface(s), the material pair and the boundary.
+    fn problem(&self, inputs: &[&Artifact]) -> Result<ProblemSetup, NodeError> {
+        let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
         let lower = height_map(
             inputs
                 .first()
@@ -315,14 +367,11 @@ impl NodeTask for ContactTask {
                 let gap =
                     CompositeGap::from_surfaces(&lower, &upper).map_err(|e| fail("gap", &e))?;
                 let composite = self.fields.then(|| lower.heights() + upper.heights());
-                (
-                    gap,
-                    BodyElasticity::Isotropic {
-                        youngs_modulus: e2,
-                        poisson_ratio: nu2,
-                    },
-                    composite,
-                )
+                let body = BodyElasticity::Isotropic {
+                    youngs_modulus: e2,
+                    poisson_ratio: nu2,
+                };
+                (gap, body, composite)
             }
             _ => (
                 CompositeGap::against_flat(&lower).map_err(|e| fail("gap", &e))?,
@@ -330,7 +379,6 @@ impl NodeTask for ContactTask {
                 self.fields.then(|| lower.heights().clone()),
             ),
         };
-        let (dx, dy) = (lower.dx(), lower.dy());
         let lower_body = BodyElasticity::Isotropic {
             youngs_modulus: self.lower.0,
             poisson_ratio: self.lower.1,
@@ -342,129 +390,103 @@ impl NodeTask for ContactTask {
         } else {
             Boundary::NonPeriodic
         };
-        let problem = ContactProblem::new(gap, material, boundary);
-        let options = SolverOptions {
-            tolerance: self.tolerance,
-            fields: if self.fields {
-                FieldRequest::ALL
-            } else {
-                FieldRequest::NONE
-            },
-            ..SolverOptions::default()
-        };
-        let mut solver = ContactSolver::new(problem, options).map_err(|e| fail("solver", &e))?;
-        let curve = solver
-            .solve_load_steps(&self.pressures)
-            .map_err(|e| fail("contact solve", &e))?;
-        let last = curve
-            .steps
-            .last()
-            .ok_or_else(|| NodeError::new("no load step was solved"))?;
-        let metrics = vec![
-            Field::float(
-                "composite_modulus",
-                material.composite_modulus(),
-                Dimension::Pressure,
-            ),
-            Field::float(NOMINAL_PRESSURE, last.nominal_pressure, Dimension::Pressure),
-            Field::float(AREA_FRACTION, last.area_fraction, Dimension::Dimensionless),
-            Field::float(
-                "mean_contact_pressure",
-                last.mean_contact_pressure,
-                Dimension::Pressure,
-            ),
-            Field::float("stress_ratio", last.stress_ratio, Dimension::Dimensionless),
-            Field::float(
-                "plastic_area_share",
-                last.plastic_area_share,
-                Dimension::Dimensionless,
-            ),
-            Field::float("mean_separation", last.mean_separation, Dimension::Length),
-            Field::float(
-                "max_elastic_deformation",
-                last.max_elastic_deformation,
-                Dimension::Length,
-            ),
-            Field::float("approach", last.approach, Dimension::Length),
-            Field::float(DX, dx, Dimension::Length),
-            Field::float(DY, dy, Dimension::Length),
-            Field::int("iterations", last.iterations as i64),
-            Field::float("residual", last.residuals.max(), Dimension::Dimensionless),
-        ];
-        let column = |f: fn(&crate::contact::LoadStep) -> f64| curve.steps.iter().map(f).collect();
-        let mut t = Table::default();
-        t.push_int("step", (0..curve.steps.len() as i64).collect());
-        t.push_float(
-            "nominal_pressure",
-            Dimension::Pressure,
-            column(|s| s.nominal_pressure),
-        );
-        t.push_float(
-            "area_fraction",
-            Dimension::Dimensionless,
-            column(|s| s.area_fraction),
-        );
-        t.push_float(
+        Ok(ProblemSetup {
+            problem: ContactProblem::new(gap, material, boundary),
+            composite_modulus: material.composite_modulus(),
+            spacing: (lower.dx(), lower.dy()),
+            composite,
+        })
+    }
+}
+
+/// The `contacts` row: the final load step, the composite modulus and the grid.
+fn final_step_metrics(last: &LoadStep, composite_modulus: f64, (dx, dy): (f64, f64)) -> Vec<Field> {
+    vec![
+        Field::float("composite_modulus", composite_modulus, Dimension::Pressure),
+        Field::float(NOMINAL_PRESSURE, last.nominal_pressure, Dimension::Pressure),
+        Field::float(AREA_FRACTION, last.area_fraction, Dimension::Dimensionless),
+        Field::float(
             "mean_contact_pressure",
+            last.mean_contact_pressure,
             Dimension::Pressure,
-            column(|s| s.mean_contact_pressure),
-        );
-        t.push_float(
-            "stress_ratio",
-            Dimension::Dimensionless,
-            column(|s| s.stress_ratio),
-        );
-        t.push_float(
+        ),
+        Field::float("stress_ratio", last.stress_ratio, Dimension::Dimensionless),
+        Field::float(
             "plastic_area_share",
+            last.plastic_area_share,
             Dimension::Dimensionless,
-            column(|s| s.plastic_area_share),
-        );
-        t.push_float(
-            "mean_separation",
-            Dimension::Length,
-            column(|s| s.mean_separation),
-        );
-        t.push_float(
+        ),
+        Field::float("mean_separation", last.mean_separation, Dimension::Length),
+        Field::float(
             "max_elastic_deformation",
+            last.max_elastic_deformation,
             Dimension::Length,
-            column(|s| s.max_elastic_deformation),
-        );
-        t.push_float("approach", Dimension::Length, column(|s| s.approach));
-        t.push_int(
-            "iterations",
-            curve.steps.iter().map(|s| s.iterations as i64).collect(),
-        );
-        t.push_float(
-            "residual",
-            Dimension::Dimensionless,
-            column(|s| s.residuals.max()),
-        );
-        let mut artifact = Artifact {
-            metrics,
-            ..Artifact::default()
-        };
-        artifact.tables.insert(String::from("load_curve"), t);
-        if let Some(z) = composite {
+        ),
+        Field::float("approach", last.approach, Dimension::Length),
+        Field::float(DX, dx, Dimension::Length),
+        Field::float(DY, dy, Dimension::Length),
+        Field::int("iterations", last.iterations as i64),
+        Field::float("residual", last.residuals.max(), Dimension::Dimensionless),
+    ]
+}
+
+/// A float column of the load curve: name, dimension and the value of a step.
+type StepColumn = (&'static str, Dimension, fn(&LoadStep) -> f64);
+
+/// The `contacts_load_curve` table: one row per load step.
+fn load_curve_table(curve: &LoadCurve) -> Table {
+    let column = |f: fn(&LoadStep) -> f64| curve.steps.iter().map(f).collect();
+    let steps: [StepColumn; 8] = [
+        ("nominal_pressure", Dimension::Pressure, |s| {
+            s.nominal_pressure
+        }),
+        ("area_fraction", Dimension::Dimensionless, |s| {
+            s.area_fraction
+        }),
+        ("mean_contact_pressure", Dimension::Pressure, |s| {
+            s.mean_contact_pressure
+        }),
+        ("stress_ratio", Dimension::Dimensionless, |s| s.stress_ratio),
+        ("plastic_area_share", Dimension::Dimensionless, |s| {
+            s.plastic_area_share
+        }),
+        ("mean_separation", Dimension::Length, |s| s.mean_separation),
+        ("max_elastic_deformation", Dimension::Length, |s| {
+            s.max_elastic_deformation
+        }),
+        ("approach", Dimension::Length, |s| s.approach),
+    ];
+    let mut t = Table::default();
+    t.push_int("step", (0..curve.steps.len() as i64).collect());
+    for (name, dimension, get) in steps {
+        t.push_float(name, dimension, column(get));
+    }
+    t.push_int(
+        "iterations",
+        curve.steps.iter().map(|s| s.iterations as i64).collect(),
+    );
+    t.push_float(
+        "residual",
+        Dimension::Dimensionless,
+        column(|s| s.residuals.max()),
+    );
+    t
+}
+
+/// The final step's maps under the names of [`super::contact_view`].
+fn store_fields(artifact: &mut Artifact, f: &crate::contact::ContactFields) {
+    let named = [
+        (PRESSURE, &f.pressure),
+        (GAP, &f.gap),
+        (DEFORMATION_LOWER, &f.deformation_first),
+        (DEFORMATION_UPPER, &f.deformation_second),
+        (PLASTIC_PENETRATION, &f.plastic_penetration),
+    ];
+    for (name, array) in named {
+        if let Some(a) = array {
             artifact
                 .arrays
-                .insert(String::from(COMPOSITE_HEIGHT), z.into_dyn());
+                .insert(name.to_string(), a.clone().into_dyn());
         }
-        if let Some(f) = &last.fields {
-            let named = [
-                (PRESSURE, &f.pressure),
-                (GAP, &f.gap),
-                (DEFORMATION_LOWER, &f.deformation_first),
-                (DEFORMATION_UPPER, &f.deformation_second),
-                (PLASTIC_PENETRATION, &f.plastic_penetration),
-            ];
-            for (name, array) in named {
-                if let Some(a) = array {
-                    artifact
-                        .arrays
-                        .insert(name.to_string(), a.clone().into_dyn());
-                }
-            }
-        }
-        Ok(artifact)
     }
 }
