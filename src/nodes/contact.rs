@@ -19,7 +19,7 @@ use crate::contact::{
 };
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
-use crate::engine::study::{Param, ResolveContext, SpannedName, SpecError};
+use crate::engine::study::{Param, ResolveContext, SourceLocation, SpannedName, SpecError};
 use crate::engine::value::Field;
 use crate::materials::half_space_compliance;
 use crate::surface::HeightMap;
@@ -79,123 +79,11 @@ impl ContactSpec {
     }
 
     pub(crate) fn instantiate(&self, ctx: &ResolveContext<'_>) -> Result<ContactTask, SpecError> {
-        let err = |location, field: &str, message: String| SpecError {
-            location,
-            field: field.to_string(),
-            message,
-        };
-        for (i, name) in std::iter::once(&self.lower).chain(&self.upper).enumerate() {
-            if let Some(up) = ctx.upstream(i) {
-                if up.kind() != super::surface::KIND {
-                    return Err(err(
-                        name.location,
-                        if i == 0 { "lower" } else { "upper" },
-                        format!(
-                            "'{}' is a {} node; contact needs surface nodes",
-                            name.value,
-                            up.kind()
-                        ),
-                    ));
-                }
-            }
-        }
-        let lower = self.lower_material.resolve(ctx, "lower_material")?;
-        let (e1, nu1) = (lower.youngs_modulus, lower.poisson_ratio);
-        let mut material_flow = lower.flow_pressure;
-        let mut params = vec![
-            Field::float("lower_youngs_modulus", e1, Dimension::Pressure),
-            Field::float("lower_poisson_ratio", nu1, Dimension::Dimensionless),
-        ];
-        let upper = match (&self.upper, &self.upper_material) {
-            (Some(_), Some(m)) => {
-                let upper = m.resolve(ctx, "upper_material")?;
-                let (e2, nu2) = (upper.youngs_modulus, upper.poisson_ratio);
-                material_flow = match (material_flow, upper.flow_pressure) {
-                    (Some(a), Some(b)) => Some(a.min(b)),
-                    (a, b) => a.or(b),
-                };
-                params.push(Field::float(
-                    "upper_youngs_modulus",
-                    e2,
-                    Dimension::Pressure,
-                ));
-                params.push(Field::float(
-                    "upper_poisson_ratio",
-                    nu2,
-                    Dimension::Dimensionless,
-                ));
-                Some((e2, nu2))
-            }
-            (Some(u), None) => {
-                return Err(err(
-                    u.location,
-                    "upper_material",
-                    String::from(
-                        "an upper surface needs `upper_material` (a name such as `s235jr` or `{youngs_modulus, poisson_ratio}`)",
-                    ),
-                ))
-            }
-            (None, Some(_)) => return Err(err(
-                self.lower.location,
-                "upper_material",
-                String::from(
-                    "is given but there is no `upper` surface (the counter-body is a rigid flat)",
-                ),
-            )),
-            (None, None) => None,
-        };
-        let explicit_flow = match &self.flow_pressure {
-            Some(p) => Some(
-                ctx.resolve_checked(p, "flow_pressure", |q| {
-                    if q.si() > 0.0 {
-                        Ok(())
-                    } else {
-                        Err(String::from("is out of range: must be > 0 Pa"))
-                    }
-                })?
-                .si(),
-            ),
-            None => None,
-        };
-        let flow_pressure = match explicit_flow.or(material_flow) {
-            Some(v) => {
-                params.push(Field::float("flow_pressure", v, Dimension::Pressure));
-                v
-            }
-            None => f64::INFINITY,
-        };
-        let location = self.lower.location;
-        if self.nominal_pressures.is_empty() {
-            return Err(err(
-                location,
-                "nominal_pressures",
-                String::from("needs at least one pressure"),
-            ));
-        }
-        let mut pressures = Vec::with_capacity(self.nominal_pressures.len());
-        for (i, p) in self.nominal_pressures.iter().enumerate() {
-            let v = ctx.resolve(p, &format!("nominal_pressures[{i}]"))?.si();
-            let previous = pressures.last().copied().unwrap_or(0.0);
-            if !(v > previous && v < flow_pressure) {
-                return Err(err(
-                    p.location(),
-                    &format!("nominal_pressures[{i}]"),
-                    format!(
-                        "{} Pa is out of range: pressures must ascend, be > 0 and stay below the flow pressure",
-                        format_number(v)
-                    ),
-                ));
-            }
-            pressures.push(v);
-        }
-        params.push(Field::text(
-            "nominal_pressures_Pa",
-            pressures
-                .iter()
-                .map(|p| format_number(*p))
-                .collect::<Vec<_>>()
-                .join(","),
-        ));
+        self.check_upstream_kinds(ctx)?;
+        let mut params = Vec::new();
+        let (lower, upper, material_flow) = self.materials(ctx, &mut params)?;
+        let flow_pressure = self.flow_pressure(ctx, material_flow, &mut params)?;
+        let pressures = self.pressures(ctx, flow_pressure, &mut params)?;
         let periodic = match &self.periodic {
             Some(p) => ctx.resolve(p, "periodic")?,
             None => true,
@@ -226,7 +114,7 @@ impl ContactSpec {
         let memory_estimate = surface_bytes.saturating_mul(if periodic { 2 } else { 8 });
         Ok(ContactTask {
             params,
-            lower: (e1, nu1),
+            lower,
             upper,
             flow_pressure,
             pressures,
@@ -235,6 +123,168 @@ impl ContactSpec {
             fields,
             memory_estimate,
         })
+    }
+
+    /// `lower` and `upper` must name surface nodes.
+    fn check_upstream_kinds(&self, ctx: &ResolveContext<'_>) -> Result<(), SpecError> {
+        for (i, name) in std::iter::once(&self.lower).chain(&self.upper).enumerate() {
+            if let Some(up) = ctx.upstream(i) {
+                if up.kind() != super::surface::KIND {
+                    return Err(spec_error(
+                        name.location,
+                        if i == 0 { "lower" } else { "upper" },
+                        format!(
+                            "'{}' is a {} node; contact needs surface nodes",
+                            name.value,
+                            up.kind()
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The elastic constants (E, ν) of both bodies (the upper `None` for a rigid flat) and the
+    /// smaller flow pressure the materials give; pushes their key fields.
+    fn materials(
+        &self,
+        ctx: &ResolveContext<'_>,
+        params: &mut Vec<Field>,
+    ) -> Result<ElasticPair, SpecError> {
+        let lower = self.lower_material.resolve(ctx, "lower_material")?;
+        let (e1, nu1) = (lower.youngs_modulus, lower.poisson_ratio);
+        params.push(Field::float(
+            "lower_youngs_modulus",
+            e1,
+            Dimension::Pressure,
+        ));
+        params.push(Field::float(
+            "lower_poisson_ratio",
+            nu1,
+            Dimension::Dimensionless,
+        ));
+        let mut material_flow = lower.flow_pressure;
+        let upper = match (&self.upper, &self.upper_material) {
+            (Some(_), Some(m)) => {
+                let upper = m.resolve(ctx, "upper_material")?;
+                let (e2, nu2) = (upper.youngs_modulus, upper.poisson_ratio);
+                material_flow = match (material_flow, upper.flow_pressure) {
+                    (Some(a), Some(b)) => Some(a.min(b)),
+                    (a, b) => a.or(b),
+                };
+                params.push(Field::float("upper_youngs_modulus", e2, Dimension::Pressure));
+                params.push(Field::float(
+                    "upper_poisson_ratio",
+                    nu2,
+                    Dimension::Dimensionless,
+                ));
+                Some((e2, nu2))
+            }
+            (Some(u), None) => {
+                return Err(spec_error(
+                    u.location,
+                    "upper_material",
+                    String::from(
+                        "an upper surface needs `upper_material` (a name such as `s235jr` or `{youngs_modulus, poisson_ratio}`)",
+                    ),
+                ))
+            }
+            (None, Some(_)) => {
+                return Err(spec_error(
+                    self.lower.location,
+                    "upper_material",
+                    String::from(
+                        "is given but there is no `upper` surface (the counter-body is a rigid flat)",
+                    ),
+                ))
+            }
+            (None, None) => None,
+        };
+        Ok(((e1, nu1), upper, material_flow))
+    }
+
+    /// The flow pressure p_lim (Pa): the explicit field, else the materials' (+∞ without
+    /// either: purely elastic); pushes it to the key when finite.
+    fn flow_pressure(
+        &self,
+        ctx: &ResolveContext<'_>,
+        material_flow: Option<f64>,
+        params: &mut Vec<Field>,
+    ) -> Result<f64, SpecError> {
+        let explicit = match &self.flow_pressure {
+            Some(p) => Some(
+                ctx.resolve_checked(p, "flow_pressure", |q| {
+                    if q.si() > 0.0 {
+                        Ok(())
+                    } else {
+                        Err(String::from("is out of range: must be > 0 Pa"))
+                    }
+                })?
+                .si(),
+            ),
+            None => None,
+        };
+        Ok(match explicit.or(material_flow) {
+            Some(v) => {
+                params.push(Field::float("flow_pressure", v, Dimension::Pressure));
+                v
+            }
+            None => f64::INFINITY,
+        })
+    }
+
+    /// The nominal pressures (Pa): at least one, ascending, > 0 and below the flow pressure.
+    fn pressures(
+        &self,
+        ctx: &ResolveContext<'_>,
+        flow_pressure: f64,
+        params: &mut Vec<Field>,
+    ) -> Result<Vec<f64>, SpecError> {
+        if self.nominal_pressures.is_empty() {
+            return Err(spec_error(
+                self.lower.location,
+                "nominal_pressures",
+                String::from("needs at least one pressure"),
+            ));
+        }
+        let mut pressures = Vec::with_capacity(self.nominal_pressures.len());
+        for (i, p) in self.nominal_pressures.iter().enumerate() {
+            let v = ctx.resolve(p, &format!("nominal_pressures[{i}]"))?.si();
+            let previous = pressures.last().copied().unwrap_or(0.0);
+            if !(v > previous && v < flow_pressure) {
+                return Err(spec_error(
+                    p.location(),
+                    &format!("nominal_pressures[{i}]"),
+                    format!(
+                        "{} Pa is out of range: pressures must ascend, be > 0 and stay below the flow pressure",
+                        format_number(v)
+                    ),
+                ));
+            }
+            pressures.push(v);
+        }
+        params.push(Field::text(
+            "nominal_pressures_Pa",
+            pressures
+                .iter()
+                .map(|p| format_number(*p))
+                .collect::<Vec<_>>()
+                .join(","),
+        ));
+        Ok(pressures)
+    }
+}
+
+/// (E, ν) of the lower body, of the upper body (`None`: rigid flat), and the materials' flow
+/// pressure.
+type ElasticPair = ((f64, f64), Option<(f64, f64)>, Option<f64>);
+
+fn spec_error(location: SourceLocation, field: &str, message: String) -> SpecError {
+    SpecError {
+        location,
+        field: field.to_string(),
+        message,
     }
 }
 
