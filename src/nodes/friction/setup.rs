@@ -243,6 +243,50 @@ pub(super) fn instantiate(
     check_upstream(spec, ctx)?;
     let location = location_of(spec);
     let (model, method) = model_setup::model_and_method(spec, ctx, location)?;
+    let mut params = vec![
+        Field::text("method", method.name()),
+        Field::text("model", model.name()),
+    ];
+    let form = static_friction_form(spec, ctx, model, location, &mut params)?;
+    let pair = resolve_material(spec, ctx, &mut params)?;
+    let (full_stick, shear_strength) =
+        model_setup::model_inputs(spec, ctx, model, &pair, &mut params)?;
+    check_method_fields(spec, method, location)?;
+    let adhesion = adhesion(spec, ctx, location, &mut params)?;
+    let nominal_area = match &spec.nominal_area {
+        Some(p) => {
+            let a = ctx
+                .resolve_checked(p, "nominal_area", |q| positive(q.si(), "m^2"))?
+                .si();
+            params.push(Field::float("nominal_area", a, Dimension::Area));
+            Some(a)
+        }
+        None => None,
+    };
+    let setup = method_setup(spec, ctx, method, &pair, nominal_area, &mut params)?;
+    Ok(FrictionTask {
+        params,
+        model,
+        material: pair.material,
+        shear_strength,
+        adhesion,
+        options: ModelOptions {
+            static_friction_form: form,
+            full_stick,
+            ..ModelOptions::default()
+        },
+        setup,
+    })
+}
+
+/// `static_friction_form` (KE only; literal by default), pushed to the key for KE.
+fn static_friction_form(
+    spec: &FrictionSpec,
+    ctx: &ResolveContext<'_>,
+    model: FrictionModel,
+    location: SourceLocation,
+    params: &mut Vec<Field>,
+) -> Result<StaticFrictionForm, SpecError> {
     let form = resolve_choice(
         ctx,
         &spec.static_friction_form,
@@ -252,7 +296,8 @@ pub(super) fn instantiate(
             ("clipped", StaticFrictionForm::Clipped),
         ],
     )?;
-    if form.is_some() && model != FrictionModel::Asperity(AsperityModel::KogutEtsion) {
+    let ke = model == FrictionModel::Asperity(AsperityModel::KogutEtsion);
+    if form.is_some() && !ke {
         return Err(spec_error(
             location,
             "static_friction_form",
@@ -260,17 +305,19 @@ pub(super) fn instantiate(
         ));
     }
     let form = form.unwrap_or_default();
-    let mut params = vec![
-        Field::text("method", method.name()),
-        Field::text("model", model.name()),
-    ];
-    if model == FrictionModel::Asperity(AsperityModel::KogutEtsion) {
+    if ke {
         params.push(Field::text("static_friction_form", form_name(form)));
     }
-    let pair = resolve_material(spec, ctx, &mut params)?;
-    let (full_stick, shear_strength) =
-        model_setup::model_inputs(spec, ctx, model, &pair, &mut params)?;
-    check_method_fields(spec, method, location)?;
+    Ok(form)
+}
+
+/// The adhesion energy Δγ and equilibrium distance ε (defaults: see the constants).
+fn adhesion(
+    spec: &FrictionSpec,
+    ctx: &ResolveContext<'_>,
+    location: SourceLocation,
+    params: &mut Vec<Field>,
+) -> Result<AdhesionParameters, SpecError> {
     let energy = match &spec.adhesion_energy {
         Some(p) => ctx
             .resolve_checked(p, "adhesion_energy", |q| {
@@ -301,73 +348,26 @@ pub(super) fn instantiate(
         epsilon,
         Dimension::Length,
     ));
-    let nominal_area = match &spec.nominal_area {
-        Some(p) => {
-            let a = ctx
-                .resolve_checked(p, "nominal_area", |q| positive(q.si(), "m^2"))?
-                .si();
-            params.push(Field::float("nominal_area", a, Dimension::Area));
-            Some(a)
-        }
-        None => None,
-    };
+    Ok(adhesion)
+}
+
+/// What the method needs: roughness and loads (statistical), or the contact solution and its
+/// options (per summit, per spot).
+fn method_setup(
+    spec: &FrictionSpec,
+    ctx: &ResolveContext<'_>,
+    method: FrictionMethod,
+    pair: &MaterialPair,
+    nominal_area: Option<f64>,
+    params: &mut Vec<Field>,
+) -> Result<MethodSetup, SpecError> {
+    let location = location_of(spec);
     let surfaces = usize::from(spec.lower.is_some()) + usize::from(spec.upper.is_some());
     let contact = spec.contact.as_ref().map(|_| surfaces);
-    let setup = match method {
+    Ok(match method {
         FrictionMethod::Statistical => {
-            let roughness = match (&spec.roughness, &spec.lower, &spec.upper) {
-                (Some(_), Some(n), _) | (Some(_), None, Some(n)) => {
-                    return Err(spec_error(
-                        n.location,
-                        "roughness",
-                        "give either explicit `roughness` or upstream surfaces (`lower`, `upper`), not both",
-                    ))
-                }
-                (Some(r), None, None) => {
-                    let sigma = ctx
-                        .resolve_checked(&r.sigma, "roughness.sigma", |q| positive(q.si(), "m"))?
-                        .si();
-                    let radius = ctx
-                        .resolve_checked(&r.radius, "roughness.radius", |q| positive(q.si(), "m"))?
-                        .si();
-                    let density =
-                        ctx.resolve_checked(&r.density, "roughness.density", |v| positive(*v, "per m^2"))?;
-                    let summits = SummitStatistics::from_explicit(sigma, radius, density)
-                        .map_err(|e| spec_error(r.sigma.location(), "roughness", e.to_string()))?;
-                    if nominal_area.is_none() {
-                        return Err(spec_error(
-                            r.sigma.location(),
-                            "nominal_area",
-                            "is required with explicit `roughness` (there is no upstream surface to take it from)",
-                        ));
-                    }
-                    params.extend([
-                        Field::float("sigma", sigma, Dimension::Length),
-                        Field::float("summit_radius", radius, Dimension::Length),
-                        Field::float("summit_density", density, Dimension::InverseArea),
-                    ]);
-                    Roughness::Explicit(summits)
-                }
-                (None, Some(_), upper) => Roughness::Surfaces {
-                    lower: 0,
-                    upper: upper.as_ref().map(|_| 1),
-                },
-                (None, None, Some(n)) => {
-                    return Err(spec_error(
-                        n.location,
-                        "upper",
-                        "is given without `lower` (one surface goes in `lower`)",
-                    ))
-                }
-                (None, None, None) => {
-                    return Err(spec_error(
-                        location,
-                        "roughness",
-                        "a statistical friction node needs upstream surfaces (`lower`, optional `upper`) or explicit `roughness: {sigma, radius, density}`",
-                    ))
-                }
-            };
-            let loads = resolve_loads(spec, ctx, contact, location, &mut params)?;
+            let roughness = roughness(spec, ctx, nominal_area, location, params)?;
+            let loads = resolve_loads(spec, ctx, contact, location, params)?;
             MethodSetup::Statistical {
                 roughness,
                 nominal_area,
@@ -376,7 +376,7 @@ pub(super) fn instantiate(
         }
         FrictionMethod::PerSummit => {
             let (contact, periodic) =
-                model_setup::contact_solution(spec, ctx, location, contact, &pair, method)?;
+                model_setup::contact_solution(spec, ctx, location, contact, pair, method)?;
             let summits_table = match &spec.summits_table {
                 Some(p) => ctx.resolve(p, "summits_table")?,
                 None => false,
@@ -391,8 +391,8 @@ pub(super) fn instantiate(
         }
         FrictionMethod::PerSpot => {
             let (contact, periodic) =
-                model_setup::contact_solution(spec, ctx, location, contact, &pair, method)?;
-            let (connectivity, spots_table) = model_setup::spot_options(spec, ctx, &mut params)?;
+                model_setup::contact_solution(spec, ctx, location, contact, pair, method)?;
+            let (connectivity, spots_table) = model_setup::spot_options(spec, ctx, params)?;
             MethodSetup::PerSpot {
                 contact,
                 section: super::per_spot::Section {
@@ -403,20 +403,65 @@ pub(super) fn instantiate(
                 },
             }
         }
-    };
-    Ok(FrictionTask {
-        params,
-        model,
-        material: pair.material,
-        shear_strength,
-        adhesion,
-        options: ModelOptions {
-            static_friction_form: form,
-            full_stick,
-            ..ModelOptions::default()
-        },
-        setup,
     })
+}
+
+/// The roughness of the statistical method: explicit `{sigma, radius, density}` (which needs a
+/// nominal area) or the upstream surfaces, never both.
+fn roughness(
+    spec: &FrictionSpec,
+    ctx: &ResolveContext<'_>,
+    nominal_area: Option<f64>,
+    location: SourceLocation,
+    params: &mut Vec<Field>,
+) -> Result<Roughness, SpecError> {
+    match (&spec.roughness, &spec.lower, &spec.upper) {
+        (Some(_), Some(n), _) | (Some(_), None, Some(n)) => Err(spec_error(
+            n.location,
+            "roughness",
+            "give either explicit `roughness` or upstream surfaces (`lower`, `upper`), not both",
+        )),
+        (Some(r), None, None) => {
+            let sigma = ctx
+                .resolve_checked(&r.sigma, "roughness.sigma", |q| positive(q.si(), "m"))?
+                .si();
+            let radius = ctx
+                .resolve_checked(&r.radius, "roughness.radius", |q| positive(q.si(), "m"))?
+                .si();
+            let density = ctx.resolve_checked(&r.density, "roughness.density", |v| {
+                positive(*v, "per m^2")
+            })?;
+            let summits = SummitStatistics::from_explicit(sigma, radius, density)
+                .map_err(|e| spec_error(r.sigma.location(), "roughness", e.to_string()))?;
+            if nominal_area.is_none() {
+                return Err(spec_error(
+                    r.sigma.location(),
+                    "nominal_area",
+                    "is required with explicit `roughness` (there is no upstream surface to take it from)",
+                ));
+            }
+            params.extend([
+                Field::float("sigma", sigma, Dimension::Length),
+                Field::float("summit_radius", radius, Dimension::Length),
+                Field::float("summit_density", density, Dimension::InverseArea),
+            ]);
+            Ok(Roughness::Explicit(summits))
+        }
+        (None, Some(_), upper) => Ok(Roughness::Surfaces {
+            lower: 0,
+            upper: upper.as_ref().map(|_| 1),
+        }),
+        (None, None, Some(n)) => Err(spec_error(
+            n.location,
+            "upper",
+            "is given without `lower` (one surface goes in `lower`)",
+        )),
+        (None, None, None) => Err(spec_error(
+            location,
+            "roughness",
+            "a statistical friction node needs upstream surfaces (`lower`, optional `upper`) or explicit `roughness: {sigma, radius, density}`",
+        )),
+    }
 }
 
 /// Fields that only one method uses are refused with the others.
