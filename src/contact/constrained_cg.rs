@@ -146,7 +146,6 @@ pub(crate) fn solve(
     control: Control,
     settings: &CgSettings,
 ) -> Result<CgOutcome, FftFailure> {
-    let plim = settings.flow_pressure;
     let n = ws.len() as f64;
     let h = settings.gap_scale;
     let (offset, load_control) = match control {
@@ -163,7 +162,7 @@ pub(crate) fn solve(
     let mut last_spread: Option<(f64, f64)> = None;
     let mut cycling = false;
     // Σ p over the contact lists (`p` vanishes off them), in parallel.
-    let mut p_sum = ws.free_stats(plim).total();
+    let mut p_sum = ws.free_stats().total();
     let mut g_old = 0.0;
     let mut reset = true;
     let mut progress_mark = f64::INFINITY;
@@ -184,7 +183,7 @@ pub(crate) fn solve(
             Displacement::Pending(tau) => Some(tau),
             Displacement::Current => None,
         };
-        let stats = ws.contact_stats(pending_step, offset, delta_prev, plim);
+        let stats = ws.contact_stats(pending_step, offset, delta_prev);
         let has_free = stats.free_count > 0.0;
         // Mean of y = g − δ_prev on F: the correction of δ (load control).
         let shift = if load_control && has_free {
@@ -280,7 +279,7 @@ pub(crate) fn solve(
             // point (the rigid-plastic start) `t = g − δ` vanishes: no direction to transform.
             None
         } else {
-            let [gt, t_sum, t_abs] = ws.direction(beta, offset, delta, plim);
+            let [gt, t_sum, t_abs] = ws.direction(beta, offset, delta);
             // `tᵀ K t = Σ_F t (K t)`: `t` vanishes off the free set.
             let mut rt = ws.start_direction_transform(op)?;
             fft_transforms += 1;
@@ -292,7 +291,7 @@ pub(crate) fn solve(
                 op.finish_apply(&mut ws.w)?;
                 fft_transforms += 1;
                 w_ready = true;
-                rt -= ws.free_w_sum(plim) * t_sum / stats.free_count;
+                rt -= ws.free_w_sum() * t_sum / stats.free_count;
             }
             (rt > 0.0 && gt > 0.0 && (gt / rt).is_finite()).then_some(gt / rt)
         };
@@ -302,7 +301,7 @@ pub(crate) fn solve(
             None => {
                 // The projected-gradient step (module docs); it replaces `t`, and `reset` below
                 // restarts the conjugation.
-                let e2 = ws.entry_direction(offset, delta, plim);
+                let e2 = ws.entry_direction(offset, delta);
                 let ek = op.start_apply(&ws.t)?;
                 fft_transforms += 1;
                 if ek > 0.0 && e2 > 0.0 && (e2 / ek).is_finite() {
@@ -312,7 +311,7 @@ pub(crate) fn solve(
                 }
             }
         };
-        let update = ws.update(tau, offset, delta, plim);
+        let update = ws.update(tau, offset, delta);
         iterations += 1;
         u_fresh = false;
         reset = breakdown || update.entered > RESTART_FRACTION * update.free.free_count;
@@ -326,7 +325,7 @@ pub(crate) fn solve(
             // Round-off drift of the load in linear steps is repaired once it reaches a tenth of
             // the force tolerance.
             if !exact || (p_sum - total).abs() > 0.1 * settings.tolerance * total {
-                let rebalanced = ws.rebalance_with(total, plim, update.free);
+                let rebalanced = ws.rebalance_with(total, update.free);
                 p_sum = rebalanced.pressure_sum;
                 if rebalanced.spread && iterations > 1 {
                     // A fall-back from the same state as the last one: the load-controlled

@@ -23,7 +23,8 @@ impl Workspace {
     /// is the exact solution in the limit E* → ∞ and close to it when most of the contact area
     /// is saturated, where a uniform start costs the iteration hundreds of steps. Elastic
     /// problems (p_lim = ∞) start from the uniform p̄.
-    pub(crate) fn start_rigid_plastic(&mut self, nominal: f64, plim: f64) {
+    pub(crate) fn start_rigid_plastic(&mut self, nominal: f64) {
+        let plim = self.plim;
         let n = self.p.len();
         let share = nominal * n as f64 / plim;
         if !(plim.is_finite() && share.is_finite() && share < n as f64) || n == 0 {
@@ -86,10 +87,10 @@ impl Workspace {
     }
 
     /// Restores `Σ p = total` from pressures set outside the iteration (a warm start).
-    pub(crate) fn rebalance(&mut self, total: f64, plim: f64) {
+    pub(crate) fn rebalance(&mut self, total: f64) {
         self.rebuild_contact();
-        let stats = self.free_stats(plim);
-        self.rebalance_with(total, plim, stats);
+        let stats = self.free_stats();
+        self.rebalance_with(total, stats);
     }
 
     /// Restores `Σ p = total` (`0 < total < N p_lim`): scales the free pressures, saturating at
@@ -99,7 +100,8 @@ impl Workspace {
     /// gap (see [`Self::spread_by_gap`]). Otherwise (and when that ranking declines) all
     /// pressures are shifted, `p ← clamp(p + c, 0, p_lim)`, with `c` by bisection, and the
     /// contact lists rebuilt. `stats` are the free-set statistics of the current pressures.
-    pub(super) fn rebalance_with(&mut self, total: f64, plim: f64, stats: FreeStats) -> Rebalanced {
+    pub(super) fn rebalance_with(&mut self, total: f64, stats: FreeStats) -> Rebalanced {
+        let plim = self.plim;
         let FreeStats {
             free_sum,
             free_max,
@@ -112,7 +114,7 @@ impl Workspace {
             let mut s = need / free_sum;
             if s * free_max >= plim {
                 for _ in 0..100 {
-                    let (f, slope) = self.scaled_free_sum(s, plim);
+                    let (f, slope) = self.scaled_free_sum(s);
                     if (need - f).abs() <= 1e-14 * need || slope <= 0.0 {
                         break;
                     }
@@ -120,12 +122,12 @@ impl Workspace {
                 }
             }
             return Rebalanced {
-                pressure_sum: sat_sum + self.scale_free(s, plim),
+                pressure_sum: sat_sum + self.scale_free(s),
                 spread: false,
             };
         }
         if need > 0.0 && need >= capacity {
-            if let Some(r) = self.spread_by_gap(need - capacity, plim) {
+            if let Some(r) = self.spread_by_gap(need - capacity) {
                 return r;
             }
         }
@@ -138,7 +140,7 @@ impl Workspace {
         let (mut lo, mut hi) = (-pmax, if plim.is_finite() { plim } else { total / n });
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);
-            if self.shifted_sum(mid, plim) < total {
+            if self.shifted_sum(mid) < total {
                 lo = mid;
             } else {
                 hi = mid;
@@ -153,7 +155,7 @@ impl Workspace {
             .for_each(|pi| *pi = (*pi + c).clamp(0.0, plim));
         self.rebuild_contact();
         Rebalanced {
-            pressure_sum: self.free_stats(plim).total(),
+            pressure_sum: self.free_stats().total(),
             spread: c > 0.0,
         }
     }
@@ -169,7 +171,8 @@ impl Workspace {
     /// iteration cycles between such fall-backs. The branch runs about twice per load step on
     /// saturated contacts, so the ranking's buffers are kept in the workspace (measurements:
     /// `docs/contact-solver-design.md`).
-    fn spread_by_gap(&mut self, rest: f64, plim: f64) -> Option<Rebalanced> {
+    fn spread_by_gap(&mut self, rest: f64) -> Option<Rebalanced> {
+        let plim = self.plim;
         if !plim.is_finite() {
             return None;
         }
@@ -188,7 +191,7 @@ impl Workspace {
         place_ranked(&mut self.p, lowest, plim, (share - m as f64) * plim);
         self.rebuild_contact();
         Some(Rebalanced {
-            pressure_sum: self.free_stats(plim).total(),
+            pressure_sum: self.free_stats().total(),
             spread: true,
         })
     }
@@ -211,8 +214,8 @@ mod tests {
     fn rigid_plastic_start_fills_the_smallest_gaps_in_index_order_of_ties() {
         // Order by (gap, index): 6, 1, 3, 4, 2, 7, 0, 5. N p̄ / p_lim = 3.5: the first three carry
         // p_lim, the fourth (index 4, the last of the tied gaps 1) half of it.
-        let mut ws = Workspace::new(vec![3.0, 1.0, 2.0, 1.0, 1.0, 5.0, 0.0, 2.0], 4);
-        ws.start_rigid_plastic(3.5 * 10.0 / 8.0, 10.0);
+        let mut ws = Workspace::new(vec![3.0, 1.0, 2.0, 1.0, 1.0, 5.0, 0.0, 2.0], 4, 10.0);
+        ws.start_rigid_plastic(3.5 * 10.0 / 8.0);
         assert_eq!(ws.p, vec![0.0, 10.0, 0.0, 10.0, 5.0, 0.0, 10.0, 0.0]);
     }
 
@@ -223,7 +226,8 @@ mod tests {
         let n = 64;
         let plim = 10.0;
         let start = |u0: f64| {
-            let mut ws = Workspace::new((0..n).map(|i| (n - 1 - i) as f64 * 1e-6).collect(), 8);
+            let mut ws =
+                Workspace::new((0..n).map(|i| (n - 1 - i) as f64 * 1e-6).collect(), 8, plim);
             ws.p[62] = 4.0;
             ws.p[63] = 4.0;
             ws.u[0] = u0;
@@ -233,7 +237,7 @@ mod tests {
         // once its displacement brings it closest.
         for (u0, receiver) in [(0.0, 61), (-1e-4, 0)] {
             let mut ws = start(u0);
-            ws.rebalance(25.0, plim);
+            ws.rebalance(25.0);
             let mut expected = vec![0.0; n];
             expected[62] = plim;
             expected[63] = plim;
@@ -242,7 +246,7 @@ mod tests {
         }
         // More points than the ranking takes (N/16): the uniform shift, which also restores Σ p.
         let mut ws = start(0.0);
-        ws.rebalance(60.0, plim);
+        ws.rebalance(60.0);
         let sum: f64 = ws.p.iter().sum();
         assert!((sum - 60.0).abs() < 1e-9, "Σ p = {sum}");
         assert!(ws.p.iter().all(|&p| p > 0.0));
@@ -258,8 +262,8 @@ mod tests {
         order.sort_by(|&a, &b| g0[a].total_cmp(&g0[b]).then(a.cmp(&b)));
         let plim = 4e9;
         for share in [0.3, 7.5, 100.25, 1000.5, 5000.75] {
-            let mut ws = Workspace::new(g0.clone(), 128);
-            ws.start_rigid_plastic(share * plim / n as f64, plim);
+            let mut ws = Workspace::new(g0.clone(), 128, plim);
+            ws.start_rigid_plastic(share * plim / n as f64);
             let k = share as usize;
             let mut expected = vec![0.0; n];
             order[..k].iter().for_each(|&i| expected[i] = plim);

@@ -143,7 +143,11 @@ impl ContactSolver {
             problem.material().composite_modulus(),
             problem.boundary(),
         )?;
-        let workspace = Workspace::new(gap.gap().iter().copied().collect(), gap.nx());
+        let workspace = Workspace::new(
+            gap.gap().iter().copied().collect(),
+            gap.nx(),
+            problem.material().flow_pressure(),
+        );
         let rms = gap.rms();
         Ok(Self {
             problem,
@@ -230,9 +234,9 @@ impl ContactSolver {
         let n = self.workspace.p.len() as f64;
         match self.last_nominal {
             Some(_) => {
-                self.workspace.rebalance(pressure * n, plim);
+                self.workspace.rebalance(pressure * n);
             }
-            None => self.workspace.start_rigid_plastic(pressure, plim),
+            None => self.workspace.start_rigid_plastic(pressure),
         }
         self.last_nominal = None;
         let ws = &mut self.workspace;
@@ -263,7 +267,7 @@ impl ContactSolver {
                     (first, SolvePath::ConstrainedCg)
                 } else {
                     // Restart from the rigid-plastic start: the stalled iterate may be far off.
-                    ws.start_rigid_plastic(pressure, plim);
+                    ws.start_rigid_plastic(pressure);
                     let start = constrained_cg::solve(ws, op, load, &estimate)?;
                     let budget = CgSettings {
                         max_iterations: settings.max_iterations.saturating_sub(first.iterations),

@@ -267,11 +267,14 @@ pub(crate) struct Workspace {
     row_min: Vec<f64>,
     /// `row_min` holds for the current `u` and `p` (cleared whenever either changes otherwise).
     row_min_current: bool,
+    /// The flow pressure p_lim (Pa; +∞ for a purely elastic contact): the cap on every point's
+    /// pressure, constant for the workspace's problem.
+    pub(super) plim: f64,
 }
 
 impl Workspace {
-    /// The workspace of a grid of `g0.len()` points in rows of `nx`.
-    pub(crate) fn new(g0: Vec<f64>, nx: usize) -> Self {
+    /// The workspace of a grid of `g0.len()` points in rows of `nx`, pressures capped at `plim`.
+    pub(crate) fn new(g0: Vec<f64>, nx: usize, plim: f64) -> Self {
         let n = g0.len();
         let nx = nx.max(1);
         let blocks = n.div_ceil(BLOCK).max(1);
@@ -288,6 +291,7 @@ impl Workspace {
             nx,
             row_min: vec![f64::INFINITY; n.div_ceil(nx)],
             row_min_current: false,
+            plim,
         }
     }
 
@@ -332,8 +336,8 @@ impl Workspace {
         pending_step: Option<f64>,
         offset: f64,
         delta_prev: f64,
-        plim: f64,
     ) -> ContactStats {
+        let plim = self.plim;
         let (g0, u, p, w) = (&self.g0, &self.u, &self.p, &self.w);
         let tau = pending_step.unwrap_or(0.0);
         each_block(&mut self.blocks, |base, block| {
@@ -351,7 +355,8 @@ impl Workspace {
 
     /// `t ← (v − δ) + β t` on the free set, 0 at saturated points and off the contact set;
     /// returns `[Σ_F (v − δ) t, Σ_F t, Σ_F |t|]` of the new direction.
-    pub(super) fn direction(&mut self, beta: f64, offset: f64, delta: f64, plim: f64) -> [f64; 3] {
+    pub(super) fn direction(&mut self, beta: f64, offset: f64, delta: f64) -> [f64; 3] {
+        let plim = self.plim;
         let (g0, u, p) = (&self.g0, &self.u, &self.p);
         each_direction_block(&mut self.t, p, &mut self.blocks, |base, t, block| {
             let mut sums = [0.0; 4];
@@ -380,7 +385,8 @@ impl Workspace {
     /// `constrained_cg::solve`): `t ← v − δ` on the free set, at saturated points with an open
     /// gap and at the recorded out-of-contact points with a negative gap, 0 elsewhere on the
     /// contact set; returns `Σ t²`.
-    pub(super) fn entry_direction(&mut self, offset: f64, delta: f64, plim: f64) -> f64 {
+    pub(super) fn entry_direction(&mut self, offset: f64, delta: f64) -> f64 {
+        let plim = self.plim;
         let (g0, u, p) = (&self.g0, &self.u, &self.p);
         each_direction_block(&mut self.t, p, &mut self.blocks, |base, t, block| {
             let mut sum = 0.0;
@@ -400,7 +406,8 @@ impl Workspace {
     }
 
     /// `Σ_F w` with `w = K t`.
-    pub(super) fn free_w_sum(&mut self, plim: f64) -> f64 {
+    pub(super) fn free_w_sum(&mut self) -> f64 {
+        let plim = self.plim;
         let (p, w) = (&self.p, &self.w);
         each_block(&mut self.blocks, |base, block| {
             block.sums[0] = contact_points(base, &block.contact)
@@ -415,7 +422,8 @@ impl Workspace {
     /// saturated points with an open gap and at the recorded out-of-contact points with a
     /// negative gap; projection on `[0, p_lim]`. Points that drop to 0 leave the contact list,
     /// re-entered points join it. `u` is not changed.
-    pub(super) fn update(&mut self, tau: f64, offset: f64, delta: f64, plim: f64) -> UpdateOutcome {
+    pub(super) fn update(&mut self, tau: f64, offset: f64, delta: f64) -> UpdateOutcome {
+        let plim = self.plim;
         self.row_min_current = false;
         let (g0, u) = (&self.g0, &self.u);
         self.p
@@ -496,7 +504,8 @@ impl Workspace {
     }
 
     /// Free-set statistics of the current pressures (contact lists must be current).
-    pub(super) fn free_stats(&mut self, plim: f64) -> FreeStats {
+    pub(super) fn free_stats(&mut self) -> FreeStats {
+        let plim = self.plim;
         let p = &self.p;
         each_block(&mut self.blocks, |base, block| {
             let mut free = FreeStats::EMPTY;
@@ -511,7 +520,8 @@ impl Workspace {
     }
 
     /// `(Σ_F min(s p, p_lim), Σ_{F, s p < p_lim} p)`.
-    pub(super) fn scaled_free_sum(&mut self, s: f64, plim: f64) -> (f64, f64) {
+    pub(super) fn scaled_free_sum(&mut self, s: f64) -> (f64, f64) {
+        let plim = self.plim;
         let p = &self.p;
         each_block(&mut self.blocks, |base, block| {
             let mut a = [0.0; 4];
@@ -534,7 +544,8 @@ impl Workspace {
     }
 
     /// `p ← min(s p, p_lim)` on the free set; returns the new `Σ_F p`.
-    pub(super) fn scale_free(&mut self, s: f64, plim: f64) -> f64 {
+    pub(super) fn scale_free(&mut self, s: f64) -> f64 {
+        let plim = self.plim;
         self.row_min_current = false;
         self.p
             .par_chunks_mut(BLOCK)
@@ -556,7 +567,8 @@ impl Workspace {
     /// `Σ clamp(p + c, 0, p_lim)` over all points: the contact points one by one, the points
     /// out of contact (`p = 0`) together as `n₀ · clamp(c, 0, p_lim)` (contact lists must be
     /// current).
-    pub(super) fn shifted_sum(&mut self, c: f64, plim: f64) -> f64 {
+    pub(super) fn shifted_sum(&mut self, c: f64) -> f64 {
+        let plim = self.plim;
         let p = &self.p;
         each_block(&mut self.blocks, |base, block| {
             block.sums[0] = contact_points(base, &block.contact)
