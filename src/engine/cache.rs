@@ -172,7 +172,13 @@ impl Cache {
             metrics: manifest.metrics.clone(),
             ..Artifact::default()
         };
+        // Arrays decoded so far by file: an array equal to an earlier one names its file.
+        let mut decoded: BTreeMap<&str, ndarray::ArrayD<f64>> = BTreeMap::new();
         for payload in &manifest.payloads {
+            if let (Some(name), Some(array)) = (payload.array_name(), decoded.get(&*payload.file)) {
+                artifact.arrays.insert(name.to_string(), array.clone());
+                continue;
+            }
             let bytes = fs::read(dir.join(&payload.file))
                 .map_err(|e| corrupt(format!("{}: {e}", payload.file)))?;
             if bytes.len() as u64 != payload.bytes
@@ -191,6 +197,7 @@ impl Cache {
                     bytes
                 };
                 let array = npy::decode(&npy_bytes).map_err(|e| corrupt(e.to_string()))?;
+                decoded.insert(&payload.file, array.clone());
                 artifact.arrays.insert(name.to_string(), array);
             } else if payload.file == "tables.json" {
                 artifact.tables = serde_json::from_slice::<BTreeMap<String, Table>>(&bytes)

@@ -46,13 +46,12 @@ impl ResolveContext<'_> {
             field: field.to_string(),
             message,
         };
-        let (value, origin) = match (param.raw(), param.raw().as_reference()) {
+        // The parsed value, where it came from, and the text as written (after substitution).
+        let (parsed, origin, written) = match (param.raw(), param.raw().as_reference()) {
             (_, Some(name)) => {
                 let index = self.parameter_index(name).map_err(&error)?;
-                (
-                    self.values[index].clone(),
-                    format!(" (from parameter '{name}')"),
-                )
+                let origin = format!(" (from parameter '{name}')");
+                (Ok(self.values[index].clone()), origin, None)
             }
             (RawValue::Text(text), None) if text.contains("${") => {
                 let (substituted, names) = self.interpolate(text).map_err(&error)?;
@@ -61,38 +60,28 @@ impl ResolveContext<'_> {
                     if names.len() == 1 { "" } else { "s" },
                     names.join(", ")
                 );
-                let value = RawValue::Text(substituted.clone())
-                    .to_param_value()
-                    .unwrap_or(ParamValue::Text(substituted));
-                (value, origin)
+                let parsed = RawValue::Text(substituted.clone()).to_param_value();
+                (parsed, origin, Some(substituted))
             }
-            (raw, None) => match (raw.to_param_value(), raw) {
-                (Ok(value), _) => (value, String::new()),
-                // Text that is not a valid quantity ("3 um.x3p") is still text to a text field.
-                (Err(m), RawValue::Text(t)) => {
-                    let text = ParamValue::Text(t.clone());
-                    if T::from_param(&text).is_err() {
-                        return Err(error(m));
-                    }
-                    (text, String::new())
-                }
-                (Err(m), _) => return Err(error(m)),
-            },
+            (RawValue::Text(text), None) => (
+                param.raw().to_param_value(),
+                String::new(),
+                Some(text.clone()),
+            ),
+            (raw, None) => (raw.to_param_value(), String::new(), None),
         };
-        let typed = match (T::from_param(&value), &value) {
-            (Ok(typed), _) => typed,
-            // Text that reads like a quantity ("01-upper.x3p") is still text to a text field.
-            (Err(m), ParamValue::Quantity(_) | ParamValue::Number(_) | ParamValue::Int(_)) => {
-                match param.raw() {
-                    RawValue::Text(_) => T::from_param(&ParamValue::Text(
-                        self.text_as_written(param.raw()).map_err(&error)?,
-                    ))
-                    .map_err(|_| error(format!("{m}{origin}")))?,
-                    _ => return Err(error(format!("{m}{origin}"))),
-                }
-            }
-            (Err(m), _) => return Err(error(format!("{m}{origin}"))),
+        // Text that reads like a quantity ("01-upper.x3p") or is not a valid one ("3 um.x3p")
+        // is still text to a text field.
+        let as_text = written
+            .map(ParamValue::Text)
+            .filter(|t| T::from_param(t).is_ok());
+        let value = match (parsed, as_text) {
+            (Ok(v), Some(text)) if T::from_param(&v).is_err() => text,
+            (Ok(v), _) => v,
+            (Err(_), Some(text)) => text,
+            (Err(m), None) => return Err(error(format!("{m}{origin}"))),
         };
+        let typed = T::from_param(&value).map_err(|m| error(format!("{m}{origin}")))?;
         check(&typed).map_err(|m| error(format!("{value} {m}{origin}")))?;
         Ok(typed)
     }
@@ -150,15 +139,6 @@ impl ResolveContext<'_> {
         }
         out.push_str(rest);
         Ok((out, names))
-    }
-
-    /// A text field as written, after substitution.
-    fn text_as_written(&self, raw: &RawValue) -> Result<String, String> {
-        match raw {
-            RawValue::Text(t) if t.contains("${") => self.interpolate(t).map(|(s, _)| s),
-            RawValue::Text(t) => Ok(t.clone()),
-            other => Err(format!("expected text, got {other:?}")),
-        }
     }
 
     /// The `i`-th upstream task (in the order of the spec's `upstream`).

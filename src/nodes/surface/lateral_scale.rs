@@ -10,7 +10,7 @@ use crate::engine::node::NodeError;
 use crate::engine::study::FromParamValue;
 use crate::engine::value::ParamValue;
 use crate::surface::io::ScaleSource;
-use crate::surface::{amplitude_statistics, Boundary, HeightMap};
+use crate::surface::HeightMap;
 use crate::units::{Dimension, Length, Quantity};
 
 /// Root-mean-square slopes outside [MIN, MAX] flag a lateral scale that is probably wrong.
@@ -147,16 +147,14 @@ pub(crate) fn calibration_fields(given: LateralCalibration) -> [crate::engine::v
     }
 }
 
-/// An empty string, or a sentence when the root-mean-square slope Sdq of the preprocessed map is
+/// An empty string, or a sentence when the root-mean-square slope Sdq of a map with spacings
+/// dx, dy (m) is
 /// outside [`PLAUSIBLE_SDQ`]: below 1e-4 (0.006°) the map is flatter at its own sampling than any
 /// engineering surface — typically a pixel size far too large (1 m read for 1 µm); above 10
 /// (84°) it is steeper than an optical or stylus instrument can measure — typically a pixel
 /// size far too small. Reported, not an error: a super-polished flat can be that smooth.
-pub(crate) fn lateral_scale_warning(map: &HeightMap) -> String {
-    let Ok(stats) = amplitude_statistics(map, Boundary::Open) else {
-        return String::new();
-    };
-    let Some(sdq) = stats.sdq else {
+pub(crate) fn lateral_scale_warning(sdq: Option<f64>, dx: f64, dy: f64) -> String {
+    let Some(sdq) = sdq else {
         return String::new();
     };
     let (low, high) = PLAUSIBLE_SDQ;
@@ -168,9 +166,7 @@ pub(crate) fn lateral_scale_warning(map: &HeightMap) -> String {
         return String::new();
     };
     format!(
-        "rms slope Sdq = {sdq:.3e} with dx = {:.3e} m, dy = {:.3e} m is {what} Check the \
-         file's calibration or `pixel_size`/`size`.",
-        map.dx(),
-        map.dy()
+        "rms slope Sdq = {sdq:.3e} with dx = {dx:.3e} m, dy = {dy:.3e} m is {what} Check the \
+         file's calibration or `pixel_size`/`size`."
     )
 }

@@ -25,8 +25,7 @@ use crate::surface::{
 use crate::units::{Dimension, Length, Quantity};
 
 use super::lateral_scale::{
-    apply_lateral_calibration, calibration_fields, lateral_scale_warning, LateralCalibration,
-    LateralLengths,
+    apply_lateral_calibration, calibration_fields, LateralCalibration, LateralLengths,
 };
 use super::synthetic::positive_length;
 use super::{SurfaceSource, SurfaceTask};
@@ -279,9 +278,8 @@ impl MeasuredSource {
         self.load_with_scale_report().map(|(map, _)| map)
     }
 
-    /// Reads and preprocesses the surface; also returns the metrics that say how far its scales
-    /// can be trusted: `height_unit_from_file` and `lateral_scale_warning` (see
-    /// [`super::lateral_scale::lateral_scale_warning`]).
+    /// Reads and preprocesses the surface; also returns `height_unit_from_file` (the lateral
+    /// scale's check needs the surface statistics: [`super::lateral_scale::lateral_scale_warning`]).
     pub(super) fn load_with_scale_report(&self) -> Result<(HeightMap, Vec<Field>), NodeError> {
         let fail = |step: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{step}: {e}"));
         let topography = read_topography(&self.path).map_err(|e| fail("reading", &e))?;
@@ -325,11 +323,10 @@ impl MeasuredSource {
                 .surface;
         }
         check_not_degenerate(&map, &self.path)?;
-        let report = vec![
-            Field::bool("height_unit_from_file", height_unit_from_file),
-            Field::text("lateral_scale_warning", lateral_scale_warning(&map)),
-        ];
-        Ok((map, report))
+        Ok((
+            map,
+            vec![Field::bool("height_unit_from_file", height_unit_from_file)],
+        ))
     }
 
     /// File size plus working arrays (≈ 8 f64 per point, 4 bytes per stored point assumed).

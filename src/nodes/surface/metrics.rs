@@ -33,6 +33,8 @@ const MIN_HURST_FIT_R_SQUARED: f64 = 0.9;
 pub(super) struct SurfaceReport {
     pub metrics: Vec<Field>,
     pub tables: BTreeMap<String, Table>,
+    /// The RMS slope Sdq (also among the metrics), for checks of the lateral scale.
+    pub sdq: Option<f64>,
 }
 
 fn len(name: &str, v: f64) -> Field {
@@ -79,7 +81,11 @@ pub(super) fn surface_report(
         spectral_metrics(map, boundary, &mut metrics, &mut tables)?;
     }
     summit_metrics(map, boundary, &mut metrics, &mut tables)?;
-    Ok(SurfaceReport { metrics, tables })
+    Ok(SurfaceReport {
+        metrics,
+        tables,
+        sdq: a.sdq,
+    })
 }
 
 fn spectral_metrics(

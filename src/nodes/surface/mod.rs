@@ -21,6 +21,7 @@ pub use measured::FileSpec;
 pub use synthetic::{AnisotropySpec, SyntheticSpec};
 pub use twin::TwinSpec;
 
+use lateral_scale::lateral_scale_warning;
 use measured::MeasuredSource;
 use twin::TwinSource;
 
@@ -136,6 +137,12 @@ impl NodeTask for SurfaceTask {
         let (map, boundary, source_metrics) = self.heights()?;
         let mut report = metrics::surface_report(&map, boundary)?;
         report.metrics.extend(source_metrics);
+        if let SurfaceSource::Measured(_) = self.source {
+            let warning = lateral_scale_warning(report.sdq, map.dx(), map.dy());
+            report
+                .metrics
+                .push(Field::text("lateral_scale_warning", warning));
+        }
         let heights = map.into_heights().into_dyn();
         Ok(Artifact {
             metrics: report.metrics,
