@@ -1,24 +1,20 @@
-//! asperity: reproducible rough-surface contact and static-friction studies.
+//! asperity: reproducible rough-surface contact and static-friction studies — the application
+//! that joins two library crates:
+//! * [`asperity_numerics`] (re-exported as [`surface`], [`contact`], [`friction`], [`materials`],
+//!   [`fft2`]) — the numerics, usable as a plain library without YAML, cache or CLI;
+//! * [`asperity_engine`] (re-exported as [`engine`], with [`units`]) — the study engine, which
+//!   knows nothing of tribology beyond the node-kind trait.
 //!
-//! Numerics (usable as a plain library, no YAML, cache or CLI):
-//! * [`surface`] — height maps, topography readers, statistics, synthetic surfaces, summits;
-//! * [`contact`] — elastic–perfectly-plastic FFT boundary-element contact;
-//! * [`friction`] — Greenwood–Williamson / Kogut–Etsion static friction models.
-//!
-//! Study engine (knows nothing of tribology beyond the node-kind trait): [`engine`].
-//! Built-in material data: [`materials`]. Glue between the two: [`nodes`]. Quantities with units at the boundary: [`units`].
-//!
-//! See `ARCHITECTURE.md` for the code map and invariants.
+//! This crate owns the node kinds that plug tribology into the engine ([`nodes`]) and the
+//! report pages ([`report`]); the `asperity` binary is the command line. See `ARCHITECTURE.md`
+//! for the code map and invariants.
 
-pub mod contact;
-pub mod engine;
-pub mod fft2;
-pub mod friction;
-pub mod materials;
+pub use asperity_engine as engine;
+pub use asperity_engine::units;
+pub use asperity_numerics::{contact, fft2, friction, materials, surface};
+
 pub mod nodes;
 pub mod report;
-pub mod surface;
-pub mod units;
 
 /// The tool version recorded in cache manifests and Parquet metadata.
 pub const TOOL_VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -7,5 +7,5 @@ use std::path::Path;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    let _ = asperity::surface::io::parse_topography(Path::new("fuzz.sdf"), data);
+    let _ = asperity_numerics::surface::io::parse_topography(Path::new("fuzz.sdf"), data);
 });

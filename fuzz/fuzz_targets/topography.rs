@@ -17,5 +17,5 @@ fuzz_target!(|data: &[u8]| {
     };
     let ext = EXTENSIONS[usize::from(pick) % EXTENSIONS.len()];
     let name = format!("fuzz.{ext}");
-    let _ = asperity::surface::io::parse_topography(Path::new(&name), bytes);
+    let _ = asperity_numerics::surface::io::parse_topography(Path::new(&name), bytes);
 });

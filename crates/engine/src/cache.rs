@@ -1,0 +1,377 @@
+//! The content-addressed cache: one directory per node key, published atomically, verified on
+//! every read.
+//!
+//! Layout: `<root>/entries/<kind>/<key[..2]>/<key>/` holds `manifest.json`, `manifest.blake3`
+//! (the manifest's own checksum) and the payloads: `<array>.npy.zst` (a NumPy `.npy` file,
+//! zstd-compressed: lossless, and a contact's mostly-zero pressure and plastic-penetration maps
+//! shrink by orders of magnitude; `zstd -d` gives the `.npy`) and `tables.json`; an array equal to
+//! an earlier one of the entry is not written again, its manifest payload names the earlier file.
+//! Entries written before compression hold plain `<array>.npy` and are read as well. A node kind may keep its
+//! arrays out of the cache altogether ([`crate::node::ArrayStorage::Regenerate`]).
+//! An entry is written in `<root>/tmp/` (same filesystem), every file fsynced, then renamed into
+//! place in one step; an entry that already exists counts as success, so concurrent runs need no
+//! lock. A read verifies the manifest checksum and every payload's size and blake3 checksum; an
+//! entry that fails is reported, discarded and recomputed by the caller — never used.
+
+use std::collections::BTreeMap;
+use std::fs::{self, File};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, SystemTime, UNIX_EPOCH};
+
+use serde::{Deserialize, Serialize};
+
+use crate::artifact::{Artifact, Table};
+use crate::hash::NodeKey;
+use crate::npy;
+use crate::value::Field;
+
+/// What the cache records about one entry.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Manifest {
+    pub key: String,
+    pub kind: String,
+    pub version: u32,
+    pub params: Vec<Field>,
+    /// `(role, key)` of each upstream node.
+    pub upstream: Vec<(String, String)>,
+    pub metrics: Vec<Field>,
+    pub payloads: Vec<Payload>,
+    pub compute_seconds: f64,
+    pub tool_version: String,
+    pub created_unix: u64,
+}
+
+/// One payload file of an entry.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Payload {
+    pub file: String,
+    pub bytes: u64,
+    pub blake3: String,
+    /// The array this payload holds, when it is not the file's stem: an array identical to an
+    /// earlier one of the entry (e.g. the two deformation maps of a pair of equal materials)
+    /// names that array's file instead of storing the bytes twice.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub array: Option<String>,
+}
+
+impl Payload {
+    /// The array name, if this payload is an array.
+    fn array_name(&self) -> Option<&str> {
+        match &self.array {
+            Some(name) => Some(name),
+            None => self
+                .file
+                .strip_suffix(".npy.zst")
+                .or_else(|| self.file.strip_suffix(".npy")),
+        }
+    }
+}
+
+/// A verified cache entry.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CachedEntry {
+    pub manifest: Manifest,
+    /// The artifact; its arrays are only decoded when requested.
+    pub artifact: Artifact,
+}
+
+/// Cache failures.
+#[derive(Debug, thiserror::Error)]
+pub enum CacheError {
+    #[error("cache {path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("corrupt cache entry {path}: {reason}")]
+    Corrupt { path: PathBuf, reason: String },
+}
+
+fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CacheError + '_ {
+    move |source| CacheError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// zstd level of array payloads: the fastest, since dense float fields gain little from more.
+const ZSTD_LEVEL: i32 = 1;
+
+/// How old a temporary directory of another host must be before it is considered abandoned.
+const FOREIGN_TMP_MAX_AGE: Duration = Duration::from_secs(24 * 3600);
+
+/// A cache rooted at a directory.
+#[derive(Debug, Clone)]
+pub struct Cache {
+    root: PathBuf,
+}
+
+impl Cache {
+    /// Opens (creating if needed) the cache at `root`.
+    pub fn open(root: &Path) -> Result<Self, CacheError> {
+        for sub in ["entries", "tmp"] {
+            let dir = root.join(sub);
+            fs::create_dir_all(&dir).map_err(io_err(&dir))?;
+        }
+        Ok(Self {
+            root: root.to_path_buf(),
+        })
+    }
+
+    /// The cache root.
+    pub fn root(&self) -> &Path {
+        &self.root
+    }
+
+    /// The directory of the entry for `key` of kind `kind`.
+    pub fn entry_dir(&self, kind: &str, key: &NodeKey) -> PathBuf {
+        let hex = key.to_hex();
+        self.root
+            .join("entries")
+            .join(kind)
+            .join(&hex[..2])
+            .join(hex)
+    }
+
+    /// `true` when an entry directory exists (it may still fail verification).
+    pub fn contains(&self, kind: &str, key: &NodeKey) -> bool {
+        self.entry_dir(kind, key).join("manifest.json").exists()
+    }
+
+    /// Loads and verifies an entry. `Ok(None)`: not cached. `Err(Corrupt)`: present but failed
+    /// verification — call [`Cache::discard`] and recompute. With `with_arrays = false` every
+    /// payload checksum is still verified but arrays are not decoded (tables always are).
+    pub fn load(
+        &self,
+        kind: &str,
+        key: &NodeKey,
+        with_arrays: bool,
+    ) -> Result<Option<CachedEntry>, CacheError> {
+        let dir = self.entry_dir(kind, key);
+        if !dir.exists() {
+            return Ok(None);
+        }
+        let corrupt = |reason: String| CacheError::Corrupt {
+            path: dir.clone(),
+            reason,
+        };
+        let manifest_bytes = fs::read(dir.join("manifest.json"))
+            .map_err(|e| corrupt(format!("manifest.json: {e}")))?;
+        let recorded = fs::read_to_string(dir.join("manifest.blake3"))
+            .map_err(|e| corrupt(format!("manifest.blake3: {e}")))?;
+        if blake3::hash(&manifest_bytes).to_hex().as_str() != recorded.trim() {
+            return Err(corrupt(String::from("manifest checksum mismatch")));
+        }
+        let manifest: Manifest = serde_json::from_slice(&manifest_bytes)
+            .map_err(|e| corrupt(format!("manifest.json: {e}")))?;
+        if manifest.key != key.to_hex() || manifest.kind != kind {
+            return Err(corrupt(String::from("manifest names another key or kind")));
+        }
+        let mut artifact = Artifact {
+            metrics: manifest.metrics.clone(),
+            ..Artifact::default()
+        };
+        // Arrays decoded so far by file: an array equal to an earlier one names its file.
+        let mut decoded: BTreeMap<&str, ndarray::ArrayD<f64>> = BTreeMap::new();
+        for payload in &manifest.payloads {
+            if let (Some(name), Some(array)) = (payload.array_name(), decoded.get(&*payload.file)) {
+                artifact.arrays.insert(name.to_string(), array.clone());
+                continue;
+            }
+            let bytes = fs::read(dir.join(&payload.file))
+                .map_err(|e| corrupt(format!("{}: {e}", payload.file)))?;
+            if bytes.len() as u64 != payload.bytes
+                || blake3::hash(&bytes).to_hex().as_str() != payload.blake3
+            {
+                return Err(corrupt(format!("{}: checksum mismatch", payload.file)));
+            }
+            if let Some(name) = payload.array_name() {
+                if !with_arrays {
+                    continue;
+                }
+                let npy_bytes = if payload.file.ends_with(".zst") {
+                    zstd::stream::decode_all(bytes.as_slice())
+                        .map_err(|e| corrupt(format!("{}: {e}", payload.file)))?
+                } else {
+                    bytes
+                };
+                let array = npy::decode(&npy_bytes).map_err(|e| corrupt(e.to_string()))?;
+                decoded.insert(&payload.file, array.clone());
+                artifact.arrays.insert(name.to_string(), array);
+            } else if payload.file == "tables.json" {
+                artifact.tables = serde_json::from_slice::<BTreeMap<String, Table>>(&bytes)
+                    .map_err(|e| corrupt(format!("tables.json: {e}")))?;
+            }
+        }
+        Ok(Some(CachedEntry { manifest, artifact }))
+    }
+
+    /// Publishes an entry atomically. Returns `false` when another writer published the same
+    /// key first (which is success: entries with one key are interchangeable).
+    pub fn store(&self, mut manifest: Manifest, artifact: &Artifact) -> Result<bool, CacheError> {
+        let key = NodeKey::from_hex(&manifest.key).ok_or_else(|| CacheError::Corrupt {
+            path: self.root.clone(),
+            reason: format!("manifest key '{}' is not a node key", manifest.key),
+        })?;
+        let final_dir = self.entry_dir(&manifest.kind, &key);
+        if final_dir.exists() {
+            return Ok(false);
+        }
+        let tmp = self.root.join("tmp").join(format!(
+            "{}.{}.{}.{}",
+            manifest.key,
+            hostname(),
+            std::process::id(),
+            SystemTime::now()
+                .duration_since(UNIX_EPOCH)
+                .map_or(0, |d| d.as_nanos())
+        ));
+        fs::create_dir_all(&tmp).map_err(io_err(&tmp))?;
+        let result = self.write_and_publish(&tmp, &final_dir, &mut manifest, artifact);
+        if result.is_err() || tmp.exists() {
+            let _ = fs::remove_dir_all(&tmp);
+        }
+        result
+    }
+
+    fn write_and_publish(
+        &self,
+        tmp: &Path,
+        final_dir: &Path,
+        manifest: &mut Manifest,
+        artifact: &Artifact,
+    ) -> Result<bool, CacheError> {
+        manifest.payloads.clear();
+        for (name, array) in &artifact.arrays {
+            let file = format!("{name}.npy.zst");
+            let compressed = zstd::stream::encode_all(npy::encode(array).as_slice(), ZSTD_LEVEL)
+                .map_err(io_err(&tmp.join(&file)))?;
+            let checksum = blake3::hash(&compressed).to_hex().to_string();
+            let payload = match manifest.payloads.iter().find(|p| p.blake3 == checksum) {
+                Some(same) => Payload {
+                    array: Some(name.clone()),
+                    ..same.clone()
+                },
+                None => write_synced(tmp, &file, &compressed)?,
+            };
+            manifest.payloads.push(payload);
+        }
+        if !artifact.tables.is_empty() {
+            let bytes = serde_json::to_vec(&artifact.tables).map_err(|e| CacheError::Io {
+                path: tmp.join("tables.json"),
+                source: std::io::Error::other(e),
+            })?;
+            manifest
+                .payloads
+                .push(write_synced(tmp, "tables.json", &bytes)?);
+        }
+        let manifest_bytes = serde_json::to_vec_pretty(&manifest).map_err(|e| CacheError::Io {
+            path: tmp.join("manifest.json"),
+            source: std::io::Error::other(e),
+        })?;
+        write_synced(tmp, "manifest.json", &manifest_bytes)?;
+        let checksum = blake3::hash(&manifest_bytes).to_hex().to_string();
+        write_synced(tmp, "manifest.blake3", checksum.as_bytes())?;
+        sync_dir(tmp)?;
+        let parent = final_dir.parent().unwrap_or(&self.root);
+        fs::create_dir_all(parent).map_err(io_err(parent))?;
+        match fs::rename(tmp, final_dir) {
+            Ok(()) => {
+                sync_dir(parent)?;
+                Ok(true)
+            }
+            Err(_) if final_dir.exists() => Ok(false),
+            Err(e) => Err(io_err(final_dir)(e)),
+        }
+    }
+
+    /// Removes an entry (after a failed verification). The entry is first renamed away so no
+    /// reader sees it half-deleted.
+    pub fn discard(&self, kind: &str, key: &NodeKey) -> Result<(), CacheError> {
+        let dir = self.entry_dir(kind, key);
+        let graveyard = self.root.join("tmp").join(format!(
+            "discarded.{}.{}.{}",
+            key.to_hex(),
+            hostname(),
+            std::process::id()
+        ));
+        match fs::rename(&dir, &graveyard) {
+            Ok(()) => fs::remove_dir_all(&graveyard).map_err(io_err(&graveyard)),
+            Err(_) if !dir.exists() => Ok(()),
+            Err(e) => Err(io_err(&dir)(e)),
+        }
+    }
+
+    /// Deletes temporary directories left by writers that died: those of this host whose process
+    /// no longer runs, and any older than a day. Returns how many were removed.
+    pub fn clean_stale_tmp(&self) -> Result<usize, CacheError> {
+        let tmp = self.root.join("tmp");
+        let mut removed = 0;
+        let entries = fs::read_dir(&tmp).map_err(io_err(&tmp))?;
+        let host = hostname();
+        for entry in entries.flatten() {
+            let name = entry.file_name().to_string_lossy().to_string();
+            let stale = match parse_owner(&name) {
+                Some((h, pid)) if h == host => !process_alive(pid),
+                _ => entry
+                    .metadata()
+                    .and_then(|m| m.modified())
+                    .ok()
+                    .and_then(|t| t.elapsed().ok())
+                    .is_some_and(|age| age > FOREIGN_TMP_MAX_AGE),
+            };
+            if stale && fs::remove_dir_all(entry.path()).is_ok() {
+                removed += 1;
+            }
+        }
+        Ok(removed)
+    }
+}
+
+/// `(host, pid)` from a temporary directory name `<key>.<host>.<pid>.<nanos>` or
+/// `discarded.<key>.<host>.<pid>`.
+fn parse_owner(name: &str) -> Option<(String, u32)> {
+    let parts: Vec<&str> = name.split('.').collect();
+    if parts.first() == Some(&"discarded") && parts.len() >= 4 {
+        let pid = parts[parts.len() - 1].parse().ok()?;
+        return Some((parts[2..parts.len() - 1].join("."), pid));
+    }
+    if parts.len() >= 4 {
+        let pid = parts[parts.len() - 2].parse().ok()?;
+        return Some((parts[1..parts.len() - 2].join("."), pid));
+    }
+    None
+}
+
+fn process_alive(pid: u32) -> bool {
+    pid == std::process::id() || Path::new(&format!("/proc/{pid}")).exists()
+}
+
+fn hostname() -> String {
+    fs::read_to_string("/proc/sys/kernel/hostname")
+        .map(|h| h.trim().to_string())
+        .ok()
+        .filter(|h| !h.is_empty())
+        .or_else(|| std::env::var("HOSTNAME").ok())
+        .unwrap_or_else(|| String::from("localhost"))
+}
+
+fn write_synced(dir: &Path, file: &str, bytes: &[u8]) -> Result<Payload, CacheError> {
+    let path = dir.join(file);
+    let mut f = File::create(&path).map_err(io_err(&path))?;
+    f.write_all(bytes).map_err(io_err(&path))?;
+    f.sync_all().map_err(io_err(&path))?;
+    Ok(Payload {
+        file: file.to_string(),
+        bytes: bytes.len() as u64,
+        blake3: blake3::hash(bytes).to_hex().to_string(),
+        array: None,
+    })
+}
+
+fn sync_dir(dir: &Path) -> Result<(), CacheError> {
+    File::open(dir)
+        .and_then(|d| d.sync_all())
+        .map_err(io_err(dir))
+}

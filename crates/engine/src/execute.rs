@@ -1,0 +1,491 @@
+//! Execution: load what the cache has, compute the rest in parallel, upstream first.
+//!
+//! Only instances the requested tables need are touched. Instances run level by level of the DAG;
+//! within a level they run in parallel on the rayon pool, each first acquiring its memory estimate
+//! from a budget so large nodes do not run all at once. A failing node fails only its dependants.
+
+use std::collections::BTreeMap;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::{Arc, Condvar, Mutex};
+use std::time::{Instant, SystemTime, UNIX_EPOCH};
+
+use rayon::prelude::*;
+
+use crate::artifact::{Artifact, Table};
+use crate::cache::{Cache, CacheError, CachedEntry, Manifest};
+use crate::node::{ArrayStorage, NodeError};
+use crate::plan::{Plan, PlannedNode};
+use crate::value::Field;
+
+/// Receives progress events; the CLI draws a progress bar, tests ignore them.
+pub trait Progress: Sync {
+    /// Execution starts with `total` instances to load or compute.
+    fn start(&self, total: usize);
+    /// One instance finished (computed, loaded, failed or skipped).
+    fn finished(&self, node: &PlannedNode, status: &NodeStatus);
+    /// Something the user should know that is not a failure (a corrupt entry was discarded, …).
+    fn warn(&self, message: &str);
+}
+
+/// A [`Progress`] that ignores everything.
+pub struct NoProgress;
+
+impl Progress for NoProgress {
+    fn start(&self, _: usize) {}
+    fn finished(&self, _: &PlannedNode, _: &NodeStatus) {}
+    fn warn(&self, _: &str) {}
+}
+
+/// What happened to one instance.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NodeStatus {
+    Computed,
+    Cached,
+    Failed(String),
+    /// Not computed because an upstream instance failed.
+    Skipped(String),
+}
+
+impl NodeStatus {
+    /// `"ok"`, `"failed"` or `"skipped"`, the `status` column of tables.
+    pub fn label(&self) -> &'static str {
+        match self {
+            NodeStatus::Computed | NodeStatus::Cached => "ok",
+            NodeStatus::Failed(_) => "failed",
+            NodeStatus::Skipped(_) => "skipped",
+        }
+    }
+
+    /// The failure message, empty when ok.
+    pub fn message(&self) -> &str {
+        match self {
+            NodeStatus::Failed(m) | NodeStatus::Skipped(m) => m,
+            _ => "",
+        }
+    }
+}
+
+/// The outcome of one instance: its status and the row data for the tables.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NodeOutcome {
+    pub status: NodeStatus,
+    pub metrics: Vec<Field>,
+    pub tables: BTreeMap<String, Table>,
+    /// Compute time (when computed now) or the recorded compute time (when cached), seconds.
+    pub compute_seconds: f64,
+}
+
+/// Execution settings.
+#[derive(Debug, Clone)]
+pub struct ExecuteOptions {
+    /// Tables to produce; instances are computed only if these need them.
+    pub tables: Vec<String>,
+    /// Memory budget for concurrently running nodes, bytes.
+    pub memory_budget: u64,
+    /// Tool version recorded in manifests.
+    pub tool_version: String,
+}
+
+/// The result of a run.
+#[derive(Debug, Clone, Default)]
+pub struct RunReport {
+    /// `outcomes[i]` for instance `i`; `None` when the requested tables did not need it.
+    pub outcomes: Vec<Option<NodeOutcome>>,
+    pub computed: usize,
+    pub cached: usize,
+    pub failed: usize,
+    pub skipped: usize,
+    /// Corrupt cache entries found, discarded and recomputed.
+    pub discarded: usize,
+    pub wall_seconds: f64,
+}
+
+impl RunReport {
+    /// `true` when every needed instance is ok.
+    pub fn all_ok(&self) -> bool {
+        self.failed == 0 && self.skipped == 0
+    }
+}
+
+/// Runs the instances of `plan` that `options.tables` need.
+pub fn execute(
+    plan: &Plan,
+    cache: &Cache,
+    options: &ExecuteOptions,
+    progress: &dyn Progress,
+) -> Result<RunReport, CacheError> {
+    let needed = plan.needed_for(&options.tables);
+    execute_nodes(plan, cache, &needed, options, progress)
+}
+
+/// Runs the given instances (a shard's share) and everything upstream of them;
+/// `options.tables` is not consulted.
+pub fn execute_nodes(
+    plan: &Plan,
+    cache: &Cache,
+    nodes: &[usize],
+    options: &ExecuteOptions,
+    progress: &dyn Progress,
+) -> Result<RunReport, CacheError> {
+    let start = Instant::now();
+    let stale = cache.clean_stale_tmp()?;
+    if stale > 0 {
+        progress.warn(&format!(
+            "removed {stale} temporary cache folder(s) left by interrupted runs"
+        ));
+    }
+    let needed = plan.upstream_closure(nodes, None);
+    let n = plan.nodes.len();
+    let mut is_needed = vec![false; n];
+    for &i in &needed {
+        is_needed[i] = true;
+    }
+    let in_cache: Vec<bool> = (0..n)
+        .map(|i| is_needed[i] && cache.contains(plan.nodes[i].task.kind(), &plan.nodes[i].key))
+        .collect();
+    // An instance's arrays are loaded only when a dependant will be computed.
+    let mut wants_payload = vec![false; n];
+    let mut dependants = vec![0usize; n];
+    for &i in &needed {
+        for (_, u) in &plan.nodes[i].upstream {
+            dependants[*u] += 1;
+            if !in_cache[i] {
+                wants_payload[*u] = true;
+            }
+        }
+    }
+    let mut level = vec![0usize; n];
+    for &i in &needed {
+        level[i] = plan.nodes[i]
+            .upstream
+            .iter()
+            .map(|(_, u)| level[*u] + 1)
+            .max()
+            .unwrap_or(0);
+    }
+    let max_level = needed.iter().map(|&i| level[i]).max().unwrap_or(0);
+    progress.start(needed.len());
+    let budget = MemoryBudget::new(options.memory_budget);
+    let mut artifacts: Vec<Option<Arc<Artifact>>> = vec![None; n];
+    let mut outcomes: Vec<Option<NodeOutcome>> = vec![None; n];
+    let mut report = RunReport::default();
+    for lvl in 0..=max_level {
+        let batch: Vec<usize> = needed
+            .iter()
+            .copied()
+            .filter(|&i| level[i] == lvl)
+            .collect();
+        let results: Vec<(usize, NodeOutcome, Option<Arc<Artifact>>, bool)> = batch
+            .par_iter()
+            .map(|&i| {
+                let ctx = RunContext {
+                    plan,
+                    cache,
+                    options,
+                    progress,
+                    budget: &budget,
+                    artifacts: &artifacts,
+                    outcomes: &outcomes,
+                };
+                let (outcome, artifact, discarded) = ctx.run_node(i, wants_payload[i]);
+                progress.finished(&plan.nodes[i], &outcome.status);
+                (i, outcome, artifact, discarded)
+            })
+            .collect();
+        for (i, outcome, artifact, discarded) in results {
+            match &outcome.status {
+                NodeStatus::Computed => report.computed += 1,
+                NodeStatus::Cached => report.cached += 1,
+                NodeStatus::Failed(_) => report.failed += 1,
+                NodeStatus::Skipped(_) => report.skipped += 1,
+            }
+            report.discarded += usize::from(discarded);
+            artifacts[i] = artifact.filter(|_| dependants[i] > 0);
+            outcomes[i] = Some(outcome);
+        }
+        // Release arrays nobody downstream needs any more.
+        for &i in &batch {
+            for (_, u) in &plan.nodes[i].upstream {
+                dependants[*u] -= 1;
+                if dependants[*u] == 0 {
+                    artifacts[*u] = None;
+                }
+            }
+        }
+    }
+    report.outcomes = outcomes;
+    report.wall_seconds = start.elapsed().as_secs_f64();
+    Ok(report)
+}
+
+struct RunContext<'a> {
+    plan: &'a Plan,
+    cache: &'a Cache,
+    options: &'a ExecuteOptions,
+    progress: &'a dyn Progress,
+    budget: &'a MemoryBudget,
+    artifacts: &'a [Option<Arc<Artifact>>],
+    outcomes: &'a [Option<NodeOutcome>],
+}
+
+impl RunContext<'_> {
+    /// Loads or computes instance `i`. Returns the outcome, the artifact (for dependants) and
+    /// whether a corrupt cache entry was discarded.
+    fn run_node(&self, i: usize, with_payload: bool) -> (NodeOutcome, Option<Arc<Artifact>>, bool) {
+        let node = &self.plan.nodes[i];
+        let kind = node.task.kind();
+        for (role, u) in &node.upstream {
+            if let Some(o) = &self.outcomes[*u] {
+                if !matches!(o.status, NodeStatus::Computed | NodeStatus::Cached) {
+                    let names = self.plan.nodes[*u].names.join(", ");
+                    return (
+                        failed_outcome(NodeStatus::Skipped(format!(
+                            "upstream {role} node '{names}' did not compute"
+                        ))),
+                        None,
+                        false,
+                    );
+                }
+            }
+        }
+        let mut discarded = false;
+        match self.cache.load(kind, &node.key, with_payload) {
+            Ok(Some(entry))
+                if with_payload && node.task.array_storage() == ArrayStorage::Regenerate =>
+            {
+                return self.regenerate(node, entry);
+            }
+            Ok(Some(entry)) => {
+                let outcome = NodeOutcome {
+                    status: NodeStatus::Cached,
+                    metrics: entry.manifest.metrics.clone(),
+                    tables: entry.artifact.tables.clone(),
+                    compute_seconds: entry.manifest.compute_seconds,
+                };
+                let artifact = with_payload.then(|| Arc::new(entry.artifact));
+                return (outcome, artifact, false);
+            }
+            Ok(None) => {}
+            Err(CacheError::Corrupt { path, reason }) => {
+                self.progress.warn(&format!(
+                    "discarding corrupt cache entry {} ({reason}); recomputing",
+                    path.display()
+                ));
+                if let Err(e) = self.cache.discard(kind, &node.key) {
+                    self.progress.warn(&e.to_string());
+                }
+                discarded = true;
+            }
+            Err(e) => self
+                .progress
+                .warn(&format!("cache read failed: {e}; recomputing")),
+        }
+        let (outcome, artifact) = self.compute(node);
+        (outcome, artifact, discarded)
+    }
+
+    /// Computes a node from its upstream artifacts (loading any that are not in memory), under
+    /// the memory budget, turning a panic into a failure. Returns the result and its time.
+    fn run_compute(&self, node: &PlannedNode) -> (Result<Artifact, NodeOutcome>, f64) {
+        let mut inputs: Vec<Arc<Artifact>> = Vec::with_capacity(node.upstream.len());
+        for (role, u) in &node.upstream {
+            let upstream = &self.plan.nodes[*u];
+            // Present when loaded with arrays or computed in this run; otherwise (it was loaded
+            // metrics-only because its dependants were cached, then one turned out corrupt) the
+            // upstream entry is read again with its arrays, or recomputed if they are not stored.
+            let artifact = match &self.artifacts[*u] {
+                Some(a) => a.clone(),
+                None if upstream.task.array_storage() == ArrayStorage::Regenerate => {
+                    match self.run_compute(upstream) {
+                        (Ok(artifact), _) => Arc::new(artifact),
+                        (Err(failed), _) => {
+                            let message = format!(
+                                "cannot regenerate upstream {role} node: {}",
+                                failed.status.message()
+                            );
+                            return (Err(failed_outcome(NodeStatus::Failed(message))), 0.0);
+                        }
+                    }
+                }
+                None => match self.cache.load(upstream.task.kind(), &upstream.key, true) {
+                    Ok(Some(entry)) => Arc::new(entry.artifact),
+                    other => {
+                        let why = match other {
+                            Err(e) => e.to_string(),
+                            _ => String::from("it is no longer in the cache"),
+                        };
+                        let message = format!("cannot load upstream {role} node: {why}");
+                        return (Err(failed_outcome(NodeStatus::Failed(message))), 0.0);
+                    }
+                },
+            };
+            inputs.push(artifact);
+        }
+        let input_refs: Vec<&Artifact> = inputs.iter().map(Arc::as_ref).collect();
+        let _permit = self.budget.acquire(node.task.memory_estimate());
+        let start = Instant::now();
+        let result = catch_unwind(AssertUnwindSafe(|| node.task.compute(&input_refs)))
+            .unwrap_or_else(|panic| {
+                let what = panic
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| panic.downcast_ref::<String>().cloned())
+                    .unwrap_or_default();
+                Err(NodeError::new(format!(
+                    "internal error (panic: {what}); please report it with the study file"
+                )))
+            });
+        let seconds = start.elapsed().as_secs_f64();
+        (
+            result.map_err(|e| failed_outcome(NodeStatus::Failed(e.message))),
+            seconds,
+        )
+    }
+
+    fn compute(&self, node: &PlannedNode) -> (NodeOutcome, Option<Arc<Artifact>>) {
+        match self.run_compute(node) {
+            (Ok(artifact), seconds) => self.store_computed(node, artifact, seconds),
+            (Err(failed), _) => (failed, None),
+        }
+    }
+
+    /// Stores a computed artifact (without its arrays under [`ArrayStorage::Regenerate`]) and
+    /// makes its outcome.
+    fn store_computed(
+        &self,
+        node: &PlannedNode,
+        artifact: Artifact,
+        seconds: f64,
+    ) -> (NodeOutcome, Option<Arc<Artifact>>) {
+        let manifest = Manifest {
+            key: node.key.to_hex(),
+            kind: node.task.kind().to_string(),
+            version: node.task.version(),
+            params: node.task.params().to_vec(),
+            upstream: node
+                .upstream
+                .iter()
+                .map(|(r, u)| (r.to_string(), self.plan.nodes[*u].key.to_hex()))
+                .collect(),
+            metrics: artifact.metrics.clone(),
+            payloads: Vec::new(),
+            compute_seconds: seconds,
+            tool_version: self.options.tool_version.clone(),
+            created_unix: SystemTime::now()
+                .duration_since(UNIX_EPOCH)
+                .map_or(0, |d| d.as_secs()),
+        };
+        let stored = match node.task.array_storage() {
+            ArrayStorage::Store => self.cache.store(manifest, &artifact),
+            ArrayStorage::Regenerate => {
+                let without_arrays = Artifact {
+                    metrics: artifact.metrics.clone(),
+                    tables: artifact.tables.clone(),
+                    ..Artifact::default()
+                };
+                self.cache.store(manifest, &without_arrays)
+            }
+        };
+        if let Err(e) = stored {
+            self.progress.warn(&format!(
+                "result not cached ({e}); it is still used in this run"
+            ));
+        }
+        let outcome = NodeOutcome {
+            status: NodeStatus::Computed,
+            metrics: artifact.metrics.clone(),
+            tables: artifact.tables.clone(),
+            compute_seconds: seconds,
+        };
+        (outcome, Some(Arc::new(artifact)))
+    }
+
+    /// The arrays of a cached [`ArrayStorage::Regenerate`] entry, recomputed. The recomputed
+    /// metrics must equal the cached ones; if they do not, the entry is replaced and the node
+    /// counts as computed (the third value says an entry was discarded).
+    fn regenerate(
+        &self,
+        node: &PlannedNode,
+        entry: CachedEntry,
+    ) -> (NodeOutcome, Option<Arc<Artifact>>, bool) {
+        match self.run_compute(node) {
+            (Ok(artifact), _) if artifact.metrics == entry.manifest.metrics => {
+                let outcome = NodeOutcome {
+                    status: NodeStatus::Cached,
+                    metrics: entry.manifest.metrics,
+                    tables: entry.artifact.tables,
+                    compute_seconds: entry.manifest.compute_seconds,
+                };
+                (outcome, Some(Arc::new(artifact)), false)
+            }
+            (Ok(artifact), seconds) => {
+                self.progress.warn(&format!(
+                    "{} node '{}' ({}): recomputing its arrays did not reproduce its cached \
+                     metrics; the cache entry is replaced",
+                    node.task.kind(),
+                    node.names.join(", "),
+                    node.key.short()
+                ));
+                if let Err(e) = self.cache.discard(node.task.kind(), &node.key) {
+                    self.progress.warn(&e.to_string());
+                }
+                let (outcome, artifact) = self.store_computed(node, artifact, seconds);
+                (outcome, artifact, true)
+            }
+            (Err(failed), _) => (failed, None, false),
+        }
+    }
+}
+
+fn failed_outcome(status: NodeStatus) -> NodeOutcome {
+    NodeOutcome {
+        status,
+        metrics: Vec::new(),
+        tables: BTreeMap::new(),
+        compute_seconds: 0.0,
+    }
+}
+
+/// A counting semaphore over bytes: a node waits until its memory estimate fits the budget.
+/// A node larger than the whole budget runs alone.
+struct MemoryBudget {
+    total: u64,
+    used: Mutex<u64>,
+    freed: Condvar,
+}
+
+struct Permit<'a> {
+    budget: &'a MemoryBudget,
+    bytes: u64,
+}
+
+impl MemoryBudget {
+    fn new(total: u64) -> Self {
+        Self {
+            total: total.max(1),
+            used: Mutex::new(0),
+            freed: Condvar::new(),
+        }
+    }
+
+    fn acquire(&self, bytes: u64) -> Permit<'_> {
+        let bytes = bytes.min(self.total);
+        let mut used = self.used.lock().unwrap_or_else(|p| p.into_inner());
+        while *used + bytes > self.total {
+            used = self.freed.wait(used).unwrap_or_else(|p| p.into_inner());
+        }
+        *used += bytes;
+        Permit {
+            budget: self,
+            bytes,
+        }
+    }
+}
+
+impl Drop for Permit<'_> {
+    fn drop(&mut self) {
+        let mut used = self.budget.used.lock().unwrap_or_else(|p| p.into_inner());
+        *used -= self.bytes;
+        self.budget.freed.notify_all();
+    }
+}

@@ -1,0 +1,365 @@
+//! Study files: the YAML format, its parsing with locations, and its static checks (names,
+//! references, cycles, outputs). Node bodies are typed by the application's [`NodeSpec`].
+
+mod error;
+mod file_axis;
+mod overrides;
+mod parameters;
+mod summary_spec;
+
+pub use crate::resolve::ResolveContext;
+pub use crate::syntax::{
+    did_you_mean, FromParamValue, Located, Param, RawValue, SourceLocation, SpannedName, SpecError,
+};
+pub use error::StudyError;
+pub use overrides::{OverrideSyntaxError, ParameterOverride};
+pub use parameters::{Axis, LatinHypercube, ParameterError, ParameterSpace, Scenarios};
+pub use summary_spec::{split_metric, SummarySpec, RUN_TIME_METRIC};
+
+use std::path::{Path, PathBuf};
+
+use indexmap::IndexMap;
+use petgraph::graph::DiGraph;
+use serde::Deserialize;
+
+use crate::node::NodeSpec;
+
+/// Name of the scenarios table, always available in `outputs`.
+pub const SCENARIOS_TABLE: &str = "scenarios";
+
+/// A study file as written.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(title = "asperity study", bound = "N: schemars::JsonSchema")]
+pub struct StudyFile<N> {
+    /// Study name: letters, digits, '-', '_' and '.'; results go to `results/<study>/`.
+    pub study: Located<String>,
+    /// Free text describing the study.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Parameter axes and how they combine into scenarios. Omitted: one scenario.
+    #[serde(default)]
+    pub parameters: ParameterSpace,
+    /// Named nodes: `name: {<kind>: {...}}`. Upstream nodes are referenced by name; parameters as
+    /// `${name}`.
+    pub nodes: IndexMap<String, Located<N>>,
+    /// Tables to write (default: all). Only the nodes these tables need are computed.
+    #[serde(default)]
+    pub outputs: Option<Located<Vec<Located<String>>>>,
+    /// Grouped summaries of node metrics over scenarios (mean, standard deviation, count): each
+    /// becomes a table `summary_<name>`.
+    #[serde(default)]
+    pub summaries: IndexMap<String, Located<SummarySpec>>,
+}
+
+/// A parsed and statically checked study.
+#[derive(Debug)]
+pub struct Study<N> {
+    pub path: PathBuf,
+    pub source: String,
+    /// blake3 hex digest of the study file's bytes.
+    pub file_hash: String,
+    pub file: StudyFile<N>,
+    /// Node names in a topological order (upstream first).
+    pub order: Vec<String>,
+    /// Tables requested by `outputs` (all when omitted).
+    pub outputs: Vec<String>,
+    /// Command-line overrides applied to the parameter axes (`--set name=value`), in order.
+    pub overrides: Vec<(String, String)>,
+}
+
+impl<N: NodeSpec> Study<N> {
+    /// Reads, parses and checks a study file.
+    pub fn load(path: &Path) -> Result<Self, StudyError> {
+        let source = std::fs::read_to_string(path).map_err(|e| StudyError {
+            path: path.to_path_buf(),
+            location: SourceLocation::default(),
+            context: String::new(),
+            message: format!("cannot read the study file: {e}"),
+            snippet: None,
+        })?;
+        Self::from_source(path, source)
+    }
+
+    /// Parses and checks study text; `path` names it in errors and anchors relative paths.
+    pub fn from_source(path: &Path, source: String) -> Result<Self, StudyError> {
+        let file: StudyFile<N> = serde_saphyr::from_str(&source)
+            .map_err(|e| StudyError::from_yaml(path, &source, &e))?;
+        let err = |location, context: String, message: String| {
+            StudyError::at(path, &source, location, context, message)
+        };
+        let name = &file.study.value;
+        if name.is_empty()
+            || !name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+            || name.starts_with('.')
+        {
+            return Err(err(
+                file.study.location,
+                String::from("study"),
+                format!("'{name}' is not a valid study name: use letters, digits, '-', '_' and '.' (it names the results folder)"),
+            ));
+        }
+        if file.nodes.is_empty() {
+            let line = source
+                .lines()
+                .position(|l| l.starts_with("nodes:"))
+                .map_or(0, |i| i as u64 + 1);
+            return Err(err(
+                SourceLocation { line, column: 1 },
+                String::from("nodes"),
+                String::from("a study needs at least one node"),
+            ));
+        }
+        let order = check_graph(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?;
+        let mut outputs = check_outputs(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?;
+        for table in check_summaries(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))? {
+            if !outputs.contains(&table) {
+                outputs.push(table);
+            }
+        }
+        Ok(Self {
+            file_hash: blake3::hash(source.as_bytes()).to_hex().to_string(),
+            path: path.to_path_buf(),
+            source,
+            file,
+            order,
+            outputs,
+            overrides: Vec::new(),
+        })
+    }
+
+    /// Study name.
+    pub fn name(&self) -> &str {
+        &self.file.study.value
+    }
+
+    /// The folder relative paths in the study are resolved against.
+    pub fn dir(&self) -> &Path {
+        self.path.parent().unwrap_or_else(|| Path::new("."))
+    }
+
+    /// An error at a location of this study.
+    pub fn error(
+        &self,
+        location: SourceLocation,
+        context: impl Into<String>,
+        message: impl Into<String>,
+    ) -> StudyError {
+        StudyError::at(&self.path, &self.source, location, context, message)
+    }
+}
+
+type CheckError = (SourceLocation, String, String);
+
+fn check_graph<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckError> {
+    let names: Vec<&str> = file.nodes.keys().map(String::as_str).collect();
+    let mut graph = DiGraph::<&str, ()>::new();
+    let indices: Vec<_> = names.iter().map(|n| graph.add_node(n)).collect();
+    for (i, (name, node)) in file.nodes.iter().enumerate() {
+        if !valid_node_name(name) {
+            return Err((
+                node.location,
+                format!("nodes.{name}"),
+                String::from(
+                    "node names start with a letter and contain only letters, digits, '_' and '-'",
+                ),
+            ));
+        }
+        for upstream in node.value.upstream() {
+            let target = &upstream.node.value;
+            let Some(j) = names.iter().position(|n| n == target) else {
+                return Err((
+                    upstream.node.location,
+                    format!("nodes.{name}.{}", node.value.kind()),
+                    format!(
+                        "{} refers to node '{target}', which does not exist{}; nodes: {}",
+                        upstream.role,
+                        did_you_mean(target, names.iter().copied()),
+                        names.join(", ")
+                    ),
+                ));
+            };
+            if j == i {
+                return Err((
+                    upstream.node.location,
+                    format!("nodes.{name}"),
+                    String::from("a node cannot use itself as an upstream node"),
+                ));
+            }
+            graph.add_edge(indices[j], indices[i], ());
+        }
+    }
+    match petgraph::algo::toposort(&graph, None) {
+        Ok(order) => Ok(order.into_iter().map(|i| graph[i].to_string()).collect()),
+        Err(cycle) => {
+            let name = graph[cycle.node_id()];
+            let location = file.nodes.get(name).map(|n| n.location).unwrap_or_default();
+            Err((
+                location,
+                format!("nodes.{name}"),
+                String::from(
+                    "the nodes form a cycle through this node; upstream references must form a DAG",
+                ),
+            ))
+        }
+    }
+}
+
+fn valid_node_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic())
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+}
+
+/// The requested tables: `outputs` as written, or when omitted the scenarios table and the table
+/// of every node kind the study uses (never an empty table of a kind it does not use).
+fn check_outputs<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckError> {
+    let mut known: Vec<&str> = vec![SCENARIOS_TABLE];
+    known.extend(N::all_tables());
+    let used: Vec<&str> = N::all_tables()
+        .iter()
+        .copied()
+        .filter(|t| file.nodes.values().any(|n| n.value.table() == *t))
+        .collect();
+    let Some(outputs) = &file.outputs else {
+        return Ok(std::iter::once(SCENARIOS_TABLE)
+            .chain(used)
+            .map(String::from)
+            .collect());
+    };
+    let mut result = Vec::new();
+    for table in &outputs.value {
+        if !known.contains(&table.value.as_str()) {
+            return Err((
+                table.location,
+                String::from("outputs"),
+                format!(
+                    "unknown table '{}'{}; tables: {}",
+                    table.value,
+                    did_you_mean(&table.value, known.iter().copied()),
+                    known.join(", ")
+                ),
+            ));
+        }
+        if table.value != SCENARIOS_TABLE && !used.contains(&table.value.as_str()) {
+            return Err((
+                table.location,
+                String::from("outputs"),
+                format!(
+                    "no node of the study writes table '{}'; tables of this study: {}",
+                    table.value,
+                    std::iter::once(SCENARIOS_TABLE)
+                        .chain(used.iter().copied())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            ));
+        }
+        if !result.contains(&table.value) {
+            result.push(table.value.clone());
+        }
+    }
+    if result.is_empty() {
+        return Err((
+            outputs.location,
+            String::from("outputs"),
+            format!(
+                "lists no table; omit it to write all ({})",
+                known.join(", ")
+            ),
+        ));
+    }
+    Ok(result)
+}
+
+/// Checks the `summaries` section; returns the tables of the nodes it uses (they must be
+/// computed, so they are written too).
+fn check_summaries<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckError> {
+    let p = &file.parameters;
+    let parameters: Vec<&str> = p
+        .product
+        .keys()
+        .chain(p.zip.iter().flat_map(|g| g.value.keys()))
+        .chain(p.latin_hypercube.iter().flat_map(|l| l.value.ranges.keys()))
+        .map(String::as_str)
+        .collect();
+    let nodes: Vec<&str> = file.nodes.keys().map(String::as_str).collect();
+    let mut tables = Vec::new();
+    for (name, summary) in &file.summaries {
+        let context = format!("summaries.{name}");
+        if !valid_node_name(name) {
+            return Err((
+                summary.location,
+                context,
+                String::from("summary names start with a letter and contain only letters, digits, '_' and '-' (the table is summary_<name>)"),
+            ));
+        }
+        for by in &summary.value.by {
+            if !parameters.contains(&by.value.as_str()) {
+                return Err((
+                    by.location,
+                    format!("{context}.by"),
+                    format!(
+                        "'{}' is not a parameter{}; parameters: {}",
+                        by.value,
+                        did_you_mean(&by.value, parameters.iter().copied()),
+                        if parameters.is_empty() {
+                            String::from("none")
+                        } else {
+                            parameters.join(", ")
+                        }
+                    ),
+                ));
+            }
+        }
+        if summary.value.metrics.is_empty() {
+            return Err((
+                summary.location,
+                format!("{context}.metrics"),
+                String::from("lists no metric; write node.metric, e.g. contact.area_fraction"),
+            ));
+        }
+        for metric in &summary.value.metrics {
+            let Some((node, field)) = split_metric(&metric.value) else {
+                return Err((
+                    metric.location,
+                    format!("{context}.metrics"),
+                    format!(
+                        "'{}' is not node.metric; write e.g. contact.area_fraction",
+                        metric.value
+                    ),
+                ));
+            };
+            if field == RUN_TIME_METRIC {
+                return Err((
+                    metric.location,
+                    format!("{context}.metrics"),
+                    format!(
+                        "'{}': run times are not results (they differ between runs and would \
+                         make this table differ too); every run writes them per node instance \
+                         to timings.parquet (join on its `key` column)",
+                        metric.value
+                    ),
+                ));
+            }
+            let Some(spec) = file.nodes.get(node) else {
+                return Err((
+                    metric.location,
+                    format!("{context}.metrics"),
+                    format!(
+                        "no node '{node}'{}; nodes: {}",
+                        did_you_mean(node, nodes.iter().copied()),
+                        nodes.join(", ")
+                    ),
+                ));
+            };
+            let table = spec.value.table().to_string();
+            if !tables.contains(&table) {
+                tables.push(table);
+            }
+        }
+    }
+    Ok(tables)
+}

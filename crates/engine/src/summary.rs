@@ -1,0 +1,178 @@
+//! Grouped summaries of node metrics over scenarios: "per grade, mean ± standard deviation".
+//!
+//! A study's `summaries:` section names groups of scenarios (by the values of some parameters)
+//! and node metrics; each summary becomes a table `summary_<name>` with one row per group, in the
+//! order groups first appear in the scenarios, holding for every metric the number of scenarios
+//! with a value, the mean and the sample standard deviation
+//!
+//! ```text
+//! mean = Σ xᵢ / n,   std = √( Σ (xᵢ − mean)² / (n − 1) )   (null for n < 2)
+//! ```
+//!
+//! Sums run in scenario order, so the numbers are deterministic. A scenario whose node instance
+//! failed or has no value contributes nothing (its group's `n` is smaller than `scenarios`).
+
+use crate::execute::RunReport;
+use crate::plan::Plan;
+use crate::units::Dimension;
+use crate::value::{column_name, ParamValue, Value};
+
+pub use crate::study::{split_metric, SummarySpec, RUN_TIME_METRIC};
+
+/// A summary that cannot be computed from the run (a metric no node instance produced).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("summary '{summary}': {message}")]
+pub struct SummaryError {
+    pub summary: String,
+    pub message: String,
+}
+
+/// One column of a summary table: name (with unit), dimension, cells.
+pub type SummaryColumn = (String, Dimension, Vec<Option<Value>>);
+
+/// Computes the columns of summary `name` over the plan's scenarios.
+pub fn summary_columns(
+    name: &str,
+    spec: &SummarySpec,
+    plan: &Plan,
+    report: &RunReport,
+) -> Result<Vec<SummaryColumn>, SummaryError> {
+    let err = |message: String| SummaryError {
+        summary: name.to_string(),
+        message,
+    };
+    let by: Vec<usize> = spec
+        .by
+        .iter()
+        .map(|p| {
+            plan.scenarios
+                .names
+                .iter()
+                .position(|n| *n == p.value)
+                .ok_or_else(|| err(format!("'{}' is not a parameter of the study", p.value)))
+        })
+        .collect::<Result<_, _>>()?;
+    let mut groups: Vec<(Vec<ParamValue>, Vec<usize>)> = Vec::new();
+    for (s, row) in plan.scenarios.rows.iter().enumerate() {
+        let values: Vec<ParamValue> = by.iter().map(|&c| row[c].clone()).collect();
+        match groups.iter_mut().find(|(v, _)| *v == values) {
+            Some((_, members)) => members.push(s),
+            None => groups.push((values, vec![s])),
+        }
+    }
+    let mut columns: Vec<SummaryColumn> = Vec::new();
+    for (k, &c) in by.iter().enumerate() {
+        let param = &plan.scenarios.names[c];
+        let dim = groups
+            .first()
+            .map_or(Dimension::Dimensionless, |g| g.0[k].dimension());
+        let cells = groups
+            .iter()
+            .map(|(values, _)| Some(param_cell(&values[k])))
+            .collect();
+        columns.push((column_name(param, dim), dim, cells));
+    }
+    columns.push((
+        String::from("scenarios"),
+        Dimension::Dimensionless,
+        groups
+            .iter()
+            .map(|(_, m)| Some(Value::Int(m.len() as i64)))
+            .collect(),
+    ));
+    for metric in &spec.metrics {
+        let (node, field) = split_metric(&metric.value)
+            .ok_or_else(|| err(format!("'{}' is not node.metric", metric.value)))?;
+        let n = plan
+            .node_names
+            .iter()
+            .position(|x| x == node)
+            .ok_or_else(|| err(format!("no node '{node}'")))?;
+        let mut dimension = None;
+        let mut available: Vec<String> = Vec::new();
+        let samples: Vec<Vec<f64>> = groups
+            .iter()
+            .map(|(_, members)| {
+                members
+                    .iter()
+                    .filter_map(|&s| {
+                        let instance = plan.scenario_nodes[s][n];
+                        let outcome = report.outcomes.get(instance)?.as_ref()?;
+                        if available.is_empty() {
+                            available = outcome.metrics.iter().map(|f| f.name.clone()).collect();
+                        }
+                        let f = outcome.metrics.iter().find(|f| f.name == field)?;
+                        dimension = Some(f.dimension);
+                        match f.value {
+                            Value::Float(x) if x.is_finite() => Some(x),
+                            Value::Int(i) => Some(i as f64),
+                            _ => None,
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        let Some(dim) = dimension else {
+            if available.is_empty() {
+                // No instance of the node has a result (all failed): empty statistics.
+                push_statistics(
+                    &mut columns,
+                    node,
+                    field,
+                    Dimension::Dimensionless,
+                    &samples,
+                );
+                continue;
+            }
+            return Err(err(format!(
+                "node '{node}' has no numeric metric '{field}'{}; metrics: {}",
+                crate::study::did_you_mean(field, available.iter().map(String::as_str)),
+                available.join(", ")
+            )));
+        };
+        push_statistics(&mut columns, node, field, dim, &samples);
+    }
+    Ok(columns)
+}
+
+fn push_statistics(
+    columns: &mut Vec<SummaryColumn>,
+    node: &str,
+    field: &str,
+    dim: Dimension,
+    samples: &[Vec<f64>],
+) {
+    let count = samples
+        .iter()
+        .map(|x| Some(Value::Int(x.len() as i64)))
+        .collect();
+    let mean = samples.iter().map(|x| mean(x).map(Value::Float)).collect();
+    let std = samples
+        .iter()
+        .map(|x| sample_std(x).map(Value::Float))
+        .collect();
+    columns.push((format!("{node}_{field}_n"), Dimension::Dimensionless, count));
+    columns.push((column_name(&format!("{node}_{field}_mean"), dim), dim, mean));
+    columns.push((column_name(&format!("{node}_{field}_std"), dim), dim, std));
+}
+
+fn param_cell(value: &ParamValue) -> Value {
+    match value {
+        ParamValue::Int(i) => Value::Int(*i),
+        ParamValue::Bool(b) => Value::Bool(*b),
+        ParamValue::Text(s) => Value::Text(s.clone()),
+        other => other
+            .as_dimensioned()
+            .map_or_else(|| Value::Text(other.to_string()), |d| Value::Float(d.si)),
+    }
+}
+
+fn mean(x: &[f64]) -> Option<f64> {
+    (!x.is_empty()).then(|| x.iter().sum::<f64>() / x.len() as f64)
+}
+
+fn sample_std(x: &[f64]) -> Option<f64> {
+    let m = mean(x)?;
+    (x.len() >= 2)
+        .then(|| (x.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (x.len() - 1) as f64).sqrt())
+}

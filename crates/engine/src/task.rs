@@ -1,0 +1,59 @@
+//! A resolved node instance as the engine runs it: [`NodeTask`] (kind, version, SI parameters,
+//! memory estimate, `compute`, array storage policy) and [`NodeError`]. Specs resolve into tasks
+//! in [`crate::node`].
+
+use crate::artifact::Artifact;
+use crate::value::Field;
+
+/// One node instance ready to compute.
+pub trait NodeTask: Send + Sync + std::fmt::Debug {
+    /// Kind name (`surface`).
+    fn kind(&self) -> &'static str;
+    /// Implementation version of the kind: bumped by hand whenever its numerics change, so stale
+    /// cache entries are never reused.
+    fn version(&self) -> u32;
+    /// The table the kind's rows go to (`surfaces`).
+    fn table(&self) -> &'static str;
+    /// The resolved parameters (SI) this node consumes, and nothing else: they enter the key and
+    /// the table row.
+    fn params(&self) -> &[Field];
+    /// Estimated peak memory of [`NodeTask::compute`] in bytes, for the memory-aware limit.
+    fn memory_estimate(&self) -> u64;
+    /// How the cache keeps this instance's arrays (metrics and tables are always stored).
+    fn array_storage(&self) -> ArrayStorage {
+        ArrayStorage::Store
+    }
+    /// The task as `Any`, so that the application's node kinds can read an upstream task of a
+    /// kind they know as its own type (the engine never does).
+    fn as_any(&self) -> &dyn std::any::Any;
+    /// Computes the node from its upstream artifacts (in the order of the spec's `upstream`).
+    fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError>;
+}
+
+/// The cache's storage policy for a node's arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArrayStorage {
+    /// Stored (losslessly compressed) and read back when a dependant needs them.
+    Store,
+    /// Not stored: cheaper to recompute than to read (e.g. a synthetic surface generated from
+    /// its key in a second, where its heights take ~100 MB). A dependant that needs them gets them
+    /// by recomputing the node, which must then be deterministic: the engine checks that the
+    /// recomputed metrics equal the cached ones.
+    Regenerate,
+}
+
+/// A node failed to compute; only its dependants fail with it.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{message}")]
+pub struct NodeError {
+    pub message: String,
+}
+
+impl NodeError {
+    /// A failure with a message for the user.
+    pub fn new(message: impl Into<String>) -> Self {
+        Self {
+            message: message.into(),
+        }
+    }
+}

@@ -1,0 +1,105 @@
+//! Wall time of the shared 2-D real FFT (`RealFft2d`) on square grids.
+//!
+//! `cargo bench -p asperity-numerics --bench fft2`; `FFT2_BENCH_GRIDS=512,1024` picks the grid sizes (default
+//! 256, 512, 1024, 2048). Release profile; medians (and minima, in parentheses) of repeated calls after one warm-up.
+//!
+//! * `round_trip`: forward + inverse + normalisation of a full `n × n` grid (the periodic
+//!   contact convolution does the same work).
+//! * `dc_convolve`: the non-periodic DC-FFT shape, `convolve` of an `n/2 × n/2` block in the
+//!   top-left corner of the `n × n` zero-padded grid with a real kernel, output the same block.
+//!
+//! `checksum` folds the bits of one result from a fixed input: equal checksums across builds
+//! mean bit-identical results.
+
+use std::time::Instant;
+
+use asperity_numerics::contact::RealFft2d;
+
+/// Median and minimum of the samples.
+fn median_min(mut v: Vec<f64>) -> (f64, f64) {
+    v.sort_by(f64::total_cmp);
+    (v[v.len() / 2], v[0])
+}
+
+fn reps(n: usize) -> usize {
+    match n {
+        0..=512 => 31,
+        513..=1024 => 15,
+        _ => 9,
+    }
+}
+
+fn signal(len: usize) -> Vec<f64> {
+    (0..len)
+        .map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5)
+        .collect()
+}
+
+fn checksum(values: &[f64]) -> u64 {
+    values
+        .iter()
+        .fold(0u64, |acc, v| acc.rotate_left(5) ^ v.to_bits())
+}
+
+fn timed(reps: usize, mut run: impl FnMut()) -> (f64, f64) {
+    run();
+    median_min(
+        (0..reps)
+            .map(|_| {
+                let t = Instant::now();
+                run();
+                t.elapsed().as_secs_f64()
+            })
+            .collect(),
+    )
+}
+
+fn round_trip(n: usize) -> ((f64, f64), u64) {
+    let mut fft = RealFft2d::new(n, n);
+    let mut data = signal(n * n);
+    fft.round_trip(&mut data).unwrap();
+    let sum = checksum(&data);
+    let t = timed(reps(n), || fft.round_trip(&mut data).unwrap());
+    (t, sum)
+}
+
+fn dc_convolve(n: usize) -> ((f64, f64), u64) {
+    let mut fft = RealFft2d::new(n, n);
+    let block = n / 2;
+    let input = signal(block * block);
+    let kernel: Vec<f64> = signal(fft.spectrum_len())
+        .iter()
+        .map(|v| v / (n * n) as f64)
+        .collect();
+    let mut output = vec![0.0; block * block];
+    fft.convolve(&input, &kernel, &mut output, block, block)
+        .unwrap();
+    let sum = checksum(&output);
+    let t = timed(reps(n), || {
+        fft.convolve(&input, &kernel, &mut output, block, block)
+            .unwrap()
+    });
+    (t, sum)
+}
+
+fn main() {
+    let grids: Vec<usize> = std::env::var("FFT2_BENCH_GRIDS")
+        .ok()
+        .map(|s| s.split(',').filter_map(|g| g.trim().parse().ok()).collect())
+        .unwrap_or_else(|| vec![256, 512, 1024, 2048]);
+    println!(
+        "{:>6} {:>16} {:>18} {:>16} {:>18}",
+        "n", "round_trip ms", "checksum", "dc_convolve ms", "checksum"
+    );
+    for n in grids {
+        let (t_rt, sum_rt) = round_trip(n);
+        let (t_dc, sum_dc) = dc_convolve(n);
+        println!(
+            "{n:>6} {:>7.3} ({:>6.3}) {sum_rt:>18x} {:>7.3} ({:>6.3}) {sum_dc:>18x}",
+            t_rt.0 * 1e3,
+            t_rt.1 * 1e3,
+            t_dc.0 * 1e3,
+            t_dc.1 * 1e3
+        );
+    }
+}

@@ -1,0 +1,4 @@
+//! Stage 2: the contact solver against closed forms and its stability.
+
+mod contact_stability;
+mod contact_validation;

@@ -1,0 +1,9 @@
+//! Stage 3: single-asperity laws, statistical integrals and the separation solve, per summit and per spot.
+
+mod friction_asperity_laws;
+mod friction_contact_spots;
+mod friction_full_stick;
+mod friction_gw_summits;
+mod friction_integrals;
+mod friction_per_summit;
+mod friction_static_solve;

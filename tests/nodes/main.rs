@@ -1,0 +1,11 @@
+//! The node kinds on the engine: the surface node (file and synthetic sources), the contact node
+//! and the friction node (every method and model), run through studies.
+
+#[path = "../../crates/numerics/tests/common/mod.rs"]
+mod common;
+mod contact_node;
+mod friction_high_plasticity;
+mod friction_node;
+#[path = "../nodes_common/mod.rs"]
+mod nodes_common;
+mod surface_node;
