@@ -80,10 +80,9 @@ impl ContactSpec {
 
     pub(crate) fn instantiate(&self, ctx: &ResolveContext<'_>) -> Result<ContactTask, SpecError> {
         self.check_upstream_kinds(ctx)?;
-        let mut params = Vec::new();
-        let (lower, upper, material_flow) = self.materials(ctx, &mut params)?;
-        let flow_pressure = self.flow_pressure(ctx, material_flow, &mut params)?;
-        let pressures = self.pressures(ctx, flow_pressure, &mut params)?;
+        let (lower, upper, material_flow) = self.materials(ctx)?;
+        let flow_pressure = self.flow_pressure(ctx, material_flow)?;
+        let pressures = self.pressures(ctx, flow_pressure)?;
         let periodic = match &self.periodic {
             Some(p) => ctx.resolve(p, "periodic")?,
             None => true,
@@ -102,18 +101,10 @@ impl ContactSpec {
             Some(p) => ctx.resolve(p, "fields")?,
             None => false,
         };
-        params.push(Field::bool("periodic", periodic));
-        params.push(Field::float(
-            "tolerance",
-            tolerance,
-            Dimension::Dimensionless,
-        ));
-        params.push(Field::bool("fields", fields));
         // The surface estimate is ~6 f64 per point; the solver holds ~12 per (padded) point.
         let surface_bytes = ctx.upstream(0).map_or(1 << 30, |t| t.memory_estimate());
         let memory_estimate = surface_bytes.saturating_mul(if periodic { 2 } else { 8 });
         Ok(ContactTask {
-            params,
             lower,
             upper,
             flow_pressure,
@@ -146,24 +137,10 @@ impl ContactSpec {
     }
 
     /// The elastic constants (E, ν) of both bodies (the upper `None` for a rigid flat) and the
-    /// smaller flow pressure the materials give; pushes their key fields.
-    fn materials(
-        &self,
-        ctx: &ResolveContext<'_>,
-        params: &mut Vec<Field>,
-    ) -> Result<ElasticPair, SpecError> {
+    /// smaller flow pressure the materials give.
+    fn materials(&self, ctx: &ResolveContext<'_>) -> Result<ElasticPair, SpecError> {
         let lower = self.lower_material.resolve(ctx, "lower_material")?;
         let (e1, nu1) = (lower.youngs_modulus, lower.poisson_ratio);
-        params.push(Field::float(
-            "lower_youngs_modulus",
-            e1,
-            Dimension::Pressure,
-        ));
-        params.push(Field::float(
-            "lower_poisson_ratio",
-            nu1,
-            Dimension::Dimensionless,
-        ));
         let mut material_flow = lower.flow_pressure;
         let upper = match (&self.upper, &self.upper_material) {
             (Some(_), Some(m)) => {
@@ -173,12 +150,6 @@ impl ContactSpec {
                     (Some(a), Some(b)) => Some(a.min(b)),
                     (a, b) => a.or(b),
                 };
-                params.push(Field::float("upper_youngs_modulus", e2, Dimension::Pressure));
-                params.push(Field::float(
-                    "upper_poisson_ratio",
-                    nu2,
-                    Dimension::Dimensionless,
-                ));
                 Some((e2, nu2))
             }
             (Some(u), None) => {
@@ -205,12 +176,11 @@ impl ContactSpec {
     }
 
     /// The flow pressure p_lim (Pa): the explicit field, else the materials' (+∞ without
-    /// either: purely elastic); pushes it to the key when finite.
+    /// either: purely elastic).
     fn flow_pressure(
         &self,
         ctx: &ResolveContext<'_>,
         material_flow: Option<f64>,
-        params: &mut Vec<Field>,
     ) -> Result<f64, SpecError> {
         let explicit = match &self.flow_pressure {
             Some(p) => Some(
@@ -225,13 +195,7 @@ impl ContactSpec {
             ),
             None => None,
         };
-        Ok(match explicit.or(material_flow) {
-            Some(v) => {
-                params.push(Field::float("flow_pressure", v, Dimension::Pressure));
-                v
-            }
-            None => f64::INFINITY,
-        })
+        Ok(explicit.or(material_flow).unwrap_or(f64::INFINITY))
     }
 
     /// The nominal pressures (Pa): at least one, ascending, > 0 and below the flow pressure.
@@ -239,7 +203,6 @@ impl ContactSpec {
         &self,
         ctx: &ResolveContext<'_>,
         flow_pressure: f64,
-        params: &mut Vec<Field>,
     ) -> Result<Vec<f64>, SpecError> {
         if self.nominal_pressures.is_empty() {
             return Err(spec_error(
@@ -264,14 +227,6 @@ impl ContactSpec {
             }
             pressures.push(v);
         }
-        params.push(Field::text(
-            "nominal_pressures_Pa",
-            pressures
-                .iter()
-                .map(|p| format_number(*p))
-                .collect::<Vec<_>>()
-                .join(","),
-        ));
         Ok(pressures)
     }
 }
@@ -291,9 +246,11 @@ fn spec_error(location: SourceLocation, field: &str, message: String) -> SpecErr
 /// A resolved contact node.
 #[derive(Debug, Clone)]
 pub struct ContactTask {
-    params: Vec<Field>,
+    /// (E, ν) of the lower body.
     lower: (f64, f64),
+    /// (E, ν) of the upper body; `None`: a rigid flat.
     upper: Option<(f64, f64)>,
+    /// p_lim (Pa); +∞: purely elastic.
     flow_pressure: f64,
     pressures: Vec<f64>,
     periodic: bool,
@@ -304,6 +261,52 @@ pub struct ContactTask {
 }
 
 impl ContactTask {
+    /// The key fields: both bodies' elastic constants, the flow pressure (when finite), the
+    /// load steps and the solver settings, in SI. The memory estimate is not part of it.
+    fn key_fields(&self) -> Vec<Field> {
+        let Self {
+            lower: (e1, nu1),
+            upper,
+            flow_pressure,
+            pressures,
+            periodic,
+            tolerance,
+            fields,
+            memory_estimate: _,
+        } = self;
+        let mut key = vec![
+            Field::float("lower_youngs_modulus", *e1, Dimension::Pressure),
+            Field::float("lower_poisson_ratio", *nu1, Dimension::Dimensionless),
+        ];
+        if let Some((e2, nu2)) = upper {
+            key.push(Field::float(
+                "upper_youngs_modulus",
+                *e2,
+                Dimension::Pressure,
+            ));
+            key.push(Field::float(
+                "upper_poisson_ratio",
+                *nu2,
+                Dimension::Dimensionless,
+            ));
+        }
+        if flow_pressure.is_finite() {
+            key.push(Field::float(
+                "flow_pressure",
+                *flow_pressure,
+                Dimension::Pressure,
+            ));
+        }
+        let steps: Vec<String> = pressures.iter().map(|p| format_number(*p)).collect();
+        key.extend([
+            Field::text("nominal_pressures_Pa", steps.join(",")),
+            Field::bool("periodic", *periodic),
+            Field::float("tolerance", *tolerance, Dimension::Dimensionless),
+            Field::bool("fields", *fields),
+        ]);
+        key
+    }
+
     /// Whether the final step's fields are kept for consumers (`fields: true`).
     pub(crate) fn keeps_fields(&self) -> bool {
         self.fields
@@ -343,8 +346,8 @@ impl NodeTask for ContactTask {
         TABLE
     }
 
-    fn params(&self) -> &[Field] {
-        &self.params
+    fn params(&self) -> Vec<Field> {
+        self.key_fields()
     }
 
     fn memory_estimate(&self) -> u64 {

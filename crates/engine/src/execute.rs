@@ -361,7 +361,7 @@ impl RunContext<'_> {
             key: node.key.to_hex(),
             kind: node.task.kind().to_string(),
             version: node.task.version(),
-            params: node.task.params().to_vec(),
+            params: node.task.params(),
             upstream: node
                 .upstream
                 .iter()

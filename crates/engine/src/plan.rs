@@ -98,7 +98,7 @@ impl Plan {
                 })?;
                 let upstream_keys: Vec<(&str, NodeKey)> =
                     upstream.iter().map(|(r, u)| (*r, nodes[*u].key)).collect();
-                let key = node_key(task.kind(), task.version(), task.params(), &upstream_keys);
+                let key = node_key(task.kind(), task.version(), &task.params(), &upstream_keys);
                 let index = *by_key.entry(key).or_insert_with(|| {
                     nodes.push(PlannedNode {
                         key,

@@ -15,8 +15,10 @@ pub trait NodeTask: Send + Sync + std::fmt::Debug {
     /// The table the kind's rows go to (`surfaces`).
     fn table(&self) -> &'static str;
     /// The resolved parameters (SI) this node consumes, and nothing else: they enter the key and
-    /// the table row.
-    fn params(&self) -> &[Field];
+    /// the table row. Derived from the task's own typed fields by one function per kind (the
+    /// task keeps no second, hand-built copy), so what the node computes with and what its key
+    /// says cannot drift apart.
+    fn params(&self) -> Vec<Field>;
     /// Estimated peak memory of [`NodeTask::compute`] in bytes, for the memory-aware limit.
     fn memory_estimate(&self) -> u64;
     /// How the cache keeps this instance's arrays (metrics and tables are always stored).

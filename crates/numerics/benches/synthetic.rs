@@ -19,7 +19,7 @@ fn spec(n: usize) -> SyntheticSurfaceSpec {
         short_wavelength_cutoff: None,
         anisotropy: Some(Anisotropy {
             aspect_ratio: 4.0,
-            angle_deg: 0.0,
+            angle: 0.0,
         }),
         seed: 1,
     }

@@ -24,7 +24,7 @@ fn surface(n: usize) -> asperity_numerics::surface::HeightMap {
         short_wavelength_cutoff: None,
         anisotropy: Some(Anisotropy {
             aspect_ratio: 4.0,
-            angle_deg: 0.0,
+            angle: 0.0,
         }),
         seed: 1,
     };

@@ -35,6 +35,7 @@ use crate::units::{Area, Dimension, Force, Length, Pressure, Quantity, SurfaceEn
 
 use super::material_spec::MaterialSpec;
 
+mod key;
 mod model_setup;
 mod per_spot;
 mod per_summit;
@@ -255,14 +256,22 @@ pub(crate) enum MethodSetup {
 /// A resolved friction node.
 #[derive(Debug, Clone)]
 pub struct FrictionTask {
-    params: Vec<Field>,
     model: FrictionModel,
     material: Material,
-    /// Interfacial shear strength τ_s (Pa) of junction shear.
-    shear_strength: Option<f64>,
+    /// The interface of `model: junction_shear`.
+    junction_shear: Option<JunctionShear>,
     adhesion: AdhesionParameters,
     options: ModelOptions,
     setup: MethodSetup,
+}
+
+/// The interface of junction shear: τ_s = c·k of the softer body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct JunctionShear {
+    /// Interface factor c (1: a clean metal junction).
+    pub interface_factor: f64,
+    /// Interfacial shear strength τ_s (Pa).
+    pub shear_strength: f64,
 }
 
 pub(crate) fn form_name(form: StaticFrictionForm) -> &'static str {
@@ -315,8 +324,8 @@ impl NodeTask for FrictionTask {
         TABLE
     }
 
-    fn params(&self) -> &[Field] {
-        &self.params
+    fn params(&self) -> Vec<Field> {
+        self.key_fields()
     }
 
     fn memory_estimate(&self) -> u64 {

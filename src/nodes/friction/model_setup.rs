@@ -4,14 +4,13 @@
 //! (`per_summit`, `per_spot`).
 
 use crate::engine::study::{ResolveContext, SourceLocation, SpecError};
-use crate::engine::value::Field;
 use crate::friction::contact_spots::Connectivity;
 use crate::friction::full_stick::stick_factors;
 use crate::friction::{AsperityModel, FullStickOptions, StickFrictionLaw};
-use crate::units::{format_number, Dimension};
+use crate::units::format_number;
 
 use super::setup::{positive, resolve_choice, spec_error, MaterialPair};
-use super::{FrictionMethod, FrictionModel, FrictionSpec};
+use super::{FrictionMethod, FrictionModel, FrictionSpec, JunctionShear};
 use crate::materials::half_space_compliance;
 use crate::nodes::contact::ContactTask;
 
@@ -61,15 +60,14 @@ pub(super) fn model_and_method(
     Ok((model, method))
 }
 
-/// The full-stick options (yield strength, μ(P*) parameters) and the junction-shear strength
-/// τ_s (Pa), each for the model that uses it; adds what they resolve to to the key `params`.
+/// The full-stick options (yield strength, μ(P*) parameters) and the junction-shear interface,
+/// each for the model that uses it.
 pub(super) fn model_inputs(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
     model: FrictionModel,
     pair: &MaterialPair,
-    params: &mut Vec<Field>,
-) -> Result<(FullStickOptions, Option<f64>), SpecError> {
+) -> Result<(FullStickOptions, Option<JunctionShear>), SpecError> {
     let location = spec.lower_material.location();
     let unused = |field: &str, used_by: &str| {
         spec_error(
@@ -90,9 +88,9 @@ pub(super) fn model_inputs(
     }
     let mut full_stick = FullStickOptions::default();
     if is_full_stick {
-        full_stick = full_stick_options(spec, ctx, pair, params)?;
+        full_stick = full_stick_options(spec, ctx, pair)?;
     }
-    let shear_strength = if model == FrictionModel::JunctionShear {
+    let junction_shear = if model == FrictionModel::JunctionShear {
         let c = match &spec.interface_factor {
             Some(p) => ctx.resolve_checked(p, "interface_factor", |c: &f64| {
                 if c.is_finite() && *c >= 0.0 {
@@ -105,23 +103,20 @@ pub(super) fn model_inputs(
             })?,
             None => 1.0,
         };
-        let tau = c * pair.shear_strength;
-        params.extend([
-            Field::float("interface_factor", c, Dimension::Dimensionless),
-            Field::float("shear_strength", tau, Dimension::Pressure),
-        ]);
-        Some(tau)
+        Some(JunctionShear {
+            interface_factor: c,
+            shear_strength: c * pair.shear_strength,
+        })
     } else {
         None
     };
-    Ok((full_stick, shear_strength))
+    Ok((full_stick, junction_shear))
 }
 
 fn full_stick_options(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
     pair: &MaterialPair,
-    params: &mut Vec<Field>,
 ) -> Result<FullStickOptions, SpecError> {
     let nu = pair.material.poisson_ratio;
     stick_factors(nu).map_err(|e| {
@@ -152,11 +147,6 @@ fn full_stick_options(
     }
     let friction_law = StickFrictionLaw::new(a, b)
         .map_err(|e| spec_error(spec.lower_material.location(), "stick_law", e.to_string()))?;
-    params.extend([
-        Field::float("stick_law_a", a, Dimension::Dimensionless),
-        Field::float("stick_law_b", b, Dimension::Dimensionless),
-        Field::float("yield_strength", pair.yield_strength, Dimension::Pressure),
-    ]);
     Ok(FullStickOptions {
         yield_strength: Some(pair.yield_strength),
         friction_law,
@@ -267,7 +257,6 @@ fn check_same_modulus(
 pub(super) fn spot_options(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
-    params: &mut Vec<Field>,
 ) -> Result<(Connectivity, bool), SpecError> {
     let connectivity = match &spec.spot_connectivity {
         Some(p) => match ctx.resolve_checked(p, "spot_connectivity", |n: &i64| {
@@ -286,16 +275,5 @@ pub(super) fn spot_options(
         Some(p) => ctx.resolve(p, "spots_table")?,
         None => false,
     };
-    params.extend([
-        Field::int(
-            "spot_connectivity",
-            if connectivity == Connectivity::Eight {
-                8
-            } else {
-                4
-            },
-        ),
-        Field::bool("spots_table", spots_table),
-    ]);
     Ok((connectivity, spots_table))
 }

@@ -45,8 +45,9 @@ impl FrictionTask {
         Ok(match self.model {
             FrictionModel::JunctionShear => SpotLaw::JunctionShear {
                 shear_strength: self
-                    .shear_strength
-                    .ok_or_else(|| NodeError::new("junction shear without a shear strength"))?,
+                    .junction_shear
+                    .ok_or_else(|| NodeError::new("junction shear without a shear strength"))?
+                    .shear_strength,
             },
             FrictionModel::Asperity(AsperityModel::FullStick) => SpotLaw::FullStick {
                 law: self.options.full_stick.law(&self.material).map_err(fail)?,
@@ -109,8 +110,12 @@ pub(super) fn compute(
         nominal_pressure * area,
     );
     push_spot_statistics(metrics, &spots, &result, section_area, area);
-    if let Some(tau) = task.shear_strength {
-        metrics.push(Field::float("shear_strength", tau, Dimension::Pressure));
+    if let Some(j) = task.junction_shear {
+        metrics.push(Field::float(
+            "shear_strength",
+            j.shear_strength,
+            Dimension::Pressure,
+        ));
     }
     if section.spots_table {
         tables.insert(String::from("spots"), spots_table(&spots, &result, dx, dy));

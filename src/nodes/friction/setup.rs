@@ -6,18 +6,17 @@
 //! lower body against a rigid one), which must have a hardness.
 
 use crate::engine::study::{ResolveContext, SourceLocation, SpecError};
-use crate::engine::value::Field;
 use crate::friction::{
     AdhesionParameters, AsperityModel, Material, ModelOptions, StaticFrictionForm, SummitStatistics,
 };
 use crate::materials::half_space_compliance;
 
 use super::model_setup;
-use crate::units::{format_number, Dimension};
+use crate::units::format_number;
 
 use super::{
-    form_name, FrictionMethod, FrictionModel, FrictionSpec, FrictionTask, Loads, MethodSetup,
-    Roughness, DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE,
+    FrictionMethod, FrictionModel, FrictionSpec, FrictionTask, Loads, MethodSetup, Roughness,
+    DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE,
 };
 
 pub(super) fn spec_error(
@@ -58,7 +57,6 @@ pub(super) struct MaterialPair {
 fn resolve_material(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
-    params: &mut Vec<Field>,
 ) -> Result<MaterialPair, SpecError> {
     let lower = spec.lower_material.resolve(ctx, "lower_material")?;
     let upper = match &spec.upper_material {
@@ -90,19 +88,6 @@ fn resolve_material(
     };
     let material = Material::new(1.0 / total, hardness, softer.1)
         .map_err(|e| spec_error(spec.lower_material.location(), softer.2, e.to_string()))?;
-    params.extend([
-        Field::float(
-            "composite_modulus",
-            material.composite_modulus,
-            Dimension::Pressure,
-        ),
-        Field::float("hardness", material.hardness, Dimension::Pressure),
-        Field::float(
-            "poisson_ratio",
-            material.poisson_ratio,
-            Dimension::Dimensionless,
-        ),
-    ]);
     let yield_strength = strengths
         .0
         .unwrap_or_else(|| material.tabor_yield_strength());
@@ -138,7 +123,6 @@ fn resolve_loads(
     ctx: &ResolveContext<'_>,
     contact: Option<usize>,
     location: SourceLocation,
-    params: &mut Vec<Field>,
 ) -> Result<Loads, SpecError> {
     fn ascending(
         ctx: &ResolveContext<'_>,
@@ -173,12 +157,6 @@ fn resolve_loads(
         }
         Ok(values)
     }
-    let joined = |v: &[f64]| {
-        v.iter()
-            .map(|x| format_number(*x))
-            .collect::<Vec<_>>()
-            .join(",")
-    };
     match (&spec.nominal_pressures, &spec.loads, contact) {
         (Some(_), Some(_), _) => Err(spec_error(
             location,
@@ -186,14 +164,10 @@ fn resolve_loads(
             "give either `nominal_pressures` or `loads`, not both",
         )),
         (Some(p), None, _) => {
-            let v = ascending(ctx, p, "nominal_pressures", "Pa")?;
-            params.push(Field::text("nominal_pressures_Pa", joined(&v)));
-            Ok(Loads::Pressures(v))
+            Ok(Loads::Pressures(ascending(ctx, p, "nominal_pressures", "Pa")?))
         }
         (None, Some(f), _) => {
-            let v = ascending(ctx, f, "loads", "N")?;
-            params.push(Field::text("loads_N", joined(&v)));
-            Ok(Loads::Forces(v))
+            Ok(Loads::Forces(ascending(ctx, f, "loads", "N")?))
         }
         (None, None, Some(c)) => Ok(Loads::FromContact(c)),
         (None, None, None) => Err(spec_error(
@@ -243,32 +217,23 @@ pub(super) fn instantiate(
     check_upstream(spec, ctx)?;
     let location = location_of(spec);
     let (model, method) = model_setup::model_and_method(spec, ctx, location)?;
-    let mut params = vec![
-        Field::text("method", method.name()),
-        Field::text("model", model.name()),
-    ];
-    let form = static_friction_form(spec, ctx, model, location, &mut params)?;
-    let pair = resolve_material(spec, ctx, &mut params)?;
-    let (full_stick, shear_strength) =
-        model_setup::model_inputs(spec, ctx, model, &pair, &mut params)?;
+    let form = static_friction_form(spec, ctx, model, location)?;
+    let pair = resolve_material(spec, ctx)?;
+    let (full_stick, junction_shear) = model_setup::model_inputs(spec, ctx, model, &pair)?;
     check_method_fields(spec, method, location)?;
-    let adhesion = adhesion(spec, ctx, location, &mut params)?;
+    let adhesion = adhesion(spec, ctx, location)?;
     let nominal_area = match &spec.nominal_area {
-        Some(p) => {
-            let a = ctx
-                .resolve_checked(p, "nominal_area", |q| positive(q.si(), "m^2"))?
-                .si();
-            params.push(Field::float("nominal_area", a, Dimension::Area));
-            Some(a)
-        }
+        Some(p) => Some(
+            ctx.resolve_checked(p, "nominal_area", |q| positive(q.si(), "m^2"))?
+                .si(),
+        ),
         None => None,
     };
-    let setup = method_setup(spec, ctx, method, &pair, nominal_area, &mut params)?;
+    let setup = method_setup(spec, ctx, method, &pair, nominal_area)?;
     Ok(FrictionTask {
-        params,
         model,
         material: pair.material,
-        shear_strength,
+        junction_shear,
         adhesion,
         options: ModelOptions {
             static_friction_form: form,
@@ -279,13 +244,12 @@ pub(super) fn instantiate(
     })
 }
 
-/// `static_friction_form` (KE only; literal by default), pushed to the key for KE.
+/// `static_friction_form` (KE only; literal by default).
 fn static_friction_form(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
     model: FrictionModel,
     location: SourceLocation,
-    params: &mut Vec<Field>,
 ) -> Result<StaticFrictionForm, SpecError> {
     let form = resolve_choice(
         ctx,
@@ -304,11 +268,7 @@ fn static_friction_form(
             "is used by `model: kogut_etsion` only; remove it",
         ));
     }
-    let form = form.unwrap_or_default();
-    if ke {
-        params.push(Field::text("static_friction_form", form_name(form)));
-    }
-    Ok(form)
+    Ok(form.unwrap_or_default())
 }
 
 /// The adhesion energy Δγ and equilibrium distance ε (defaults: see the constants).
@@ -316,7 +276,6 @@ fn adhesion(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
     location: SourceLocation,
-    params: &mut Vec<Field>,
 ) -> Result<AdhesionParameters, SpecError> {
     let energy = match &spec.adhesion_energy {
         Some(p) => ctx
@@ -336,19 +295,8 @@ fn adhesion(
             .si(),
         None => DEFAULT_EQUILIBRIUM_DISTANCE,
     };
-    let adhesion = AdhesionParameters::new(energy, epsilon)
-        .map_err(|e| spec_error(location, "adhesion_energy", e.to_string()))?;
-    params.push(Field::float(
-        "adhesion_energy",
-        energy,
-        Dimension::SurfaceEnergy,
-    ));
-    params.push(Field::float(
-        "equilibrium_distance",
-        epsilon,
-        Dimension::Length,
-    ));
-    Ok(adhesion)
+    AdhesionParameters::new(energy, epsilon)
+        .map_err(|e| spec_error(location, "adhesion_energy", e.to_string()))
 }
 
 /// What the method needs: roughness and loads (statistical), or the contact solution and its
@@ -359,15 +307,14 @@ fn method_setup(
     method: FrictionMethod,
     pair: &MaterialPair,
     nominal_area: Option<f64>,
-    params: &mut Vec<Field>,
 ) -> Result<MethodSetup, SpecError> {
     let location = location_of(spec);
     let surfaces = usize::from(spec.lower.is_some()) + usize::from(spec.upper.is_some());
     let contact = spec.contact.as_ref().map(|_| surfaces);
     Ok(match method {
         FrictionMethod::Statistical => {
-            let roughness = roughness(spec, ctx, nominal_area, location, params)?;
-            let loads = resolve_loads(spec, ctx, contact, location, params)?;
+            let roughness = roughness(spec, ctx, nominal_area, location)?;
+            let loads = resolve_loads(spec, ctx, contact, location)?;
             MethodSetup::Statistical {
                 roughness,
                 nominal_area,
@@ -381,7 +328,6 @@ fn method_setup(
                 Some(p) => ctx.resolve(p, "summits_table")?,
                 None => false,
             };
-            params.push(Field::bool("summits_table", summits_table));
             MethodSetup::PerSummit {
                 contact,
                 nominal_area,
@@ -392,7 +338,7 @@ fn method_setup(
         FrictionMethod::PerSpot => {
             let (contact, periodic) =
                 model_setup::contact_solution(spec, ctx, location, contact, pair, method)?;
-            let (connectivity, spots_table) = model_setup::spot_options(spec, ctx, params)?;
+            let (connectivity, spots_table) = model_setup::spot_options(spec, ctx)?;
             MethodSetup::PerSpot {
                 contact,
                 section: super::per_spot::Section {
@@ -413,7 +359,6 @@ fn roughness(
     ctx: &ResolveContext<'_>,
     nominal_area: Option<f64>,
     location: SourceLocation,
-    params: &mut Vec<Field>,
 ) -> Result<Roughness, SpecError> {
     match (&spec.roughness, &spec.lower, &spec.upper) {
         (Some(_), Some(n), _) | (Some(_), None, Some(n)) => Err(spec_error(
@@ -440,11 +385,6 @@ fn roughness(
                     "is required with explicit `roughness` (there is no upstream surface to take it from)",
                 ));
             }
-            params.extend([
-                Field::float("sigma", sigma, Dimension::Length),
-                Field::float("summit_radius", radius, Dimension::Length),
-                Field::float("summit_density", density, Dimension::InverseArea),
-            ]);
             Ok(Roughness::Explicit(summits))
         }
         (None, Some(_), upper) => Ok(Roughness::Surfaces {

@@ -73,6 +73,8 @@ pub struct FileSpec {
 #[derive(Debug, Clone)]
 pub(crate) struct MeasuredSource {
     path: PathBuf,
+    /// blake3 of the file's bytes: the file enters the key by content, not by path.
+    content_hash: String,
     file_bytes: u64,
     lateral: Option<LateralCalibration>,
     override_file_spacing: bool,
@@ -100,23 +102,12 @@ impl FileSpec {
             )
         })?;
         let file_bytes = std::fs::metadata(&path).map_or(0, |m| m.len());
-        let mut params = vec![
-            Field::text("source", "file"),
-            Field::text("file_blake3", hash),
-        ];
         let (lateral, override_file_spacing) = self.lateral_calibration(ctx)?;
-        if let Some(given) = lateral {
-            params.extend(calibration_fields(given));
-            params.push(Field::bool("override_file_spacing", override_file_spacing));
-        }
         let crop = match &self.crop {
             Some(c) => {
                 let mut v = [0usize; 4];
                 for (i, p) in c.iter().enumerate() {
                     v[i] = ctx.resolve(p, &format!("file.crop[{i}]"))?;
-                }
-                for (name, x) in ["crop_ix0", "crop_iy0", "crop_nx", "crop_ny"].iter().zip(v) {
-                    params.push(Field::int(*name, x as i64));
                 }
                 Some(v)
             }
@@ -133,8 +124,6 @@ impl FileSpec {
                 };
                 let sx = ctx.resolve_checked(&d[0], "file.decimate[0]", step)?;
                 let sy = ctx.resolve_checked(&d[1], "file.decimate[1]", step)?;
-                params.push(Field::int("decimate_x", sx as i64));
-                params.push(Field::int("decimate_y", sy as i64));
                 Some([sx, sy])
             }
             None => None,
@@ -148,22 +137,17 @@ impl FileSpec {
                         Err(format!("is out of range: at most {MAX_FORM_DEGREE}"))
                     }
                 })?;
-                params.push(Field::int("form_degree", d as i64));
                 Some(d)
             }
             None => None,
         };
-        let mut length = |p: &Option<Param<Quantity<Length>>>, field: &str, name: &str| {
+        let length = |p: &Option<Param<Quantity<Length>>>, field: &str| {
             p.as_ref()
-                .map(|p| {
-                    let v = ctx.resolve_checked(p, field, positive_length)?.si();
-                    params.push(Field::float(name, v, Dimension::Length));
-                    Ok(v)
-                })
+                .map(|p| Ok(ctx.resolve_checked(p, field, positive_length)?.si()))
                 .transpose()
         };
-        let s_filter = length(&self.s_filter, "file.s_filter", "s_filter")?;
-        let l_filter = length(&self.l_filter, "file.l_filter", "l_filter")?;
+        let s_filter = length(&self.s_filter, "file.s_filter")?;
+        let l_filter = length(&self.l_filter, "file.l_filter")?;
         if let (Some(s), Some(l)) = (s_filter, l_filter) {
             if s >= l {
                 return Err(err(
@@ -176,11 +160,10 @@ impl FileSpec {
             Some(p) => ctx.resolve(p, "file.fill_missing")?,
             None => false,
         };
-        params.push(Field::bool("fill_missing", fill));
         Ok(SurfaceTask {
-            params,
             source: SurfaceSource::Measured(MeasuredSource {
                 path,
+                content_hash: hash,
                 file_bytes,
                 lateral,
                 override_file_spacing,
@@ -252,10 +235,15 @@ impl FileSpec {
 
 impl MeasuredSource {
     /// A file levelled by a polynomial of `form_degree` with its missing points filled.
-    pub(super) fn levelled_and_filled(path: PathBuf, form_degree: usize) -> Self {
+    pub(super) fn levelled_and_filled(
+        path: PathBuf,
+        content_hash: String,
+        form_degree: usize,
+    ) -> Self {
         let file_bytes = std::fs::metadata(&path).map_or(0, |m| m.len());
         Self {
             path,
+            content_hash,
             file_bytes,
             lateral: None,
             override_file_spacing: false,
@@ -271,6 +259,57 @@ impl MeasuredSource {
     /// The file read.
     pub(super) fn path(&self) -> &std::path::Path {
         &self.path
+    }
+
+    /// blake3 of the file's bytes.
+    pub(super) fn content_hash(&self) -> &str {
+        &self.content_hash
+    }
+
+    /// The key fields of a measured surface: the file by content and every preprocessing step,
+    /// in SI. The path (the same bytes may move) and the file size (a memory estimate) are not
+    /// part of it.
+    pub(super) fn key_fields(&self) -> Vec<Field> {
+        let Self {
+            path: _,
+            content_hash,
+            file_bytes: _,
+            lateral,
+            override_file_spacing,
+            crop,
+            decimate,
+            form_degree,
+            s_filter,
+            l_filter,
+            fill,
+        } = self;
+        let mut fields = vec![
+            Field::text("source", "file"),
+            Field::text("file_blake3", content_hash.clone()),
+        ];
+        if let Some(given) = lateral {
+            fields.extend(calibration_fields(*given));
+            fields.push(Field::bool("override_file_spacing", *override_file_spacing));
+        }
+        if let Some(c) = crop {
+            for (name, x) in ["crop_ix0", "crop_iy0", "crop_nx", "crop_ny"].iter().zip(c) {
+                fields.push(Field::int(*name, *x as i64));
+            }
+        }
+        if let Some([sx, sy]) = decimate {
+            fields.push(Field::int("decimate_x", *sx as i64));
+            fields.push(Field::int("decimate_y", *sy as i64));
+        }
+        if let Some(d) = form_degree {
+            fields.push(Field::int("form_degree", *d as i64));
+        }
+        for (name, v) in [("s_filter", s_filter), ("l_filter", l_filter)] {
+            if let Some(v) = v {
+                fields.push(Field::float(name, *v, Dimension::Length));
+            }
+        }
+        fields.push(Field::bool("fill_missing", *fill));
+        fields
     }
 
     /// Reads and preprocesses the surface.

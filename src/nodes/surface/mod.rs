@@ -30,7 +30,7 @@ pub(crate) const TABLE: &str = "surfaces";
 
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
 /// computed statistics change, so stale cache entries are never reused.
-pub const SURFACE_KIND_VERSION: u32 = 5;
+pub const SURFACE_KIND_VERSION: u32 = 6;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
 /// cache but regenerated when a dependant needs their heights.
@@ -61,7 +61,6 @@ impl SurfaceSpec {
 /// A resolved surface node.
 #[derive(Debug, Clone)]
 pub struct SurfaceTask {
-    pub(crate) params: Vec<Field>,
     pub(crate) source: SurfaceSource,
 }
 
@@ -107,8 +106,12 @@ impl NodeTask for SurfaceTask {
         TABLE
     }
 
-    fn params(&self) -> &[Field] {
-        &self.params
+    fn params(&self) -> Vec<Field> {
+        match &self.source {
+            SurfaceSource::Synthetic(spec) => synthetic::key_fields(spec),
+            SurfaceSource::Measured(m) => m.key_fields(),
+            SurfaceSource::Twin(t) => t.key_fields(),
+        }
     }
 
     /// Synthetic heights above `REGENERATE_ABOVE_POINTS` (1024²) are regenerated from the key (about

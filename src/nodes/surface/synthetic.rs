@@ -95,32 +95,16 @@ impl SyntheticSpec {
                 positive_length,
             )?
             .si();
-        let mut params = vec![
-            Field::int("nx", nx as i64),
-            Field::int("ny", ny as i64),
-            Field::float("lx", lx, Dimension::Length),
-            Field::float("ly", ly, Dimension::Length),
-            Field::float("sq_target", sq, Dimension::Length),
-            Field::float("hurst", hurst, Dimension::Dimensionless),
-            Field::float("correlation_length", correlation_length, Dimension::Length),
-        ];
-        let cutoff = match &self.short_wavelength_cutoff {
-            Some(p) => {
-                let c = ctx
-                    .resolve_checked(p, "synthetic.short_wavelength_cutoff", positive_length)?
-                    .si();
-                params.push(Field::float(
-                    "short_wavelength_cutoff",
-                    c,
-                    Dimension::Length,
-                ));
-                Some(c)
-            }
+        let short_wavelength_cutoff = match &self.short_wavelength_cutoff {
+            Some(p) => Some(
+                ctx.resolve_checked(p, "synthetic.short_wavelength_cutoff", positive_length)?
+                    .si(),
+            ),
             None => None,
         };
         let anisotropy = match &self.anisotropy {
             Some(a) => {
-                let ratio = ctx.resolve_checked(&a.ratio, "synthetic.anisotropy.ratio", |r: &f64| {
+                let aspect_ratio = ctx.resolve_checked(&a.ratio, "synthetic.anisotropy.ratio", |r: &f64| {
                     if *r >= 1.0 && r.is_finite() {
                         Ok(())
                     } else {
@@ -131,19 +115,14 @@ impl SyntheticSpec {
                     Some(p) => ctx.resolve(p, "synthetic.anisotropy.angle")?.si(),
                     None => 0.0,
                 };
-                params.push(Field::float(
-                    "anisotropy_ratio",
-                    ratio,
-                    Dimension::Dimensionless,
-                ));
-                params.push(Field::float("anisotropy_angle", angle, Dimension::Angle));
-                Some((ratio, angle))
+                Some(Anisotropy {
+                    aspect_ratio,
+                    angle,
+                })
             }
             None => None,
         };
         let seed = ctx.resolve(&self.seed, "synthetic.seed")?;
-        params.push(Field::int("seed", seed as i64));
-        params.push(Field::text("source", "synthetic"));
         let spec = SyntheticSurfaceSpec {
             nx,
             ny,
@@ -152,11 +131,8 @@ impl SyntheticSpec {
             sq,
             hurst,
             correlation_length,
-            short_wavelength_cutoff: cutoff,
-            anisotropy: anisotropy.map(|(aspect_ratio, angle)| Anisotropy {
-                aspect_ratio,
-                angle_deg: angle.to_degrees(),
-            }),
+            short_wavelength_cutoff,
+            anisotropy,
             seed,
         };
         // Checks that involve several fields (e.g. the cutoff against the grid spacing) are made
@@ -185,8 +161,54 @@ impl SyntheticSpec {
             });
         }
         Ok(SurfaceTask {
-            params,
             source: SurfaceSource::Synthetic(spec),
         })
     }
+}
+
+/// The key fields of a synthetic surface: every field of its spec, in SI.
+pub(super) fn key_fields(spec: &SyntheticSurfaceSpec) -> Vec<Field> {
+    let SyntheticSurfaceSpec {
+        nx,
+        ny,
+        lx,
+        ly,
+        sq,
+        hurst,
+        correlation_length,
+        short_wavelength_cutoff,
+        anisotropy,
+        seed,
+    } = *spec;
+    let mut fields = vec![
+        Field::int("nx", nx as i64),
+        Field::int("ny", ny as i64),
+        Field::float("lx", lx, Dimension::Length),
+        Field::float("ly", ly, Dimension::Length),
+        Field::float("sq_target", sq, Dimension::Length),
+        Field::float("hurst", hurst, Dimension::Dimensionless),
+        Field::float("correlation_length", correlation_length, Dimension::Length),
+    ];
+    if let Some(c) = short_wavelength_cutoff {
+        fields.push(Field::float(
+            "short_wavelength_cutoff",
+            c,
+            Dimension::Length,
+        ));
+    }
+    if let Some(Anisotropy {
+        aspect_ratio,
+        angle,
+    }) = anisotropy
+    {
+        fields.push(Field::float(
+            "anisotropy_ratio",
+            aspect_ratio,
+            Dimension::Dimensionless,
+        ));
+        fields.push(Field::float("anisotropy_angle", angle, Dimension::Angle));
+    }
+    fields.push(Field::int("seed", seed as i64));
+    fields.push(Field::text("source", "synthetic"));
+    fields
 }

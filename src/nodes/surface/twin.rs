@@ -50,7 +50,9 @@ pub struct TwinSpec {
 /// A resolved twin.
 #[derive(Debug, Clone)]
 pub(crate) struct TwinSource {
+    /// The measured files, levelled by `form_degree` and filled.
     measured: Vec<MeasuredSource>,
+    form_degree: usize,
     sq: f64,
     grid: TwinGrid,
 }
@@ -68,10 +70,6 @@ impl TwinSpec {
             Some(p) => ctx.resolve(p, "twin.form_degree")?,
             None => 1,
         };
-        let mut params = vec![
-            Field::text("source", "twin"),
-            Field::int("form_degree", form_degree as i64),
-        ];
         let mut measured = Vec::with_capacity(self.of.len());
         for (i, p) in self.of.iter().enumerate() {
             let field = format!("twin.of[{i}]");
@@ -82,8 +80,7 @@ impl TwinSpec {
                 field: field.clone(),
                 message: format!("{m}; paths are relative to the study file"),
             })?;
-            params.push(Field::text(format!("twin_of_{i}_blake3"), hash));
-            measured.push(MeasuredSource::levelled_and_filled(path, form_degree));
+            measured.push(MeasuredSource::levelled_and_filled(path, hash, form_degree));
         }
         let sq = ctx
             .resolve_checked(&self.sq, "twin.sq", positive_length)?
@@ -111,25 +108,10 @@ impl TwinSpec {
             None => None,
         };
         let seed = ctx.resolve(&self.seed, "twin.seed")?;
-        params.extend([
-            Field::float("sq_target", sq, Dimension::Length),
-            Field::int("nx", nx as i64),
-            Field::int("ny", ny as i64),
-            Field::float("lx", lx, Dimension::Length),
-            Field::float("ly", ly, Dimension::Length),
-            Field::int("seed", seed as i64),
-        ]);
-        if let Some(c) = cutoff {
-            params.push(Field::float(
-                "short_wavelength_cutoff",
-                c,
-                Dimension::Length,
-            ));
-        }
         Ok(SurfaceTask {
-            params,
             source: SurfaceSource::Twin(TwinSource {
                 measured,
+                form_degree,
                 sq,
                 grid: TwinGrid {
                     nx,
@@ -145,6 +127,48 @@ impl TwinSpec {
 }
 
 impl TwinSource {
+    /// The key fields of a twin: the measured files by content, their levelling, the target Sq
+    /// and the twin's grid and seed, in SI.
+    pub(super) fn key_fields(&self) -> Vec<Field> {
+        let Self {
+            measured,
+            form_degree,
+            sq,
+            grid,
+        } = self;
+        let TwinGrid {
+            nx,
+            ny,
+            lx,
+            ly,
+            short_wavelength_cutoff,
+            seed,
+        } = *grid;
+        let mut fields = vec![
+            Field::text("source", "twin"),
+            Field::int("form_degree", *form_degree as i64),
+        ];
+        for (i, m) in measured.iter().enumerate() {
+            fields.push(Field::text(format!("twin_of_{i}_blake3"), m.content_hash()));
+        }
+        fields.extend([
+            Field::float("sq_target", *sq, Dimension::Length),
+            Field::int("nx", nx as i64),
+            Field::int("ny", ny as i64),
+            Field::float("lx", lx, Dimension::Length),
+            Field::float("ly", ly, Dimension::Length),
+            Field::int("seed", seed as i64),
+        ]);
+        if let Some(c) = short_wavelength_cutoff {
+            fields.push(Field::float(
+                "short_wavelength_cutoff",
+                c,
+                Dimension::Length,
+            ));
+        }
+        fields
+    }
+
     /// Measures, fits and generates; returns the twin and its extra metrics.
     pub(super) fn generate(&self) -> Result<(HeightMap, Vec<Field>), NodeError> {
         let mut textures = Vec::with_capacity(self.measured.len());

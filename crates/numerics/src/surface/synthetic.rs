@@ -7,7 +7,7 @@
 //! (Jacobs, Junge & Pastewka, *Surf. Topogr.: Metrol. Prop.* 5 (2017) 013001).
 //!
 //! # Model
-//! Wavevectors are rotated into the texture frame `(u, v)`, `u` at `angle_deg` from `x`:
+//! Wavevectors are rotated into the texture frame `(u, v)`, `u` at `angle` θ from `x`:
 //! `q_u = qx cos θ + qy sin θ`, `q_v = −qx sin θ + qy cos θ`. With roll-off wavelengths
 //! `λ_u = correlation_length` and `λ_v = λ_u / aspect_ratio`, the dimensionless wavenumber is
 //! `κ = √[(q_u λ_u / 2π)² + (q_v λ_v / 2π)²]` and
@@ -76,8 +76,8 @@ pub const MAX_SYNTHETIC_POINTS: usize = 1 << 28;
 pub struct Anisotropy {
     /// `λ_u / λ_v` (dimensionless, finite, > 0; > 1 means longer correlation along `u`).
     pub aspect_ratio: f64,
-    /// Angle of the lay direction `u` from the x axis, counter-clockwise, degrees (finite).
-    pub angle_deg: f64,
+    /// Angle θ of the lay direction `u` from the x axis, counter-clockwise, radians (finite).
+    pub angle: f64,
 }
 
 /// Parameters of a synthetic surface; see the module documentation for the model.
@@ -198,12 +198,12 @@ impl SyntheticSurfaceSpec {
         }
         if let Some(a) = self.anisotropy {
             positive_finite("anisotropy.aspect_ratio", a.aspect_ratio, "dimensionless")?;
-            if !a.angle_deg.is_finite() {
+            if !a.angle.is_finite() {
                 return Err(invalid(
-                    "anisotropy.angle_deg",
-                    a.angle_deg,
+                    "anisotropy.angle",
+                    a.angle,
                     "a finite angle".into(),
-                    "degrees",
+                    "rad",
                 ));
             }
         }
@@ -234,10 +234,7 @@ impl SyntheticSurfaceSpec {
             }
         }
         let (lu, lv) = self.correlation_lengths();
-        let (s, c) = self
-            .anisotropy
-            .map_or(0.0, |a| a.angle_deg.to_radians())
-            .sin_cos();
+        let (s, c) = self.anisotropy.map_or(0.0, |a| a.angle).sin_cos();
         let ku = (qx * c + qy * s) * lu / (2.0 * PI);
         let kv = (-qx * s + qy * c) * lv / (2.0 * PI);
         let kappa2 = ku * ku + kv * kv;

@@ -358,7 +358,7 @@ pub fn synthetic_twin(
         short_wavelength_cutoff: grid.short_wavelength_cutoff,
         anisotropy: Some(Anisotropy {
             aspect_ratio: target_x / target_y,
-            angle_deg: 0.0,
+            angle: 0.0,
         }),
         seed: grid.seed,
     };
@@ -370,7 +370,7 @@ pub fn synthetic_twin(
         spec.correlation_length = lambda_x;
         spec.anisotropy = Some(Anisotropy {
             aspect_ratio: lambda_x / lambda_y,
-            angle_deg: 0.0,
+            angle: 0.0,
         });
         let (dx, dy) = spec.spacing();
         let acf = Autocorrelation::from_periodic_lags(&model_autocorrelation(&spec)?, dx, dy);

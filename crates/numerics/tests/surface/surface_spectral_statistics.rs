@@ -102,7 +102,7 @@ fn anisotropy_shows_in_directional_acf_and_std() {
     s.correlation_length = 1e-3 / 8.0;
     s.anisotropy = Some(Anisotropy {
         aspect_ratio: 4.0,
-        angle_deg: 0.0,
+        angle: 0.0,
     });
     let (map, measured, model) = measured_and_model(&s);
     let m = measured.correlation_lengths(ISO_ACF_THRESHOLD).unwrap();
@@ -134,7 +134,7 @@ fn anisotropy_shows_in_directional_acf_and_std() {
 
     s.anisotropy = Some(Anisotropy {
         aspect_ratio: 4.0,
-        angle_deg: 30.0,
+        angle: 30.0f64.to_radians(),
     });
     let rotated = generate_synthetic_surface(&s).unwrap();
     let direction = texture_direction(&rotated, Window::None).unwrap();
@@ -324,7 +324,7 @@ fn seed_sweep_stays_within_tolerances() {
         s.correlation_length = 1e-3 / 8.0;
         s.anisotropy = Some(Anisotropy {
             aspect_ratio: 4.0,
-            angle_deg: 30.0,
+            angle: 30.0f64.to_radians(),
         });
         let map = generate_synthetic_surface(&s).unwrap();
         let direction = texture_direction(&map, Window::None).unwrap();

@@ -110,7 +110,7 @@ fn coarse_and_fine_grids_sample_one_surface() {
         None,
         Some(Anisotropy {
             aspect_ratio: 4.0,
-            angle_deg: 17.0,
+            angle: 17.0f64.to_radians(),
         }),
     ] {
         let fine_spec = SyntheticSurfaceSpec {
@@ -163,16 +163,16 @@ fn invalid_parameters_are_named() {
             Box::new(|s| {
                 s.anisotropy = Some(Anisotropy {
                     aspect_ratio: 0.0,
-                    angle_deg: 0.0,
+                    angle: 0.0,
                 })
             }),
         ),
         (
-            "anisotropy.angle_deg",
+            "anisotropy.angle",
             Box::new(|s| {
                 s.anisotropy = Some(Anisotropy {
                     aspect_ratio: 2.0,
-                    angle_deg: f64::NAN,
+                    angle: f64::NAN,
                 })
             }),
         ),
@@ -214,7 +214,7 @@ fn model_acf_follows_anisotropy() {
     s.correlation_length = 200e-6;
     s.anisotropy = Some(Anisotropy {
         aspect_ratio: 4.0,
-        angle_deg: 0.0,
+        angle: 0.0,
     });
     let acf = model_autocorrelation(&s).unwrap();
     assert_eq!(acf[[0, 0]], 1.0);
@@ -227,7 +227,7 @@ fn model_acf_follows_anisotropy() {
     assert!((ratio / 4.0 - 1.0).abs() < 0.05, "x {along_x} y {along_y}");
     s.anisotropy = Some(Anisotropy {
         aspect_ratio: 4.0,
-        angle_deg: 90.0,
+        angle: 90.0f64.to_radians(),
     });
     let rotated = model_autocorrelation(&s).unwrap();
     // A 90° rotation maps the x axis onto y exactly (same grid); round-off only.

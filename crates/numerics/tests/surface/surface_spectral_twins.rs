@@ -26,7 +26,7 @@ fn ground_surface(sq: f64, seed: u64) -> SyntheticSurfaceSpec {
         short_wavelength_cutoff: None,
         anisotropy: Some(Anisotropy {
             aspect_ratio: 2.0,
-            angle_deg: 0.0,
+            angle: 0.0,
         }),
         seed,
     }

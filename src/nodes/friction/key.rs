@@ -1,0 +1,185 @@
+//! The key fields of a friction node, derived from the resolved task itself: the method and
+//! model, the material the model sees, the model's own inputs, adhesion, and the method's
+//! roughness, loads and table options, in SI. Every field of the task is named here (a new field
+//! fails to compile until it is placed in the key or explicitly left out).
+
+use crate::engine::value::Field;
+use crate::friction::{
+    AsperityModel, Connectivity, FullStickOptions, Material, ModelOptions, StickFrictionLaw,
+    SummitStatistics,
+};
+use crate::units::{format_number, Dimension};
+
+use super::per_spot::Section;
+use super::{
+    form_name, FrictionMethod, FrictionModel, FrictionTask, Loads, MethodSetup, Roughness,
+};
+
+impl FrictionTask {
+    /// The resolved parameters that enter the key and the `friction` table row.
+    pub(super) fn key_fields(&self) -> Vec<Field> {
+        let Self {
+            model,
+            material,
+            junction_shear,
+            adhesion,
+            options,
+            setup,
+        } = self;
+        // `adhesion_beyond_fits` is not a study field: every friction node uses its default.
+        let ModelOptions {
+            static_friction_form,
+            adhesion_beyond_fits: _,
+            full_stick,
+        } = options;
+        let mut key = vec![
+            Field::text("method", method_of(setup).name()),
+            Field::text("model", model.name()),
+        ];
+        if *model == FrictionModel::Asperity(AsperityModel::KogutEtsion) {
+            key.push(Field::text(
+                "static_friction_form",
+                form_name(*static_friction_form),
+            ));
+        }
+        key.extend(material_fields(material));
+        if *model == FrictionModel::Asperity(AsperityModel::FullStick) {
+            key.extend(full_stick_fields(full_stick));
+        }
+        if let Some(j) = junction_shear {
+            key.extend([
+                Field::float(
+                    "interface_factor",
+                    j.interface_factor,
+                    Dimension::Dimensionless,
+                ),
+                Field::float("shear_strength", j.shear_strength, Dimension::Pressure),
+            ]);
+        }
+        key.extend([
+            Field::float("adhesion_energy", adhesion.energy, Dimension::SurfaceEnergy),
+            Field::float(
+                "equilibrium_distance",
+                adhesion.equilibrium_distance,
+                Dimension::Length,
+            ),
+        ]);
+        key.extend(method_fields(setup));
+        key
+    }
+}
+
+fn method_of(setup: &MethodSetup) -> FrictionMethod {
+    match setup {
+        MethodSetup::Statistical { .. } => FrictionMethod::Statistical,
+        MethodSetup::PerSummit { .. } => FrictionMethod::PerSummit,
+        MethodSetup::PerSpot { .. } => FrictionMethod::PerSpot,
+    }
+}
+
+fn material_fields(material: &Material) -> [Field; 3] {
+    let Material {
+        composite_modulus,
+        hardness,
+        poisson_ratio,
+    } = *material;
+    [
+        Field::float("composite_modulus", composite_modulus, Dimension::Pressure),
+        Field::float("hardness", hardness, Dimension::Pressure),
+        Field::float("poisson_ratio", poisson_ratio, Dimension::Dimensionless),
+    ]
+}
+
+/// The μ(P*) law and the yield strength of full stick (the yield strength is always resolved:
+/// given, or Tabor's H/2.8).
+fn full_stick_fields(options: &FullStickOptions) -> Vec<Field> {
+    let FullStickOptions {
+        yield_strength,
+        friction_law: StickFrictionLaw { a, b },
+    } = *options;
+    let mut fields = vec![
+        Field::float("stick_law_a", a, Dimension::Dimensionless),
+        Field::float("stick_law_b", b, Dimension::Dimensionless),
+    ];
+    if let Some(y) = yield_strength {
+        fields.push(Field::float("yield_strength", y, Dimension::Pressure));
+    }
+    fields
+}
+
+/// The nominal area (when given) and what the method reads: explicit roughness and loads, or
+/// the table options of a contact-solution method. The upstream inputs' indices and whether the
+/// contact was periodic come from the upstream nodes, whose keys are part of this key.
+fn method_fields(setup: &MethodSetup) -> Vec<Field> {
+    let nominal_area = match setup {
+        MethodSetup::Statistical { nominal_area, .. }
+        | MethodSetup::PerSummit { nominal_area, .. }
+        | MethodSetup::PerSpot {
+            section: Section { nominal_area, .. },
+            ..
+        } => *nominal_area,
+    };
+    let mut fields: Vec<Field> = nominal_area
+        .map(|a| Field::float("nominal_area", a, Dimension::Area))
+        .into_iter()
+        .collect();
+    match setup {
+        MethodSetup::Statistical {
+            roughness,
+            nominal_area: _,
+            loads,
+        } => {
+            if let Roughness::Explicit(summits) = roughness {
+                fields.extend(explicit_roughness_fields(summits));
+            }
+            fields.extend(load_fields(loads));
+        }
+        MethodSetup::PerSummit {
+            contact: _,
+            nominal_area: _,
+            periodic: _,
+            summits_table,
+        } => fields.push(Field::bool("summits_table", *summits_table)),
+        MethodSetup::PerSpot {
+            contact: _,
+            section:
+                Section {
+                    nominal_area: _,
+                    periodic: _,
+                    connectivity,
+                    spots_table,
+                },
+        } => {
+            let connectivity = match connectivity {
+                Connectivity::Four => 4,
+                Connectivity::Eight => 8,
+            };
+            fields.push(Field::int("spot_connectivity", connectivity));
+            fields.push(Field::bool("spots_table", *spots_table));
+        }
+    }
+    fields
+}
+
+/// σ, R and η as given (the other summit statistics follow from them).
+fn explicit_roughness_fields(summits: &SummitStatistics) -> [Field; 3] {
+    [
+        Field::float("sigma", summits.sigma, Dimension::Length),
+        Field::float("summit_radius", summits.radius, Dimension::Length),
+        Field::float("summit_density", summits.density, Dimension::InverseArea),
+    ]
+}
+
+fn load_fields(loads: &Loads) -> Option<Field> {
+    let joined = |v: &[f64]| {
+        v.iter()
+            .map(|x| format_number(*x))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    match loads {
+        Loads::Pressures(p) => Some(Field::text("nominal_pressures_Pa", joined(p))),
+        Loads::Forces(f) => Some(Field::text("loads_N", joined(f))),
+        Loads::FromContact(_) => None,
+    }
+}
