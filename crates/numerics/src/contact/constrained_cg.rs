@@ -49,13 +49,18 @@
 //! free-set size and largest residual within [`CYCLE_MATCH`] (a cycle of the load-controlled
 //! iteration, seen when almost all contact is saturated).
 //!
+//! Structure: [`solve`] drives a small state machine, argmin style — [`ConstrainedCg::init`],
+//! then per iteration [`ConstrainedCg::measure`] (the gap statistics, δ and the residuals of the
+//! iterate), [`ConstrainedCg::decide`] (converged, confirm, stop, or step) and
+//! [`ConstrainedCg::next_iter`] (the step, the pressure update, the load restoration).
+//!
 //! Everything but the transforms (whose inputs are read from the lists) and, after a pending
 //! update, one dense pass over the points out of contact runs over explicit contact lists (see
 //! [`super::workspace`]).
 
 use super::influence::InfluenceOperator;
 use super::options::{Residuals, Termination};
-use super::workspace::Workspace;
+use super::workspace::{ContactStats, FreeStats, Workspace};
 use crate::fft2::FftFailure;
 
 /// The conjugation restarts (`β = 0`) when the points that entered the free set in the last step
@@ -146,55 +151,164 @@ pub(crate) fn solve(
     control: Control,
     settings: &CgSettings,
 ) -> Result<CgOutcome, FftFailure> {
-    let n = ws.len() as f64;
-    let h = settings.gap_scale;
-    let (offset, load_control) = match control {
-        Control::Approach { approach } => (approach, false),
-        Control::Load { .. } => (0.0, true),
-    };
-    ws.rebuild_contact();
-    let mut fft_transforms = 0;
-    // `u` was recomputed from `p` at this iterate (not only updated incrementally).
-    let mut u_fresh = false;
-    let mut displacement = Displacement::Stale;
-    // The free-set size and largest residual of the last iteration whose load restoration spread
-    // pressure over every point (see `Rebalanced::spread`).
-    let mut last_spread: Option<(f64, f64)> = None;
-    let mut cycling = false;
-    // Σ p over the contact lists (`p` vanishes off them), in parallel.
-    let mut p_sum = ws.free_stats().total();
-    let mut g_old = 0.0;
-    let mut reset = true;
-    let mut progress_mark = f64::INFINITY;
-    let mut last_progress = 0;
-    let mut iterations = 0;
-    let mut delta_prev = 0.0;
-    // The last step corrected many points of a free set without saturated points (see
-    // [`CORRECTED_SHARE`]).
-    let mut heavily_corrected = false;
+    let mut cg = ConstrainedCg::init(ws, op, control, settings);
     loop {
-        let pending_step = match std::mem::replace(&mut displacement, Displacement::Stale) {
+        let m = cg.measure()?;
+        match cg.decide(&m) {
+            Decision::Stop(termination) => return cg.finish(termination, &m),
+            Decision::Confirm => cg.confirm(&m),
+            Decision::Step => cg.next_iter(&m)?,
+        }
+    }
+}
+
+/// One measured iterate.
+struct Measurement {
+    /// `|F|`, the free-set size.
+    free_count: f64,
+    /// δ of this iterate (solved for under load control, 0 under approach control).
+    delta: f64,
+    /// `Σ_F (g − δ)²`.
+    free_g2: f64,
+    residuals: Residuals,
+}
+
+/// What follows a measurement.
+enum Decision {
+    Stop(Termination),
+    /// The residuals meet the tolerance on an incrementally updated `u`: recompute `u = K p` and
+    /// measure again.
+    Confirm,
+    Step,
+}
+
+/// The iteration between two measurements: the problem (held once) and the state the next
+/// iteration needs.
+struct ConstrainedCg<'a> {
+    ws: &'a mut Workspace,
+    op: &'a mut InfluenceOperator,
+    control: Control,
+    settings: &'a CgSettings,
+    /// The prescribed approach under approach control, else 0 (δ is then solved for).
+    offset: f64,
+    /// Grid points.
+    n: f64,
+    fft_transforms: usize,
+    iterations: usize,
+    /// `u` was recomputed from `p` at this iterate (not only updated incrementally).
+    u_fresh: bool,
+    displacement: Displacement,
+    /// Σ p over the contact lists (`p` vanishes off them).
+    p_sum: f64,
+    /// δ of the last measured iterate.
+    delta_prev: f64,
+    /// `Σ_F g²` of the last step, the denominator of β.
+    g_old: f64,
+    /// The next direction restarts the conjugation (β = 0).
+    reset: bool,
+    /// The last step corrected many points of a free set without saturated points (see
+    /// [`CORRECTED_SHARE`]).
+    heavily_corrected: bool,
+    /// The largest residual last improved on by a factor 0.9, and at which iteration.
+    progress_mark: f64,
+    last_progress: usize,
+    /// The free-set size and largest residual of the last iteration whose load restoration
+    /// spread pressure over every point (see `Rebalanced::spread`).
+    last_spread: Option<(f64, f64)>,
+    /// Two such fall-backs came from the same state.
+    cycling: bool,
+}
+
+impl<'a> ConstrainedCg<'a> {
+    fn init(
+        ws: &'a mut Workspace,
+        op: &'a mut InfluenceOperator,
+        control: Control,
+        settings: &'a CgSettings,
+    ) -> Self {
+        let offset = match control {
+            Control::Approach { approach } => approach,
+            Control::Load { .. } => 0.0,
+        };
+        ws.rebuild_contact();
+        let p_sum = ws.free_stats().total();
+        let n = ws.len() as f64;
+        Self {
+            ws,
+            op,
+            control,
+            settings,
+            offset,
+            n,
+            fft_transforms: 0,
+            iterations: 0,
+            u_fresh: false,
+            displacement: Displacement::Stale,
+            p_sum,
+            delta_prev: 0.0,
+            g_old: 0.0,
+            reset: true,
+            heavily_corrected: false,
+            progress_mark: f64::INFINITY,
+            last_progress: 0,
+            last_spread: None,
+            cycling: false,
+        }
+    }
+
+    fn load_control(&self) -> bool {
+        matches!(self.control, Control::Load { .. })
+    }
+
+    /// Brings `u` up to date (or leaves a pending linear update to the passes below), then
+    /// measures the gap: δ, the out-of-contact minimum and the four residuals.
+    fn measure(&mut self) -> Result<Measurement, FftFailure> {
+        let pending_step = match std::mem::replace(&mut self.displacement, Displacement::Stale) {
             Displacement::Stale => {
-                ws.displace(op, offset)?;
-                fft_transforms += 2;
-                u_fresh = true;
+                self.ws.displace(self.op, self.offset)?;
+                self.fft_transforms += 2;
+                self.u_fresh = true;
                 None
             }
             Displacement::Pending(tau) => Some(tau),
             Displacement::Current => None,
         };
-        let stats = ws.contact_stats(pending_step, offset, delta_prev);
+        let stats = self
+            .ws
+            .contact_stats(pending_step, self.offset, self.delta_prev);
         let has_free = stats.free_count > 0.0;
         // Mean of y = g − δ_prev on F: the correction of δ (load control).
-        let shift = if load_control && has_free {
+        let shift = if self.load_control() && has_free {
             stats.free_y / stats.free_count
         } else {
             0.0
         };
-        let (delta, zero_min) = match (load_control, has_free) {
+        let (delta, zero_min) = self.approach_and_separation(&stats, pending_step, shift);
+        // Σ_F (g − δ)² from the shifted sums: no cancellation once δ changes little.
+        let free_g2 = (stats.free_y2 - stats.free_count * shift * shift).max(0.0);
+        Ok(Measurement {
+            free_count: stats.free_count,
+            delta,
+            free_g2,
+            residuals: self.residuals(&stats, delta, zero_min),
+        })
+    }
+
+    /// δ (under load control: shifted by the free set's mean gap, or between the saturated
+    /// and the out-of-contact gaps when the free set is empty) and the smallest gap out of
+    /// contact, from the pass over the points out of contact.
+    fn approach_and_separation(
+        &mut self,
+        stats: &ContactStats,
+        pending_step: Option<f64>,
+        shift: f64,
+    ) -> (f64, f64) {
+        let load_control = self.load_control();
+        let (ws, offset) = (&mut *self.ws, self.offset);
+        match (load_control, stats.free_count > 0.0) {
             (false, _) => (0.0, ws.out_of_contact_pass(pending_step, offset, 0.0)),
             (true, true) => {
-                let delta = delta_prev + shift;
+                let delta = self.delta_prev + shift;
                 (delta, ws.out_of_contact_pass(pending_step, offset, delta))
             }
             (true, false) => {
@@ -206,149 +320,199 @@ pub(crate) fn solve(
                 };
                 (delta, ws.out_of_contact_pass(None, offset, delta))
             }
-        };
-        // Σ_F (g − δ)² from the shifted sums: no cancellation once δ changes little.
-        let free_g2 = (stats.free_y2 - stats.free_count * shift * shift).max(0.0);
-        let contact = if has_free {
+        }
+    }
+
+    /// The residuals of the complementarity conditions (scaled by the gap scale) and of the load.
+    fn residuals(&self, stats: &ContactStats, delta: f64, zero_min: f64) -> Residuals {
+        let h = self.settings.gap_scale;
+        let contact = if stats.free_count > 0.0 {
             (stats.free_max - delta).max(delta - stats.free_min)
         } else {
             0.0
         };
-        let force = match control {
+        let force = match self.control {
             Control::Load { nominal_pressure } => {
-                (p_sum / n - nominal_pressure).abs() / nominal_pressure
+                (self.p_sum / self.n - nominal_pressure).abs() / nominal_pressure
             }
             Control::Approach { .. } => 0.0,
         };
-        let residuals = Residuals {
+        Residuals {
             separation: (delta - zero_min).max(0.0) / h,
             contact: contact / h,
             plastic: (stats.sat_max - delta).max(0.0) / h,
             force,
-        };
-        let r = residuals.max();
-        let termination = if !r.is_finite() {
-            Some(Termination::Stalled)
-        } else if r <= settings.tolerance && u_fresh {
-            Some(Termination::Converged)
-        } else if r <= settings.tolerance {
-            // Confirm (or correct) on the exact displacement of the current pressures, and restart
-            // the conjugation from there: the directions were built on the drifted displacement.
-            delta_prev = delta;
-            reset = true;
-            continue;
-        } else if cycling {
-            Some(Termination::Stalled)
-        } else if iterations >= settings.max_iterations {
-            Some(Termination::MaxIterations)
-        } else if r < 0.9 * progress_mark {
-            progress_mark = r;
-            last_progress = iterations;
-            None
-        } else if iterations - last_progress > settings.stall_iterations {
-            Some(Termination::Stalled)
-        } else {
-            None
-        };
-        if let Some(termination) = termination {
-            if !u_fresh {
-                ws.displace(op, offset)?;
-                fft_transforms += 2;
-            }
-            ws.write_gap(offset + delta);
-            return Ok(CgOutcome {
-                termination,
-                iterations,
-                fft_transforms,
-                residuals,
-                approach: offset + delta,
-                mean_pressure: p_sum / n,
-            });
         }
+    }
 
-        let beta = if reset || g_old <= 0.0 {
+    /// The convergence criterion (every residual ≤ the tolerance on a recomputed `u`) and the
+    /// stopping rules of the module docs.
+    fn decide(&mut self, m: &Measurement) -> Decision {
+        let r = m.residuals.max();
+        let settings = self.settings;
+        if !r.is_finite() {
+            Decision::Stop(Termination::Stalled)
+        } else if r <= settings.tolerance && self.u_fresh {
+            Decision::Stop(Termination::Converged)
+        } else if r <= settings.tolerance {
+            Decision::Confirm
+        } else if self.cycling {
+            Decision::Stop(Termination::Stalled)
+        } else if self.iterations >= settings.max_iterations {
+            Decision::Stop(Termination::MaxIterations)
+        } else if r < 0.9 * self.progress_mark {
+            self.progress_mark = r;
+            self.last_progress = self.iterations;
+            Decision::Step
+        } else if self.iterations - self.last_progress > settings.stall_iterations {
+            Decision::Stop(Termination::Stalled)
+        } else {
+            Decision::Step
+        }
+    }
+
+    /// Confirms (or corrects) on the exact displacement of the current pressures, restarting the
+    /// conjugation there: the directions were built on the drifted displacement. (`measure` left
+    /// the displacement stale, so the next measurement recomputes it.)
+    fn confirm(&mut self, m: &Measurement) {
+        self.delta_prev = m.delta;
+        self.reset = true;
+    }
+
+    /// The outcome, with `u = K p` recomputed exactly and the gap written.
+    fn finish(self, termination: Termination, m: &Measurement) -> Result<CgOutcome, FftFailure> {
+        let mut fft_transforms = self.fft_transforms;
+        if !self.u_fresh {
+            self.ws.displace(self.op, self.offset)?;
+            fft_transforms += 2;
+        }
+        self.ws.write_gap(self.offset + m.delta);
+        Ok(CgOutcome {
+            termination,
+            iterations: self.iterations,
+            fft_transforms,
+            residuals: m.residuals,
+            approach: self.offset + m.delta,
+            mean_pressure: self.p_sum / self.n,
+        })
+    }
+
+    /// One step: direction and length, the projected pressure update, the load restoration,
+    /// and how `u` follows.
+    fn next_iter(&mut self, m: &Measurement) -> Result<(), FftFailure> {
+        let beta = if self.reset || self.g_old <= 0.0 {
             0.0
         } else {
-            free_g2 / g_old
+            m.free_g2 / self.g_old
         };
-        g_old = free_g2;
-        // `w = K t` in real space, if it was needed for the step.
+        self.g_old = m.free_g2;
+        let step = self.step_length(m, beta)?;
+        let update = self.ws.update(step.tau, self.offset, m.delta);
+        self.iterations += 1;
+        self.u_fresh = false;
+        self.reset = step.breakdown || update.entered > RESTART_FRACTION * update.free.free_count;
+        self.heavily_corrected = update.corrected > CORRECTED_SHARE * update.free.free_count
+            && update.free.sat_sum == 0.0;
+        self.p_sum = update.pressure_sum;
+        self.delta_prev = m.delta;
+        let linear = update.corrected == 0.0 && !step.breakdown;
+        let exact = self.restore_load(m, linear, update.free);
+        if exact {
+            self.displacement = if step.w_ready {
+                Displacement::Pending(step.tau)
+            } else {
+                self.ws
+                    .advance_displacement(self.op, step.tau, self.offset)?;
+                self.fft_transforms += 1;
+                Displacement::Current
+            };
+        }
+        Ok(())
+    }
+
+    /// The CG step `τ` along the conjugate direction, or the projected-gradient step when the CG
+    /// step is undefined (module docs).
+    fn step_length(&mut self, m: &Measurement, beta: f64) -> Result<Step, FftFailure> {
+        let load_control = self.load_control();
         let mut w_ready = false;
-        let cg_step = if load_control && stats.free_count <= 1.0 {
+        let cg_step = if load_control && m.free_count <= 1.0 {
             // Under load control `δ` is the mean of `g` on the free set, so on a free set of one
             // point (the rigid-plastic start) `t = g − δ` vanishes: no direction to transform.
             None
         } else {
-            let [gt, t_sum, t_abs] = ws.direction(beta, offset, delta);
+            let [gt, t_sum, t_abs] = self.ws.direction(beta, self.offset, m.delta);
             // `tᵀ K t = Σ_F t (K t)`: `t` vanishes off the free set.
-            let mut rt = ws.start_direction_transform(op)?;
-            fft_transforms += 1;
+            let mut rt = self.ws.start_direction_transform(self.op)?;
+            self.fft_transforms += 1;
             if load_control
-                && has_free
+                && m.free_count > 0.0
                 && t_sum.abs() > MEAN_FREE_DIRECTION * t_abs
-                && !heavily_corrected
+                && !self.heavily_corrected
             {
-                op.finish_apply(&mut ws.w)?;
-                fft_transforms += 1;
+                self.op.finish_apply(&mut self.ws.w)?;
+                self.fft_transforms += 1;
                 w_ready = true;
-                rt -= ws.free_w_sum() * t_sum / stats.free_count;
+                rt -= self.ws.free_w_sum() * t_sum / m.free_count;
             }
             (rt > 0.0 && gt > 0.0 && (gt / rt).is_finite()).then_some(gt / rt)
         };
-        let breakdown = cg_step.is_none();
         let tau = match cg_step {
             Some(tau) => tau,
             None => {
-                // The projected-gradient step (module docs); it replaces `t`, and `reset` below
-                // restarts the conjugation.
-                let e2 = ws.entry_direction(offset, delta);
-                let ek = op.start_apply(&ws.t)?;
-                fft_transforms += 1;
+                // The projected-gradient step replaces `t`; `reset` restarts the conjugation.
+                let e2 = self.ws.entry_direction(self.offset, m.delta);
+                let ek = self.op.start_apply(&self.ws.t)?;
+                self.fft_transforms += 1;
                 if ek > 0.0 && e2 > 0.0 && (e2 / ek).is_finite() {
                     e2 / ek
                 } else {
-                    settings.default_step
+                    self.settings.default_step
                 }
             }
         };
-        let update = ws.update(tau, offset, delta);
-        iterations += 1;
-        u_fresh = false;
-        reset = breakdown || update.entered > RESTART_FRACTION * update.free.free_count;
-        heavily_corrected = update.corrected > CORRECTED_SHARE * update.free.free_count
-            && update.free.sat_sum == 0.0;
-        p_sum = update.pressure_sum;
-        delta_prev = delta;
-        let mut exact = update.corrected == 0.0 && !breakdown;
-        if let Control::Load { nominal_pressure } = control {
-            let total = nominal_pressure * n;
-            // Round-off drift of the load in linear steps is repaired once it reaches a tenth of
-            // the force tolerance.
-            if !exact || (p_sum - total).abs() > 0.1 * settings.tolerance * total {
-                let rebalanced = ws.rebalance_with(total, update.free);
-                p_sum = rebalanced.pressure_sum;
-                if rebalanced.spread && iterations > 1 {
-                    // A fall-back from the same state as the last one: the load-controlled
-                    // iteration cycles (seen when almost all contact is saturated); it stops here
-                    // instead of after `stall_iterations`.
-                    let state = (stats.free_count, r);
-                    cycling = last_spread.is_some_and(|(free, r_last)| {
-                        (free - state.0).abs() <= CYCLE_MATCH * state.0
-                            && (r - r_last).abs() <= CYCLE_MATCH * r_last
-                    });
-                    last_spread = Some(state);
-                }
-                exact = false;
-            }
-        }
-        if exact {
-            displacement = if w_ready {
-                Displacement::Pending(tau)
-            } else {
-                ws.advance_displacement(op, tau, offset)?;
-                fft_transforms += 1;
-                Displacement::Current
-            };
-        }
+        Ok(Step {
+            tau,
+            breakdown: cg_step.is_none(),
+            w_ready,
+        })
     }
+
+    /// Under load control, restores the load after a corrected step (or once the round-off drift
+    /// of linear steps reaches a tenth of the force tolerance) and watches the fall-backs for a
+    /// cycle. Returns whether `p` is still the linear step's, so `u` may follow by linearity.
+    fn restore_load(&mut self, m: &Measurement, linear: bool, free: FreeStats) -> bool {
+        let Control::Load { nominal_pressure } = self.control else {
+            return linear;
+        };
+        let total = nominal_pressure * self.n;
+        let drift = (self.p_sum - total).abs() > 0.1 * self.settings.tolerance * total;
+        if linear && !drift {
+            return true;
+        }
+        let rebalanced = self.ws.rebalance_with(total, free);
+        self.p_sum = rebalanced.pressure_sum;
+        if rebalanced.spread && self.iterations > 1 {
+            // A fall-back from the same state as the last one: the load-controlled iteration
+            // cycles (seen when almost all contact is saturated); it stops here instead of after
+            // `stall_iterations`.
+            let state = (m.free_count, m.residuals.max());
+            let (free_now, r) = state;
+            self.cycling = self.last_spread.is_some_and(|(free_last, r_last)| {
+                (free_last - free_now).abs() <= CYCLE_MATCH * free_now
+                    && (r - r_last).abs() <= CYCLE_MATCH * r_last
+            });
+            self.last_spread = Some(state);
+        }
+        false
+    }
+}
+
+/// The step chosen by [`ConstrainedCg::step_length`].
+struct Step {
+    tau: f64,
+    /// The CG step was undefined and the projected-gradient step was taken.
+    breakdown: bool,
+    /// `w = K t` is in real space (the load-control term needed it), so `u` can be updated
+    /// without another inverse transform.
+    w_ready: bool,
 }
