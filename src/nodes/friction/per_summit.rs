@@ -30,8 +30,9 @@ use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::NodeError;
 use crate::engine::value::Field;
 use crate::friction::per_summit::quantile;
+use crate::friction::per_summit::PerSummitResult;
 use crate::friction::{per_summit_friction, DeformationState, SummitContact, SummitFriction};
-use crate::surface::{find_summits, Boundary, HeightMap, Summit, SummitOptions};
+use crate::surface::{find_summits, Boundary, HeightMap, Summit, SummitOptions, Summits};
 use crate::units::Dimension;
 
 use super::{beyond_fit_field, coefficient_fields, FrictionTask};
@@ -75,24 +76,9 @@ pub(super) fn compute(
     tables: &mut BTreeMap<String, Table>,
 ) -> Result<(), NodeError> {
     let maps = ContactView::of(contact)?;
-    let (dx, dy) = (maps.dx, maps.dy);
     let (ny, nx) = maps.composite_height.dim();
-    let section_area = nx as f64 * dx * ny as f64 * dy;
-    let map = HeightMap::new(maps.composite_height.to_owned(), dx, dy)
-        .map_err(|e| NodeError::new(format!("composite height: {e}")))?;
-    let found = find_summits(
-        &map,
-        SummitOptions {
-            boundary: if periodic {
-                Boundary::Periodic
-            } else {
-                Boundary::Open
-            },
-            min_height: None,
-            min_prominence: None,
-        },
-    )
-    .map_err(|e| NodeError::new(format!("summits: {e}")))?;
+    let section_area = nx as f64 * maps.dx * ny as f64 * maps.dy;
+    let found = composite_summits(&maps, periodic)?;
     let summits: Vec<&Summit> = found
         .summits
         .iter()
@@ -122,12 +108,72 @@ pub(super) fn compute(
         ))
     })?;
     let area = nominal_area.unwrap_or(section_area);
-    let scale = area / section_area;
-    let (nominal_pressure, area_fraction) = (maps.nominal_pressure, maps.area_fraction);
-    let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
-    let [_, elastic, elastic_plastic, fully_plastic] = result.state_counts;
-    let in_contact = elastic + elastic_plastic + fully_plastic;
     metrics.extend(coefficient_fields(mu_s));
+    push_forces(
+        metrics,
+        &result,
+        area / section_area,
+        maps.nominal_pressure * area,
+        maps.nominal_pressure,
+    );
+    if let (Some(sigma_s), Some(radius)) =
+        (found.statistics.height_std, found.statistics.mean_radius)
+    {
+        metrics.push(dimensionless(
+            "plasticity_index",
+            task.material.plasticity_index(sigma_s, radius),
+        ));
+    }
+    push_counts(
+        metrics,
+        &result,
+        maps.area_fraction,
+        area,
+        section_area,
+        summits.len(),
+    );
+    push_local_mu(metrics, &result);
+    if summits_table {
+        tables.insert(
+            String::from("summits"),
+            summits_table_of(&summits, &contacts, &result.summits),
+        );
+    }
+    Ok(())
+}
+
+fn dimensionless(name: &str, v: f64) -> Field {
+    Field::float(name, v, Dimension::Dimensionless)
+}
+
+/// The summits of the composite height the contact was solved on.
+fn composite_summits(maps: &ContactView<'_>, periodic: bool) -> Result<Summits, NodeError> {
+    let map = HeightMap::new(maps.composite_height.to_owned(), maps.dx, maps.dy)
+        .map_err(|e| NodeError::new(format!("composite height: {e}")))?;
+    find_summits(
+        &map,
+        SummitOptions {
+            boundary: if periodic {
+                Boundary::Periodic
+            } else {
+                Boundary::Open
+            },
+            min_height: None,
+            min_prominence: None,
+        },
+    )
+    .map_err(|e| NodeError::new(format!("summits: {e}")))
+}
+
+/// The section's forces scaled by `scale` (apparent / section area) to the apparent area, and
+/// the contact's own load `contact_load` (N) at its nominal pressure (Pa).
+fn push_forces(
+    metrics: &mut Vec<Field>,
+    result: &PerSummitResult,
+    scale: f64,
+    contact_load: f64,
+    nominal_pressure: f64,
+) {
     metrics.extend([
         beyond_fit_field(result.load_beyond_fit, result.total_normal_force),
         Field::float(
@@ -151,32 +197,37 @@ pub(super) fn compute(
             scale * result.total_friction_force.max(0.0),
             Dimension::Force,
         ),
-        Field::float(
-            "contact_normal_load",
-            nominal_pressure * area,
-            Dimension::Force,
-        ),
+        Field::float("contact_normal_load", contact_load, Dimension::Force),
     ]);
-    if let (Some(sigma_s), Some(radius)) =
-        (found.statistics.height_std, found.statistics.mean_radius)
-    {
-        metrics.push(n(
-            "plasticity_index",
-            task.material.plasticity_index(sigma_s, radius),
-        ));
-    }
+}
+
+/// Contact counts and areas, and the summits by deformation state.
+fn push_counts(
+    metrics: &mut Vec<Field>,
+    result: &PerSummitResult,
+    area_fraction: f64,
+    area: f64,
+    section_area: f64,
+    summit_count: usize,
+) {
+    let [_, elastic, elastic_plastic, fully_plastic] = result.state_counts;
+    let in_contact = elastic + elastic_plastic + fully_plastic;
     metrics.extend([
-        n("contacts", in_contact as f64),
+        dimensionless("contacts", in_contact as f64),
         Field::float("real_area", area_fraction * area, Dimension::Area),
-        n("area_fraction", area_fraction),
+        dimensionless("area_fraction", area_fraction),
         Field::float("apparent_area", area, Dimension::Area),
         Field::float("section_area", section_area, Dimension::Area),
-        Field::int("summit_count", summits.len() as i64),
+        Field::int("summit_count", summit_count as i64),
         Field::int("elastic_summits", elastic as i64),
         Field::int("elastic_plastic_summits", elastic_plastic as i64),
         Field::int("fully_plastic_summits", fully_plastic as i64),
     ]);
-    // A negative local value (the literal KE 2004 Q_max on 4.29 < x ≤ 6) counts as 0.
+}
+
+/// Quantiles of the local μ_i = Q_i/P_i of the summits in contact. A negative local value (the
+/// literal KE 2004 Q_max on 4.29 < x ≤ 6) counts as 0.
+fn push_local_mu(metrics: &mut Vec<Field>, result: &PerSummitResult) {
     let mut local: Vec<f64> = result
         .summits
         .iter()
@@ -186,18 +237,11 @@ pub(super) fn compute(
     local.sort_by(f64::total_cmp);
     if !local.is_empty() {
         metrics.extend([
-            n("local_mu_p10", quantile(&local, 0.1)),
-            n("local_mu_median", quantile(&local, 0.5)),
-            n("local_mu_p90", quantile(&local, 0.9)),
+            dimensionless("local_mu_p10", quantile(&local, 0.1)),
+            dimensionless("local_mu_median", quantile(&local, 0.5)),
+            dimensionless("local_mu_p90", quantile(&local, 0.9)),
         ]);
     }
-    if summits_table {
-        tables.insert(
-            String::from("summits"),
-            summits_table_of(&summits, &contacts, &result.summits),
-        );
-    }
-    Ok(())
 }
 
 /// One row per summit: position, geometry, interference, state and forces (section values).

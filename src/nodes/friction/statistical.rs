@@ -97,11 +97,34 @@ pub(super) fn compute(
             vec![float_metric(input(inputs, *c, "contact")?, NOMINAL_PRESSURE, "contact")? * area]
         }
     };
-    let settings = SolveSettings::default();
-    let results = static_friction_curve(&model, &forces, &settings)
+    let results = solve_each_load(&model, &forces, area)?;
+    let last = results
+        .last()
+        .ok_or_else(|| NodeError::new("no load to solve"))?;
+    let mu_s = last.mu_s.ok_or_else(|| {
+        NodeError::new(format!(
+            "no static friction coefficient at the non-compressive load {} N",
+            last.external_load
+        ))
+    })?;
+    metrics.extend(coefficient_fields(mu_s));
+    metrics.extend(result_fields(last, &summits, area));
+    if results.len() > 1 {
+        tables.insert(String::from("curve"), curve_table(&results, area)?);
+    }
+    Ok(())
+}
+
+/// The static friction at each external load (N), with an error naming the load that failed.
+fn solve_each_load(
+    model: &StatisticalModel,
+    forces: &[f64],
+    area: f64,
+) -> Result<Vec<StaticFrictionResult>, NodeError> {
+    static_friction_curve(model, forces, &SolveSettings::default())
         .map_err(|e| NodeError::new(format!("friction solve: {e}")))?
         .into_iter()
-        .zip(&forces)
+        .zip(forces)
         .map(|(r, f)| {
             r.map_err(|e| {
                 NodeError::new(format!(
@@ -111,21 +134,14 @@ pub(super) fn compute(
                 ))
             })
         })
-        .collect::<Result<Vec<StaticFrictionResult>, NodeError>>()?;
-    let last = results
-        .last()
-        .ok_or_else(|| NodeError::new("no load to solve"))?;
-    let mu = |r: &StaticFrictionResult| {
-        r.mu_s.ok_or_else(|| {
-            NodeError::new(format!(
-                "no static friction coefficient at the non-compressive load {} N",
-                r.external_load
-            ))
-        })
-    };
+        .collect()
+}
+
+/// The row of the last load: forces, separation, contact, the summit statistics the model used
+/// and the solve's diagnostics.
+fn result_fields(last: &StaticFrictionResult, summits: &SummitStatistics, area: f64) -> Vec<Field> {
     let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
-    metrics.extend(coefficient_fields(mu(last)?));
-    metrics.extend([
+    vec![
         beyond_fit_field(last.load_beyond_fit, last.contact_load),
         Field::float("external_load", last.external_load, Dimension::Force),
         Field::float(
@@ -160,11 +176,7 @@ pub(super) fn compute(
         Field::int("iterations", last.status.brent_iterations as i64),
         n("residual", last.status.relative_residual),
         n("integral_error", last.status.max_integral_relative_error),
-    ]);
-    if results.len() > 1 {
-        tables.insert(String::from("curve"), curve_table(&results, area)?);
-    }
-    Ok(())
+    ]
 }
 
 fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, NodeError> {

@@ -102,26 +102,7 @@ impl SyntheticSpec {
             ),
             None => None,
         };
-        let anisotropy = match &self.anisotropy {
-            Some(a) => {
-                let aspect_ratio = ctx.resolve_checked(&a.ratio, "synthetic.anisotropy.ratio", |r: &f64| {
-                    if *r >= 1.0 && r.is_finite() {
-                        Ok(())
-                    } else {
-                        Err(String::from("is out of range: the ratio must be ≥ 1 (swap the angle by 90 deg instead)"))
-                    }
-                })?;
-                let angle = match &a.angle {
-                    Some(p) => ctx.resolve(p, "synthetic.anisotropy.angle")?.si(),
-                    None => 0.0,
-                };
-                Some(Anisotropy {
-                    aspect_ratio,
-                    angle,
-                })
-            }
-            None => None,
-        };
+        let anisotropy = self.anisotropy(ctx)?;
         let seed = ctx.resolve(&self.seed, "synthetic.seed")?;
         let spec = SyntheticSurfaceSpec {
             nx,
@@ -135,33 +116,63 @@ impl SyntheticSpec {
             anisotropy,
             seed,
         };
-        // Checks that involve several fields (e.g. the cutoff against the grid spacing) are made
-        // now, so `validate` reports them, not the run.
-        if let Err(SyntheticError::InvalidParameter {
+        self.check_together(&spec)?;
+        Ok(SurfaceTask {
+            source: SurfaceSource::Synthetic(spec),
+        })
+    }
+}
+
+impl SyntheticSpec {
+    /// `anisotropy: {ratio, angle}`: ratio ≥ 1, angle (default 0) in radians.
+    fn anisotropy(&self, ctx: &ResolveContext<'_>) -> Result<Option<Anisotropy>, SpecError> {
+        let Some(a) = &self.anisotropy else {
+            return Ok(None);
+        };
+        let aspect_ratio =
+            ctx.resolve_checked(&a.ratio, "synthetic.anisotropy.ratio", |r: &f64| {
+                if *r >= 1.0 && r.is_finite() {
+                    Ok(())
+                } else {
+                    Err(String::from(
+                        "is out of range: the ratio must be ≥ 1 (swap the angle by 90 deg instead)",
+                    ))
+                }
+            })?;
+        let angle = match &a.angle {
+            Some(p) => ctx.resolve(p, "synthetic.anisotropy.angle")?.si(),
+            None => 0.0,
+        };
+        Ok(Some(Anisotropy {
+            aspect_ratio,
+            angle,
+        }))
+    }
+
+    /// Checks that involve several fields (e.g. the cutoff against the grid spacing), made when
+    /// the study is resolved so `validate` reports them, not the run; located at the field named.
+    fn check_together(&self, spec: &SyntheticSurfaceSpec) -> Result<(), SpecError> {
+        let Err(SyntheticError::InvalidParameter {
             name,
             value,
             expected,
             unit,
         }) = spec.validate()
-        {
-            let location = match name {
-                "short_wavelength_cutoff" => {
-                    self.short_wavelength_cutoff.as_ref().map(Param::location)
-                }
-                "correlation_length" => Some(self.correlation_length.location()),
-                "hurst" => Some(self.hurst.location()),
-                "sq" => Some(self.sq.location()),
-                _ => None,
-            }
-            .unwrap_or_else(|| self.grid[0].location());
-            return Err(SpecError {
-                location,
-                field: format!("synthetic.{name}"),
-                message: format!("{value} {unit} is out of range: expected {expected} ({unit})"),
-            });
+        else {
+            return Ok(());
+        };
+        let location = match name {
+            "short_wavelength_cutoff" => self.short_wavelength_cutoff.as_ref().map(Param::location),
+            "correlation_length" => Some(self.correlation_length.location()),
+            "hurst" => Some(self.hurst.location()),
+            "sq" => Some(self.sq.location()),
+            _ => None,
         }
-        Ok(SurfaceTask {
-            source: SurfaceSource::Synthetic(spec),
+        .unwrap_or_else(|| self.grid[0].location());
+        Err(SpecError {
+            location,
+            field: format!("synthetic.{name}"),
+            message: format!("{value} {unit} is out of range: expected {expected} ({unit})"),
         })
     }
 }

@@ -26,114 +26,193 @@ pub(crate) fn solve(
     start_approach: f64,
     settings: &CgSettings,
 ) -> Result<CgOutcome, FftFailure> {
-    // (CG iterations, FFT pairs) summed over the inner solves.
-    let mut iterations = (0, 0);
-    // The mean pressure of an approach-controlled solve is exact only to the precision of its
-    // gaps: a gap error e moves a free point's pressure by ~E*·e/dx, i.e. the mean by up to
-    // p_lim·(e/h)-ish relative to p_lim, not to p̄. To resolve P(δ) = p̄ to ε·p̄ the inner solves
-    // are converged to ε·p̄/p_lim (and never looser than ε).
-    let inner_tolerance = (settings.tolerance * nominal_pressure / settings.flow_pressure)
-        .clamp(1e-13, settings.tolerance);
-    let inner = |ws: &mut Workspace,
-                 op: &mut InfluenceOperator,
-                 approach: f64,
-                 iterations: &mut (usize, usize)|
-     -> Result<Option<(CgOutcome, f64)>, FftFailure> {
+    let mut search = ApproachSearch::new(nominal_pressure, start_approach, settings);
+    let Some((first, f_first)) = search.inner(ws, op, start_approach)? else {
+        return Ok(search.fail(Termination::Stalled, None));
+    };
+    if f_first.abs() <= search.tolerance {
+        return Ok(search.finish(first));
+    }
+    match search.bracket(ws, op, first, f_first)? {
+        Bracketing::Ended(outcome) => Ok(outcome),
+        Bracketing::Found(bracket) => search.regula_falsi(ws, op, bracket),
+    }
+}
+
+/// The outer search: its fixed settings and the work counted over its inner solves.
+struct ApproachSearch<'a> {
+    nominal_pressure: f64,
+    start_approach: f64,
+    settings: &'a CgSettings,
+    /// Complementarity tolerance of the inner solves.
+    inner_tolerance: f64,
+    /// `|P(δ) − p̄|` (Pa) accepted.
+    tolerance: f64,
+    /// CG iterations and FFTs summed over the inner solves.
+    iterations: usize,
+    fft_transforms: usize,
+    /// Inner solves so far.
+    outer: usize,
+}
+
+/// A sign change of `P(δ) − p̄` between `a` and `b`, with the last inner solution.
+struct Bracket {
+    a: f64,
+    fa: f64,
+    b: f64,
+    fb: f64,
+    last: CgOutcome,
+}
+
+enum Bracketing {
+    Found(Bracket),
+    /// Converged while bracketing, or failed.
+    Ended(CgOutcome),
+}
+
+impl<'a> ApproachSearch<'a> {
+    fn new(nominal_pressure: f64, start_approach: f64, settings: &'a CgSettings) -> Self {
+        // The mean pressure of an approach-controlled solve is exact only to the precision of its
+        // gaps: a gap error e moves a free point's pressure by ~E*·e/dx, i.e. the mean by up to
+        // p_lim·(e/h)-ish relative to p_lim, not to p̄. To resolve P(δ) = p̄ to ε·p̄ the inner
+        // solves are converged to ε·p̄/p_lim (and never looser than ε).
+        let inner_tolerance = (settings.tolerance * nominal_pressure / settings.flow_pressure)
+            .clamp(1e-13, settings.tolerance);
+        Self {
+            nominal_pressure,
+            start_approach,
+            settings,
+            inner_tolerance,
+            tolerance: settings.tolerance * nominal_pressure,
+            iterations: 0,
+            fft_transforms: 0,
+            outer: 0,
+        }
+    }
+
+    /// The approach-controlled solve at `approach` within the remaining iteration budget, and
+    /// `P(δ) − p̄`; `None` when it did not converge.
+    fn inner(
+        &mut self,
+        ws: &mut Workspace,
+        op: &mut InfluenceOperator,
+        approach: f64,
+    ) -> Result<Option<(CgOutcome, f64)>, FftFailure> {
+        self.outer += 1;
         let budget = CgSettings {
-            max_iterations: settings.max_iterations.saturating_sub(iterations.0),
-            tolerance: inner_tolerance,
-            ..*settings
+            max_iterations: self.settings.max_iterations.saturating_sub(self.iterations),
+            tolerance: self.inner_tolerance,
+            ..*self.settings
         };
         let out = constrained_cg::solve(ws, op, Control::Approach { approach }, &budget)?;
-        iterations.0 += out.iterations;
-        iterations.1 += out.fft_transforms;
+        self.iterations += out.iterations;
+        self.fft_transforms += out.fft_transforms;
         Ok(match out.termination {
-            Termination::Converged => Some((out, out.mean_pressure - nominal_pressure)),
+            Termination::Converged => Some((out, out.mean_pressure - self.nominal_pressure)),
             _ => None,
         })
-    };
-    let fail =
-        |termination, (iterations, fft_transforms): (usize, usize), last: Option<CgOutcome>| {
-            let mean_pressure = last.map_or(0.0, |o| o.mean_pressure);
-            let mut residuals = last.map(|o| o.residuals).unwrap_or_default();
-            residuals.force = (mean_pressure - nominal_pressure).abs() / nominal_pressure;
-            CgOutcome {
-                termination,
-                iterations,
-                fft_transforms,
-                residuals,
-                approach: last.map_or(start_approach, |o| o.approach),
-                mean_pressure,
+    }
+
+    /// Steps away from the start in the direction that reduces `|P − p̄|`, doubling the step,
+    /// until the sign changes.
+    fn bracket(
+        &mut self,
+        ws: &mut Workspace,
+        op: &mut InfluenceOperator,
+        first: CgOutcome,
+        f_first: f64,
+    ) -> Result<Bracketing, FftFailure> {
+        let direction = if f_first < 0.0 { 1.0 } else { -1.0 };
+        let mut step = 0.1 * self.settings.gap_scale;
+        let (mut a, mut fa) = (self.start_approach, f_first);
+        let mut last = first;
+        loop {
+            let trial = a + direction * step;
+            let Some((out, f)) = self.inner(ws, op, trial)? else {
+                return Ok(Bracketing::Ended(
+                    self.fail(Termination::Stalled, Some(last)),
+                ));
+            };
+            if f.abs() <= self.tolerance {
+                return Ok(Bracketing::Ended(self.finish(out)));
             }
-        };
-    let finish = |mut out: CgOutcome, (iterations, fft_transforms): (usize, usize)| {
-        out.residuals.force = (out.mean_pressure - nominal_pressure).abs() / nominal_pressure;
-        out.iterations = iterations;
-        out.fft_transforms = fft_transforms;
+            if f.signum() != fa.signum() {
+                return Ok(Bracketing::Found(Bracket {
+                    a,
+                    fa,
+                    b: trial,
+                    fb: f,
+                    last: out,
+                }));
+            }
+            (a, fa) = (trial, f);
+            last = out;
+            step *= 2.0;
+            if self.outer >= MAX_OUTER {
+                return Ok(Bracketing::Ended(
+                    self.fail(Termination::ApproachSearchFailed, Some(out)),
+                ));
+            }
+        }
+    }
+
+    /// Illinois regula falsi on the bracket.
+    fn regula_falsi(
+        &mut self,
+        ws: &mut Workspace,
+        op: &mut InfluenceOperator,
+        bracket: Bracket,
+    ) -> Result<CgOutcome, FftFailure> {
+        let Bracket {
+            mut a,
+            mut fa,
+            b: mut bx,
+            mut fb,
+            mut last,
+        } = bracket;
+        while self.outer < MAX_OUTER {
+            let x = (a * fb - bx * fa) / (fb - fa);
+            let Some((out, f)) = self.inner(ws, op, x)? else {
+                return Ok(self.fail(Termination::Stalled, Some(last)));
+            };
+            last = out;
+            if f.abs() <= self.tolerance {
+                return Ok(self.finish(out));
+            }
+            if f.signum() != fb.signum() {
+                (a, fa) = (bx, fb);
+            } else {
+                fa *= 0.5;
+            }
+            (bx, fb) = (x, f);
+            if (bx - a).abs() <= f64::EPSILON * bx.abs().max(a.abs()) {
+                break;
+            }
+        }
+        Ok(self.fail(Termination::ApproachSearchFailed, Some(last)))
+    }
+
+    /// A converged inner solution with the outer work and force residual.
+    fn finish(&self, mut out: CgOutcome) -> CgOutcome {
+        out.residuals.force =
+            (out.mean_pressure - self.nominal_pressure).abs() / self.nominal_pressure;
+        out.iterations = self.iterations;
+        out.fft_transforms = self.fft_transforms;
         out
-    };
-    let tolerance = settings.tolerance * nominal_pressure;
-    let Some((first, f_first)) = inner(ws, op, start_approach, &mut iterations)? else {
-        return Ok(fail(Termination::Stalled, iterations, None));
-    };
-    if f_first.abs() <= tolerance {
-        return Ok(finish(first, iterations));
     }
-    // Bracket: step away from the start in the direction that reduces |P − p̄|, doubling.
-    let direction = if f_first < 0.0 { 1.0 } else { -1.0 };
-    let mut step = 0.1 * settings.gap_scale;
-    let (mut a, mut fa) = (start_approach, f_first);
-    let mut b = (start_approach, f_first, first);
-    let mut outer = 1;
-    loop {
-        outer += 1;
-        let trial = a + direction * step;
-        let Some((out, f)) = inner(ws, op, trial, &mut iterations)? else {
-            return Ok(fail(Termination::Stalled, iterations, Some(b.2)));
-        };
-        if f.abs() <= tolerance {
-            return Ok(finish(out, iterations));
-        }
-        if f.signum() != fa.signum() {
-            b = (trial, f, out);
-            break;
-        }
-        (a, fa) = (trial, f);
-        b = (trial, f, out);
-        step *= 2.0;
-        if outer >= MAX_OUTER {
-            return Ok(fail(
-                Termination::ApproachSearchFailed,
-                iterations,
-                Some(out),
-            ));
+
+    /// The search ended without meeting the load: the last inner solution (if any) and why.
+    fn fail(&self, termination: Termination, last: Option<CgOutcome>) -> CgOutcome {
+        let mean_pressure = last.map_or(0.0, |o| o.mean_pressure);
+        let mut residuals = last.map(|o| o.residuals).unwrap_or_default();
+        residuals.force = (mean_pressure - self.nominal_pressure).abs() / self.nominal_pressure;
+        CgOutcome {
+            termination,
+            iterations: self.iterations,
+            fft_transforms: self.fft_transforms,
+            residuals,
+            approach: last.map_or(self.start_approach, |o| o.approach),
+            mean_pressure,
         }
     }
-    // Illinois regula falsi on [a, b].
-    let (mut bx, mut fb, mut last) = b;
-    while outer < MAX_OUTER {
-        outer += 1;
-        let x = (a * fb - bx * fa) / (fb - fa);
-        let Some((out, f)) = inner(ws, op, x, &mut iterations)? else {
-            return Ok(fail(Termination::Stalled, iterations, Some(last)));
-        };
-        last = out;
-        if f.abs() <= tolerance {
-            return Ok(finish(out, iterations));
-        }
-        if f.signum() != fb.signum() {
-            (a, fa) = (bx, fb);
-        } else {
-            fa *= 0.5;
-        }
-        (bx, fb) = (x, f);
-        if (bx - a).abs() <= f64::EPSILON * bx.abs().max(a.abs()) {
-            break;
-        }
-    }
-    Ok(fail(
-        Termination::ApproachSearchFailed,
-        iterations,
-        Some(last),
-    ))
 }

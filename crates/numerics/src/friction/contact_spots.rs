@@ -1,7 +1,7 @@
-//! Contact spots of a solved boundary-element contact (friction_high_plasticity.md §5): the
-//! connected components of the points in contact, with their area, load, highest point and a
-//! radius of curvature from the composite topography, and the Lennard-Jones adhesion of the points
-//! out of contact.
+//! Contact spots of a solved boundary-element contact (docs/friction-models.md, "Per contact
+//! spot"): the connected components of the points in contact, with their area, load, highest
+//! point and a radius of curvature from the composite topography, and the Lennard-Jones adhesion
+//! of the points out of contact.
 //!
 //! Inputs are plain arrays `[[iy, ix]]` of one solved contact: the pressure `p` (Pa), the
 //! undeformed composite height `z = z1 + z2` (m, peaks up) and the gap after loading `g` (m),
