@@ -23,6 +23,7 @@ mod statistics;
 mod svg_plot;
 mod table;
 mod trends;
+mod twin_comparison;
 
 use std::path::PathBuf;
 
@@ -94,6 +95,7 @@ pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Re
     let mut sections = Vec::new();
 
     sections.push(trend_section(&scenarios, &metrics, &mut skipped));
+    sections.extend(twin_comparison::twin_comparison(&scenarios, &tables));
 
     let contacts = tables.iter().find(|t| t.kind == "contact");
     match (contacts, ResultTable::read(dir, "contacts_load_curve")?) {

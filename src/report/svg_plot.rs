@@ -24,6 +24,8 @@ pub struct PlotSeries {
     /// Legend text; an empty label with a single series draws no legend.
     pub label: String,
     pub points: Vec<PlotPoint>,
+    /// Points joined by a line in order of x (a trend); `false`: markers only (a scatter).
+    pub joined: bool,
 }
 
 /// A line plot.
@@ -125,7 +127,7 @@ impl LinePlot {
                 })
                 .collect();
             visible.sort_by(|a, b| a.x.total_cmp(&b.x));
-            if visible.len() > 1 {
+            if series.joined && visible.len() > 1 {
                 let path: Vec<String> = visible
                     .iter()
                     .map(|p| format!("{:.1},{:.1}", px(p.x), py(p.y)))
@@ -239,10 +241,12 @@ mod tests {
                 PlotSeries {
                     label: String::from("one"),
                     points: vec![point(1.0, 2.0, 0.5), point(2.0, 3.0, 0.0)],
+                    joined: true,
                 },
                 PlotSeries {
                     label: String::from("two"),
                     points: vec![point(1.0, 1.0, 0.1)],
+                    joined: true,
                 },
             ],
         };

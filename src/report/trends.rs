@@ -90,6 +90,7 @@ fn figure(
         plot_series.push(PlotSeries {
             label: s.label.clone(),
             points,
+            joined: true,
         });
     }
     let plot = LinePlot {

@@ -122,12 +122,121 @@ nodes:
     assert!((sq / 2e-6 - 1.0).abs() < 1e-12, "twin Sq {sq}");
     let h = float(metric(&twin.metrics, "twin_hurst"));
     assert!(h > 0.0 && h <= 1.0);
+    // 2 µm is outside the fitted range: flagged as a typed column and said in a sentence.
+    assert_eq!(
+        metric(&twin.metrics, "twin_extrapolated"),
+        Value::Bool(true)
+    );
     match metric(&twin.metrics, "twin_warnings") {
         Value::Text(w) => assert!(
-            w.contains("Extrapolated"),
-            "2 um is outside the fitted range: {w}"
+            w.starts_with("Sq = 2.00 µm lies outside the measured range"),
+            "{w}"
         ),
         other => panic!("{other:?}"),
     }
+    assert_eq!(metric(&twin.metrics, "twin_measured_files"), Value::Int(2));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The real files of the twins issue: every failure names the file and the study field that fixes
+/// it, and a twin of one real file at its own Sq works once its band is chosen.
+#[test]
+fn twins_of_real_files_fail_with_the_fix_or_work() {
+    let Some(data) = common::data_dir() else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("asperity-real-twins-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = |name: &str| data.join(name).display().to_string();
+    let text = format!(
+        r#"
+study: real-twins
+nodes:
+  no_filter:
+    surface:
+      twin: {{of: ["{plu}"], sq: 1 um, grid: [64, 64], size: [0.5 mm, 0.5 mm], seed: 1}}
+  default_band:
+    surface:
+      twin:
+        of: ["{plu}"]
+        preprocess: {{form_degree: 2, l_filter: 200 um}}
+        sq: 1 um
+        grid: [64, 64]
+        size: [0.5 mm, 0.5 mm]
+        seed: 1
+  spiky:
+    surface:
+      twin:
+        of: ["{sur}"]
+        preprocess: {{form_degree: 2, l_filter: 300 um}}
+        sq: measured
+        grid: [256, 256]
+        size: [1 mm, 1 mm]
+        seed: 1
+  too_coarse:
+    surface:
+      twin:
+        of: ["{sur}"]
+        preprocess: {{form_degree: 2, l_filter: 300 um}}
+        sq: measured
+        grid: [16, 16]
+        size: [1 mm, 1 mm]
+        seed: 1
+"#,
+        plu = file("plu/plu-1.plu"),
+        sur = file("sur/sur-2.sur"),
+    );
+    let study = Study::<TribologyNode>::from_source(&dir.join("s.yaml"), text).unwrap();
+    let plan = Plan::build(&study).unwrap();
+    let cache = Cache::open(&dir.join("cache")).unwrap();
+    let options = ExecuteOptions {
+        tables: study.outputs.clone(),
+        memory_budget: 1 << 30,
+        tool_version: String::from("test"),
+    };
+    let report = execute(&plan, &cache, &options, &NoProgress).unwrap();
+    let outcome = |name: &str| {
+        let i = plan
+            .nodes
+            .iter()
+            .position(|n| n.names.iter().any(|m| m == name))
+            .unwrap();
+        report.outcomes[i].clone().unwrap()
+    };
+    let failure = |name: &str| outcome(name).status.message().to_string();
+    let no_filter = failure("no_filter");
+    assert!(
+        no_filter.contains("plu-1.plu") && no_filter.contains("preprocess: {l_filter: 191 um}"),
+        "{no_filter}"
+    );
+    let band = failure("default_band");
+    assert!(
+        band.contains("plu-1.plu") && band.contains("hurst_band"),
+        "{band}"
+    );
+    let coarse = failure("too_coarse");
+    assert!(
+        coarse.contains("use `size: [") && coarse.contains("grid: ["),
+        "{coarse}"
+    );
+    let spiky = outcome("spiky");
+    assert!(
+        spiky.status.message().is_empty(),
+        "{}",
+        spiky.status.message()
+    );
+    assert_eq!(
+        metric(&spiky.metrics, "twin_extrapolated"),
+        Value::Bool(false)
+    );
+    assert_eq!(
+        metric(&spiky.metrics, "twin_correlation_x_methods"),
+        Value::Text(String::from("acf_crossing: 1"))
+    );
+    // A twin at the measured Sq has that Sq.
+    let sq = float(metric(&spiky.metrics, "sq"));
+    let measured = float(metric(&spiky.metrics, "twin_measured_sq_min"));
+    assert!((sq / measured - 1.0).abs() < 1e-12, "{sq} vs {measured}");
     let _ = std::fs::remove_dir_all(&dir);
 }

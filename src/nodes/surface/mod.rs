@@ -14,6 +14,7 @@ use crate::surface::{Boundary, HeightMap};
 mod lateral_scale;
 mod measured;
 mod metrics;
+mod preprocess;
 mod synthetic;
 mod twin;
 

@@ -1,14 +1,15 @@
 //! Synthetic twins: measure → fit against Sq → generate at new Sq, with extrapolation flags.
 
 use asperity_numerics::surface::spectral::{
-    AcfBoundary, HurstFitOptions, Window, ISO_ACF_THRESHOLD,
+    AcfBoundary, Autocorrelation, HurstFitOptions, Window, ISO_ACF_THRESHOLD,
 };
 use asperity_numerics::surface::synthetic::{
     generate_synthetic_surface, Anisotropy, SyntheticSurfaceSpec,
 };
 use asperity_numerics::surface::twins::{
-    fit_twin_model, measure_texture, synthetic_twin, MeasuredTexture, TextureOptions, TwinError,
-    TwinGrid, TwinWarning,
+    correlation_length_along, fit_twin_model, measure_texture, synthetic_twin, Axis,
+    CorrelationMethod, MeasuredTexture, TextureOptions, TwinError, TwinGrid, TwinWarning,
+    EXTRAPOLATION_MAX_ACF,
 };
 
 /// "Measured" ground-like surfaces: lay along x (aspect 2), roll-off λ ∝ Sq^0.5, H = 0.8.
@@ -160,6 +161,178 @@ fn invalid_twin_inputs_are_errors() {
     huge.correlation_length_x.at_reference = 10e-3;
     assert!(matches!(
         synthetic_twin(&huge, 1e-6, &grid(1), ISO_ACF_THRESHOLD),
-        Err(TwinError::CalibrationFailed { .. })
+        Err(TwinError::GridTooSmall { .. })
     ));
+}
+
+/// An ACF on the periodic lag grid of an `n × n` map with spacing `d`: `f(τx, τy)`.
+fn periodic_acf(n: usize, d: f64, f: impl Fn(f64, f64) -> f64) -> Autocorrelation {
+    let lag = |i: usize| {
+        let k = if i <= n / 2 {
+            i as f64
+        } else {
+            i as f64 - n as f64
+        };
+        k * d
+    };
+    let values = ndarray::Array2::from_shape_fn((n, n), |(iy, ix)| f(lag(ix), lag(iy)));
+    Autocorrelation::from_periodic_lags(&values, d, d)
+}
+
+#[test]
+fn an_acf_that_crosses_the_threshold_is_read_at_the_crossing() {
+    // exp(−τ/10 µm) crosses 0.2 at 10 µm · ln 5 = 16.09 µm, well inside half of a 128 µm map.
+    let acf = periodic_acf(128, 1e-6, |x, y| (-(x * x + y * y).sqrt() / 10e-6).exp());
+    let (length, method) = correlation_length_along(&acf, Axis::X, 0.2).unwrap();
+    assert_eq!(method, CorrelationMethod::AcfCrossing);
+    // Linear interpolation between lags of 1 µm on a convex curve: within 1 % of 16.09 µm.
+    assert!(
+        (length / (10e-6 * 5f64.ln()) - 1.0).abs() < 0.01,
+        "{length}"
+    );
+}
+
+#[test]
+fn a_long_correlation_is_extrapolated_by_the_stretched_exponential() {
+    // ACF = exp(−(τ/τc)^1.6) with τc = 60 µm along x on a 128 µm map (half map 64 µm): it falls
+    // to exp(−(64/60)^1.6) = 0.35 only, and would cross 0.2 at τc (ln 5)^(1/1.6) = 80.6 µm.
+    let (tau_c, alpha) = (60e-6, 1.6);
+    let acf = periodic_acf(128, 1e-6, |x, y| {
+        (-((x / tau_c).powi(2) + (y / 5e-6).powi(2))
+            .sqrt()
+            .powf(alpha))
+        .exp()
+    });
+    let (length, method) = correlation_length_along(&acf, Axis::X, 0.2).unwrap();
+    let CorrelationMethod::StretchedExponential {
+        acf_reached,
+        exponent,
+    } = method
+    else {
+        panic!("expected the fit, got {method:?}");
+    };
+    // Exact data: the fit recovers the law to round-off.
+    assert!((exponent - alpha).abs() < 1e-9, "{exponent}");
+    assert!((acf_reached - (-(64e-6 / tau_c).powf(alpha)).exp()).abs() < 1e-12);
+    let expected = tau_c * 5f64.ln().powf(1.0 / alpha);
+    assert!(
+        (length / expected - 1.0).abs() < 1e-9,
+        "{length} vs {expected}"
+    );
+    // Along y it crosses within the map.
+    let (_, method_y) = correlation_length_along(&acf, Axis::Y, 0.2).unwrap();
+    assert_eq!(method_y, CorrelationMethod::AcfCrossing);
+}
+
+#[test]
+fn an_acf_that_hardly_decays_is_an_error_naming_how_far_it_fell() {
+    // Waviness left in the map: the ACF stays above 0.5 over half the map.
+    let acf = periodic_acf(64, 1e-6, |x, _| (-(x / 200e-6).abs()).exp());
+    let err = correlation_length_along(&acf, Axis::X, 0.2).unwrap_err();
+    let TwinError::NoDecay {
+        axis,
+        acf_reached,
+        half_map,
+        ..
+    } = err
+    else {
+        panic!("{err:?}");
+    };
+    assert_eq!(axis, "x");
+    assert!((half_map - 32e-6).abs() < 1e-12);
+    assert!((acf_reached - (-32.0f64 / 200.0).exp()).abs() < 1e-12);
+    assert!(acf_reached > EXTRAPOLATION_MAX_ACF);
+    assert!(err.to_string().contains("L-filter"), "{err}");
+}
+
+#[test]
+fn fits_report_their_quality_and_warnings_read_as_sentences() {
+    let measured = measured_set();
+    let model = fit_twin_model(&measured).unwrap();
+    for fit in [
+        model.correlation_length_x.fit,
+        model.correlation_length_y.fit,
+        model.hurst.fit,
+    ] {
+        // Three surfaces: R² is defined; the synthetic set follows its laws closely.
+        let r2 = fit.r_squared.expect("three surfaces give an R²");
+        assert!(r2 <= 1.0 && fit.rms_residual >= 0.0, "{fit:?}");
+    }
+    assert!(model.correlation_length_x.fit.r_squared.unwrap() > 0.9);
+    let two = fit_twin_model(&measured[..2]).unwrap();
+    assert_eq!(two.hurst.fit.r_squared, None);
+    assert!(
+        two.hurst.fit.rms_residual < 1e-12,
+        "a line through two points"
+    );
+
+    let high = model.predict(3.0e-6).unwrap();
+    let sentence = high.warnings[0].to_string();
+    assert!(
+        sentence.starts_with("Sq = 3.00 µm lies outside the measured range"),
+        "{sentence}"
+    );
+    let clamped = TwinWarning::HurstClamped {
+        predicted: 2.467875956730113,
+        used: 1.0,
+    };
+    assert_eq!(
+        clamped.to_string(),
+        "the fitted Hurst exponent at this Sq is 2.468, outside [0.05, 1]; 1 is used"
+    );
+}
+
+#[test]
+fn a_twin_too_large_for_its_grid_names_the_size_that_holds_it() {
+    let model = fit_twin_model(&measured_set()).unwrap();
+    let mut huge = model.clone();
+    huge.correlation_length_x.at_reference = 400e-6;
+    huge.correlation_length_y.at_reference = 100e-6;
+    let small = TwinGrid {
+        nx: 64,
+        ny: 64,
+        lx: 0.5e-3,
+        ly: 0.5e-3,
+        short_wavelength_cutoff: None,
+        seed: 1,
+    };
+    let err = synthetic_twin(&huge, model.sq_reference, &small, ISO_ACF_THRESHOLD).unwrap_err();
+    let TwinError::GridTooSmall {
+        suggested_size,
+        suggested_grid,
+        ..
+    } = err
+    else {
+        panic!("{err:?}");
+    };
+    // 8 correlation lengths per side at the spacing given (7.8 µm, finer than ξ/4).
+    assert!((suggested_size[0] - 8.0 * 400e-6).abs() < 1e-12);
+    assert_eq!(suggested_size[1], 0.8e-3);
+    assert_eq!(suggested_grid, [410, 103]);
+    // The suggested grid works.
+    let fitting = TwinGrid {
+        nx: suggested_grid[0],
+        ny: suggested_grid[1],
+        lx: suggested_size[0],
+        ly: suggested_size[1],
+        ..small
+    };
+    let twin = synthetic_twin(&huge, model.sq_reference, &fitting, ISO_ACF_THRESHOLD).unwrap();
+    assert!(twin.residual < 1e-3);
+
+    // Correlation lengths finer than the spacing: the suggestion refines the grid to ξ/4.
+    let mut fine = model.clone();
+    fine.correlation_length_x.at_reference = 4e-6;
+    fine.correlation_length_y.at_reference = 4e-6;
+    let err = synthetic_twin(&fine, model.sq_reference, &small, ISO_ACF_THRESHOLD).unwrap_err();
+    let TwinError::GridTooSmall {
+        suggested_size,
+        suggested_grid,
+        ..
+    } = err
+    else {
+        panic!("{err:?}");
+    };
+    assert_eq!(suggested_size, [0.5e-3, 0.5e-3]);
+    assert_eq!(suggested_grid, [500, 500]);
 }

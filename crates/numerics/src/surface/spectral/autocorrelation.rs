@@ -157,6 +157,11 @@ impl Autocorrelation {
         &self.values
     }
 
+    /// Lag spacings `(dx, dy)` in metres.
+    pub fn spacing(&self) -> (f64, f64) {
+        (self.dx, self.dy)
+    }
+
     /// Largest lags `(hx·dx, hy·dy)` in metres.
     pub fn max_lag(&self) -> (f64, f64) {
         (self.hx as f64 * self.dx, self.hy as f64 * self.dy)
