@@ -64,6 +64,9 @@ pub fn twin_comparison(scenarios: &ScenarioSet, tables: &[NodeTable]) -> Option<
                 if let Some(c) = contact {
                     links.extend(downstream(scenarios, friction, c, "contact_key"));
                 }
+                // A statistical node may read both the surface and the contact.
+                let mut seen = std::collections::BTreeSet::new();
+                links.retain(|l| seen.insert(l.node.as_str()));
                 links
             };
             let on_measured = base(measured, contact_pair.map(|p| p.1));

@@ -386,3 +386,43 @@ fn several_friction_nodes_share_a_mu_s_by_friction_model_figure() {
     assert!(!html.contains("by friction model"));
     let _ = std::fs::remove_dir_all(results.parent().unwrap());
 }
+
+/// The shipped twin comparison: the report pairs each measured surface with the twin made from
+/// it and draws one twin-against-measured figure per quantity and friction node pair, whose
+/// values table holds one row per file with the twin's mean, std and seed count.
+#[test]
+fn the_twin_comparison_study_draws_measured_against_twin() {
+    let dir = std::env::temp_dir().join(format!("asperity-report-twins-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let (cache, results) = (dir.join("cache"), dir.join("results"));
+    let study = Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/twin-comparison.yaml");
+    asperity(&[
+        "run",
+        study.to_str().unwrap(),
+        "--cache",
+        cache.to_str().unwrap(),
+        "--out",
+        results.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let html = report(&cache, &results, &[]);
+    let start = html
+        .find("<h2>Measured surfaces and their twins</h2>")
+        .expect("the comparison section");
+    let section = &html[start..];
+    let section = &section[..section[4..].find("<h2>").map_or(section.len(), |i| i + 4)];
+    // Summit radius, area fraction, stress ratio, and six friction node pairs (KE, CEB and full
+    // stick statistical, full stick per summit and per spot, junction shear).
+    assert_eq!(section.matches("<figcaption>").count(), 9, "{section}");
+    assert!(section.contains("(per_spot, junction_shear): node &#39;twin_junction_shear&#39;"));
+    // One row per file: opd and al3d, each over four seeds.
+    assert_eq!(section.matches("<td>file = opd</td>").count(), 9);
+    assert_eq!(
+        section.matches("<td>4</td>").count(),
+        18,
+        "n = 4 seeds per point"
+    );
+    let summary = read(&results.join("summary_per_file.parquet"));
+    assert_eq!(summary.height(), 2);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -108,10 +108,16 @@ impl fmt::Display for ParamValue {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", content = "value", rename_all = "lowercase")]
 pub enum Value {
-    Float(f64),
+    /// JSON has no NaN or infinity: serde_json writes them as `null`, which reads back as NaN
+    /// (a cache manifest with a NaN metric stays readable).
+    Float(#[serde(deserialize_with = "float_or_null")] f64),
     Int(i64),
     Bool(bool),
     Text(String),
+}
+
+fn float_or_null<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(deserializer)?.unwrap_or(f64::NAN))
 }
 
 impl fmt::Display for Value {
@@ -183,5 +189,24 @@ pub fn column_name(name: &str, dimension: Dimension) -> String {
     match dimension.si_symbol() {
         "" => name.to_string(),
         unit => format!("{name}_{unit}"),
+    }
+}
+
+#[cfg(test)]
+mod nan_tests {
+    use super::Value;
+
+    /// A NaN metric is written as `null` and read back as NaN, so an entry holding one stays
+    /// readable instead of being discarded as corrupt on every read.
+    #[test]
+    fn a_nan_float_survives_a_json_round_trip() {
+        let json = serde_json::to_string(&Value::Float(f64::NAN)).unwrap();
+        assert_eq!(json, r#"{"type":"float","value":null}"#);
+        match serde_json::from_str::<Value>(&json).unwrap() {
+            Value::Float(x) => assert!(x.is_nan()),
+            other => panic!("{other:?}"),
+        }
+        let one: Value = serde_json::from_str(r#"{"type":"float","value":1.5}"#).unwrap();
+        assert_eq!(one, Value::Float(1.5));
     }
 }

@@ -429,10 +429,10 @@ fn twin_metrics(
         ("hurst", model.hurst.fit),
     ] {
         fields.push(n(&format!("twin_fit_rms_{name}"), fit.rms_residual));
-        fields.push(n(
-            &format!("twin_fit_r2_{name}"),
-            fit.r_squared.unwrap_or(f64::NAN),
-        ));
+        // R² needs three or more files: the column is empty otherwise.
+        if let Some(r2) = fit.r_squared {
+            fields.push(n(&format!("twin_fit_r2_{name}"), r2));
+        }
     }
     fields.push(Field::int(
         "twin_calibration_iterations",
