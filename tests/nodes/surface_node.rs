@@ -6,7 +6,7 @@ use crate::common;
 use std::path::{Path, PathBuf};
 
 use asperity::engine::cache::Cache;
-use asperity::engine::execute::{execute, ExecuteOptions, NoProgress};
+use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, NodeOutcome};
 use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::engine::value::Value;
@@ -18,6 +18,29 @@ fn metric(fields: &[asperity::engine::value::Field], name: &str) -> Value {
         .unwrap_or_else(|| panic!("no metric {name}"))
         .value
         .clone()
+}
+
+/// Runs study `text` in `dir`: whether every node succeeded, and each named node's outcome.
+fn run(dir: &Path, text: String) -> (bool, impl Fn(&str) -> NodeOutcome) {
+    let study = Study::<TribologyNode>::from_source(&dir.join("s.yaml"), text).unwrap();
+    let plan = Plan::build(&study).unwrap();
+    let cache = Cache::open(&dir.join("cache")).unwrap();
+    let options = ExecuteOptions {
+        tables: study.outputs.clone(),
+        memory_budget: 1 << 30,
+        tool_version: String::from("test"),
+    };
+    let report = execute(&plan, &cache, &options, &NoProgress).unwrap();
+    let all_ok = report.all_ok();
+    let outcome = move |name: &str| {
+        let i = plan
+            .nodes
+            .iter()
+            .position(|n| n.names.iter().any(|m| m == name))
+            .unwrap();
+        report.outcomes[i].clone().unwrap()
+    };
+    (all_ok, outcome)
 }
 
 fn float(v: Value) -> f64 {
@@ -91,24 +114,8 @@ nodes:
         measured[0].display(),
         measured[1].display()
     );
-    let study = Study::<TribologyNode>::from_source(&dir.join("s.yaml"), text).unwrap();
-    let plan = Plan::build(&study).unwrap();
-    let cache = Cache::open(&dir.join("cache")).unwrap();
-    let options = ExecuteOptions {
-        tables: study.outputs.clone(),
-        memory_budget: 1 << 30,
-        tool_version: String::from("test"),
-    };
-    let report = execute(&plan, &cache, &options, &NoProgress).unwrap();
-    assert!(report.all_ok(), "{:?}", report.outcomes);
-    let outcome = |name: &str| {
-        let i = plan
-            .nodes
-            .iter()
-            .position(|n| n.names.iter().any(|m| m == name))
-            .unwrap();
-        report.outcomes[i].clone().unwrap()
-    };
+    let (all_ok, outcome) = run(&dir, text);
+    assert!(all_ok);
     // SurfaceTopography asserts Sq after curvature (degree-2) detrend = 3.911386124282179e-09 m
     // (rtol 1e-6) for this MetroPro file.
     let levelled = outcome("levelled");
@@ -187,23 +194,7 @@ nodes:
         plu = file("plu/plu-1.plu"),
         sur = file("sur/sur-2.sur"),
     );
-    let study = Study::<TribologyNode>::from_source(&dir.join("s.yaml"), text).unwrap();
-    let plan = Plan::build(&study).unwrap();
-    let cache = Cache::open(&dir.join("cache")).unwrap();
-    let options = ExecuteOptions {
-        tables: study.outputs.clone(),
-        memory_budget: 1 << 30,
-        tool_version: String::from("test"),
-    };
-    let report = execute(&plan, &cache, &options, &NoProgress).unwrap();
-    let outcome = |name: &str| {
-        let i = plan
-            .nodes
-            .iter()
-            .position(|n| n.names.iter().any(|m| m == name))
-            .unwrap();
-        report.outcomes[i].clone().unwrap()
-    };
+    let (_, outcome) = run(&dir, text);
     let failure = |name: &str| outcome(name).status.message().to_string();
     let no_filter = failure("no_filter");
     assert!(

@@ -24,10 +24,16 @@ fn asperity(args: &[&str]) -> std::process::Output {
 
 /// Runs the small study once into a fresh temporary folder: `(cache, results)`.
 fn run_study(tag: &str) -> (PathBuf, PathBuf) {
+    run_study_file(tag, "tests/studies/report-small.yaml")
+}
+
+/// Runs the study at `path` (relative to the repository) once into a fresh temporary folder:
+/// `(cache, results)`.
+fn run_study_file(tag: &str, path: &str) -> (PathBuf, PathBuf) {
     let dir = std::env::temp_dir().join(format!("asperity-report-{tag}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let (cache, results) = (dir.join("cache"), dir.join("results"));
-    let study = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/studies/report-small.yaml");
+    let study = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
     asperity(&[
         "run",
         study.to_str().unwrap(),
@@ -392,19 +398,7 @@ fn several_friction_nodes_share_a_mu_s_by_friction_model_figure() {
 /// values table holds one row per file with the twin's mean, std and seed count.
 #[test]
 fn the_twin_comparison_study_draws_measured_against_twin() {
-    let dir = std::env::temp_dir().join(format!("asperity-report-twins-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    let (cache, results) = (dir.join("cache"), dir.join("results"));
-    let study = Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/twin-comparison.yaml");
-    asperity(&[
-        "run",
-        study.to_str().unwrap(),
-        "--cache",
-        cache.to_str().unwrap(),
-        "--out",
-        results.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let (cache, results) = run_study_file("twins", "studies/twin-comparison.yaml");
     let html = report(&cache, &results, &[]);
     let start = html
         .find("<h2>Measured surfaces and their twins</h2>")
@@ -424,5 +418,5 @@ fn the_twin_comparison_study_draws_measured_against_twin() {
     );
     let summary = read(&results.join("summary_per_file.parquet"));
     assert_eq!(summary.height(), 2);
-    let _ = std::fs::remove_dir_all(&dir);
+    let _ = std::fs::remove_dir_all(results.parent().unwrap());
 }

@@ -150,18 +150,18 @@ impl TwinSpec {
 
     /// `[λ_short, λ_long]`, both > 0, ascending.
     fn hurst_band(&self, ctx: &ResolveContext<'_>) -> Result<Option<[f64; 2]>, SpecError> {
-        let Some([short, long]) = &self.hurst_band else {
+        let Some([short_param, long]) = &self.hurst_band else {
             return Ok(None);
         };
         let short = ctx
-            .resolve_checked(short, "twin.hurst_band[0]", positive_length)?
+            .resolve_checked(short_param, "twin.hurst_band[0]", positive_length)?
             .si();
         let long = ctx
             .resolve_checked(long, "twin.hurst_band[1]", positive_length)?
             .si();
         if short >= long {
             return Err(SpecError {
-                location: self.sq.location(),
+                location: short_param.location(),
                 field: String::from("twin.hurst_band"),
                 message: format!(
                     "[{}, {}] must ascend: [shortest, longest wavelength]",
