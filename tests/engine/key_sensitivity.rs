@@ -18,6 +18,9 @@ nodes:
   m:
     surface:
       file: {path: m.txt, form_degree: 1}
+  t:
+    surface:
+      twin: {of: [m.txt], sq: measured, grid: [32, 32], size: [0.1 mm, 0.1 mm], seed: 1}
   c:
     contact:
       lower: s
@@ -80,6 +83,47 @@ const CASES: &[(&str, &str, &str)] = &[
         "m",
         "form_degree: 1}",
         "form_degree: 1, pixel_size: 2 um, override_file_spacing: true}",
+    ),
+    ("t", "of: [m.txt]", "of: [n.txt]"),
+    ("t", "of: [m.txt]", "of: [m.txt, n.txt]"),
+    ("t", "sq: measured", "sq: 1 um"),
+    ("t", "grid: [32, 32], size: [0.1 mm, 0.1 mm], seed: 1}", "grid: [32, 64], size: [0.1 mm, 0.1 mm], seed: 1}"),
+    ("t", "size: [0.1 mm, 0.1 mm], seed: 1}", "size: [0.1 mm, 0.2 mm], seed: 1}"),
+    ("t", "[0.1 mm, 0.1 mm], seed: 1}", "[0.1 mm, 0.1 mm], seed: 2}"),
+    (
+        "t",
+        "seed: 1}
+  c:",
+        "seed: 1, short_wavelength_cutoff: 5 um}
+  c:",
+    ),
+    (
+        "t",
+        "seed: 1}
+  c:",
+        "seed: 1, hurst_band: [2 um, 8 um]}
+  c:",
+    ),
+    (
+        "t",
+        "seed: 1}
+  c:",
+        "seed: 1, preprocess: {form_degree: 2}}
+  c:",
+    ),
+    (
+        "t",
+        "seed: 1}
+  c:",
+        "seed: 1, preprocess: {l_filter: 20 um}}
+  c:",
+    ),
+    (
+        "t",
+        "seed: 1}
+  c:",
+        "seed: 1, preprocess: {fill_missing: false}}
+  c:",
     ),
     ("c", "[10 MPa, 20 MPa]", "[10 MPa, 30 MPa]"),
     ("c", "fields: true", "fields: true\n      periodic: false"),
