@@ -297,9 +297,8 @@ impl ContactTask {
                 Dimension::Pressure,
             ));
         }
-        let steps: Vec<String> = pressures.iter().map(|p| format_number(*p)).collect();
         key.extend([
-            Field::text("nominal_pressures_Pa", steps.join(",")),
+            super::number_list("nominal_pressures_Pa", pressures),
             Field::bool("periodic", *periodic),
             Field::float("tolerance", *tolerance, Dimension::Dimensionless),
             Field::bool("fields", *fields),

@@ -17,6 +17,8 @@ use serde::Deserialize;
 
 use crate::engine::node::{NodeSpec, NodeTask, UpstreamRef};
 use crate::engine::study::{ResolveContext, SpecError};
+use crate::engine::value::Field;
+use crate::units::format_number;
 
 pub use contact::{ContactSpec, ContactTask, CONTACT_KIND_VERSION};
 pub use friction::{FrictionSpec, FrictionTask, FRICTION_KIND_VERSION};
@@ -82,4 +84,11 @@ pub fn study_schema_json() -> String {
     let mut text = serde_json::to_string_pretty(&schema).unwrap_or_default();
     text.push('\n');
     text
+}
+
+/// A list of numbers (SI) as one text field, `"1e+07,2e+07"`: how load steps enter a key and a
+/// table row.
+pub(crate) fn number_list(name: &str, values: &[f64]) -> Field {
+    let items: Vec<String> = values.iter().map(|v| format_number(*v)).collect();
+    Field::text(name, items.join(","))
 }

@@ -25,7 +25,8 @@ struct Pair<'a> {
 
 /// The comparison section, or `None` when the results hold no file surface with a twin of it.
 pub fn twin_comparison(scenarios: &ScenarioSet, tables: &[NodeTable]) -> Option<Section> {
-    let surfaces = tables.iter().find(|t| t.kind == "surface")?;
+    let of_kind = |kind: &str| tables.iter().find(|t| t.kind == kind);
+    let surfaces = of_kind("surface")?;
     let surface_pairs = twin_pairs(scenarios, surfaces);
     if surface_pairs.is_empty() {
         return None;
@@ -38,53 +39,32 @@ pub fn twin_comparison(scenarios: &ScenarioSet, tables: &[NodeTable]) -> Option<
             twin,
             column: "summit_mean_radius_m",
         });
-        let contacts = tables.iter().find(|t| t.kind == "contact");
-        let contact_pair = contacts.and_then(|c| {
-            let m = downstream(scenarios, c, measured, "lower_key")
-                .into_iter()
-                .next()?;
-            let t = downstream(scenarios, c, twin, "lower_key")
-                .into_iter()
-                .next()?;
-            Some((c, m, t))
+        let contacts = of_kind("contact").and_then(|c| {
+            let on = |surface| {
+                downstream(scenarios, c, surface, "lower_key")
+                    .into_iter()
+                    .next()
+            };
+            Some((c, on(measured)?, on(twin)?))
         });
-        if let Some((c, m, t)) = contact_pair {
+        if let Some((table, measured, twin)) = contacts {
             for column in ["area_fraction", "stress_ratio"] {
                 pairs.push(Pair {
-                    table: c,
-                    measured: m,
-                    twin: t,
+                    table,
+                    measured,
+                    twin,
                     column,
                 });
             }
         }
-        if let Some(friction) = tables.iter().find(|t| t.kind == "friction") {
-            let base = |surface: &NodeLink, contact: Option<&NodeLink>| {
-                let mut links = downstream(scenarios, friction, surface, "lower_key");
-                if let Some(c) = contact {
-                    links.extend(downstream(scenarios, friction, c, "contact_key"));
-                }
-                // A statistical node may read both the surface and the contact.
-                let mut seen = std::collections::BTreeSet::new();
-                links.retain(|l| seen.insert(l.node.as_str()));
-                links
-            };
-            let on_measured = base(measured, contact_pair.map(|p| p.1));
-            let on_twin = base(twin, contact_pair.map(|p| p.2));
-            for m in on_measured {
-                let detail = Metric::resolve(friction, m, "mu_s").map(|x| x.detail);
-                let same = on_twin
-                    .iter()
-                    .find(|t| Metric::resolve(friction, t, "mu_s").map(|x| x.detail) == detail);
-                if let Some(t) = same {
-                    pairs.push(Pair {
-                        table: friction,
-                        measured: m,
-                        twin: t,
-                        column: "mu_s",
-                    });
-                }
-            }
+        if let Some(friction) = of_kind("friction") {
+            let sides = [
+                (measured, contacts.map(|c| c.1)),
+                (twin, contacts.map(|c| c.2)),
+            ];
+            let [on_measured, on_twin] = sides
+                .map(|(surface, contact)| friction_nodes(scenarios, friction, surface, contact));
+            pairs.extend(same_method_and_model(friction, &on_measured, &on_twin));
         }
     }
     let figures: Vec<Figure> = pairs
@@ -102,6 +82,47 @@ pub fn twin_comparison(scenarios: &ScenarioSet, tables: &[NodeTable]) -> Option<
         ),
         figures,
     })
+}
+
+/// The friction nodes downstream of `surface` (as their `lower`) or of `contact`, each once (a
+/// statistical node may read both).
+fn friction_nodes<'a>(
+    scenarios: &'a ScenarioSet,
+    friction: &'a NodeTable,
+    surface: &NodeLink,
+    contact: Option<&NodeLink>,
+) -> Vec<&'a NodeLink> {
+    let mut links = downstream(scenarios, friction, surface, "lower_key");
+    if let Some(c) = contact {
+        links.extend(downstream(scenarios, friction, c, "contact_key"));
+    }
+    let mut seen = std::collections::BTreeSet::new();
+    links.retain(|l| seen.insert(l.node.as_str()));
+    links
+}
+
+/// μ_s of each measured-side friction node against the twin-side node of the same method and
+/// model.
+fn same_method_and_model<'a>(
+    friction: &'a NodeTable,
+    on_measured: &[&'a NodeLink],
+    on_twin: &[&'a NodeLink],
+) -> Vec<Pair<'a>> {
+    let detail = |link: &NodeLink| Metric::resolve(friction, link, "mu_s").map(|m| m.detail);
+    let twin_details: Vec<_> = on_twin.iter().map(|t| detail(t)).collect();
+    on_measured
+        .iter()
+        .filter_map(|m| {
+            let d = detail(m);
+            let i = twin_details.iter().position(|t| *t == d)?;
+            Some(Pair {
+                table: friction,
+                measured: m,
+                twin: on_twin[i],
+                column: "mu_s",
+            })
+        })
+        .collect()
 }
 
 fn replicate_text(scenarios: &ScenarioSet) -> String {

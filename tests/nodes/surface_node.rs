@@ -198,7 +198,7 @@ nodes:
     let failure = |name: &str| outcome(name).status.message().to_string();
     let no_filter = failure("no_filter");
     assert!(
-        no_filter.contains("plu-1.plu") && no_filter.contains("preprocess: {l_filter: 191 um}"),
+        no_filter.contains("plu-1.plu") && no_filter.contains("preprocess: {l_filter: 191 µm}"),
         "{no_filter}"
     );
     let band = failure("default_band");

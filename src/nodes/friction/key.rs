@@ -8,7 +8,8 @@ use crate::friction::{
     AsperityModel, Connectivity, FullStickOptions, Material, ModelOptions, StickFrictionLaw,
     SummitStatistics,
 };
-use crate::units::{format_number, Dimension};
+use crate::nodes::number_list;
+use crate::units::Dimension;
 
 use super::per_spot::Section;
 use super::{
@@ -171,15 +172,9 @@ fn explicit_roughness_fields(summits: &SummitStatistics) -> [Field; 3] {
 }
 
 fn load_fields(loads: &Loads) -> Option<Field> {
-    let joined = |v: &[f64]| {
-        v.iter()
-            .map(|x| format_number(*x))
-            .collect::<Vec<_>>()
-            .join(",")
-    };
     match loads {
-        Loads::Pressures(p) => Some(Field::text("nominal_pressures_Pa", joined(p))),
-        Loads::Forces(f) => Some(Field::text("loads_N", joined(f))),
+        Loads::Pressures(p) => Some(number_list("nominal_pressures_Pa", p)),
+        Loads::Forces(f) => Some(number_list("loads_N", f)),
         Loads::FromContact(_) => None,
     }
 }

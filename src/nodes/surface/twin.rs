@@ -20,8 +20,8 @@ use std::f64::consts::PI;
 
 use crate::surface::spectral::{HurstFitOptions, ISO_ACF_THRESHOLD};
 use crate::surface::twins::{
-    fit_twin_model, measure_texture, synthetic_twin, CorrelationMethod, MeasuredTexture,
-    SyntheticTwin, TextureOptions, TwinError, TwinGrid, TwinModel, TwinWarning,
+    fit_twin_model, format_micrometres, measure_texture, synthetic_twin, CorrelationMethod,
+    MeasuredTexture, SyntheticTwin, TextureOptions, TwinError, TwinGrid, TwinModel, TwinWarning,
 };
 use crate::surface::HeightMap;
 use crate::units::{Dimension, Length, Quantity};
@@ -165,8 +165,8 @@ impl TwinSpec {
                 field: String::from("twin.hurst_band"),
                 message: format!(
                     "[{}, {}] must ascend: [shortest, longest wavelength]",
-                    micrometres(short),
-                    micrometres(long)
+                    format_micrometres(short),
+                    format_micrometres(long)
                 ),
             });
         }
@@ -306,8 +306,8 @@ fn texture_error(e: &TwinError, file: &MeasuredFile) -> NodeError {
              waviness and form with `preprocess: {{l_filter: {}}}` (a fifth of the map side) or \
              measure a larger area",
             acf_reached,
-            micrometres(*half_map),
-            micrometres(0.4 * half_map)
+            format_micrometres(*half_map),
+            format_micrometres(0.4 * half_map)
         )),
         other => NodeError::new(format!("measuring {path}: {other}")),
     }
@@ -332,8 +332,8 @@ fn check_hurst(
          `hurst_band: [short, long]` where its spectrum falls as a power law (above the S-filter \
          and the instrument's noise, below the L-filter)",
         file.path().display(),
-        micrometres(short),
-        micrometres(long),
+        format_micrometres(short),
+        format_micrometres(long),
         texture.hurst,
         texture.hurst_r_squared
     )))
@@ -352,10 +352,10 @@ fn generation_error(e: &TwinError) -> NodeError {
             "twin: the predicted correlation lengths {} (x) and {} (y) do not fit the twin's \
              periodic grid; use `size: [{}, {}]` with `grid: [{}, {}]` ({} correlation lengths per \
              side, at least {} points per correlation length)",
-            micrometres(*correlation_length_x),
-            micrometres(*correlation_length_y),
-            micrometres(suggested_size[0]),
-            micrometres(suggested_size[1]),
+            format_micrometres(*correlation_length_x),
+            format_micrometres(*correlation_length_y),
+            format_micrometres(suggested_size[0]),
+            format_micrometres(suggested_size[1]),
             suggested_grid[0],
             suggested_grid[1],
             crate::surface::twins::SIZE_PER_CORRELATION_LENGTH,
@@ -363,17 +363,6 @@ fn generation_error(e: &TwinError) -> NodeError {
         )),
         other => NodeError::new(format!("twin: {other}")),
     }
-}
-
-/// A length in micrometres with three significant digits, as a study would write it (`105 um`).
-fn micrometres(metres: f64) -> String {
-    let um = metres * 1e6;
-    let digits = if um.abs() >= 100.0 {
-        0
-    } else {
-        (2 - um.abs().log10().floor() as i32).clamp(0, 6) as usize
-    };
-    format!("{um:.digits$} um")
 }
 
 /// The twin's columns: the predicted statistics, typed warnings and sentences, how the measured

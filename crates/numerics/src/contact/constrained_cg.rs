@@ -39,9 +39,8 @@
 //! benchmark almost every step is corrected: a few points enter or leave the contact in nearly
 //! every step, so the solver runs at about 1.5 pairs per iteration. Convergence is only accepted
 //! on a displacement recomputed from the pressures, so every reported residual is judged on an
-//! exact `u`. (Deferring the recomputation while the corrections are small saved at most 6 % of
-//! the FFTs of the 1024² benchmark and cost up to 13 % more iterations; deferring it by a fixed
-//! number of iterations, or for larger corrections, can stall the iteration.)
+//! exact `u`. (Deferring the recomputation after small corrections does not pay, and deferring it
+//! longer can stall the iteration: `docs/contact-solver-design.md`.)
 //!
 //! Convergence: all four [`Residuals`] `≤ ε`. The solve ends `Stalled` when its largest residual
 //! has not fallen below 0.9 × its best value for `stall_iterations`, or at once when the load

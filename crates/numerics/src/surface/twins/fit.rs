@@ -84,7 +84,7 @@ fn check_measurements(measured: &[MeasuredTexture]) -> Result<(), TwinError> {
 }
 
 /// Least-squares line `y = a + b x` and its quality; a constant (`b = 0`) when all `x` are equal.
-fn least_squares(x: &[f64], y: &[f64]) -> (f64, f64, LineFit) {
+pub(super) fn least_squares(x: &[f64], y: &[f64]) -> (f64, f64, LineFit) {
     let n = x.len() as f64;
     let mean_x = x.iter().sum::<f64>() / n;
     let mean_y = y.iter().sum::<f64>() / n;

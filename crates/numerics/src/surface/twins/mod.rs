@@ -250,8 +250,9 @@ pub enum TwinError {
     Synthetic(#[from] SyntheticError),
 }
 
-/// Micrometres with three significant digits, for messages.
-fn micrometres(metres: f64) -> String {
+/// A length in micrometres with three significant digits, as a message or a study writes it
+/// (`105 µm`, `2.00 µm`).
+pub fn format_micrometres(metres: f64) -> String {
     let um = metres * 1e6;
     if um == 0.0 || !um.is_finite() {
         return format!("{um} µm");
@@ -268,9 +269,9 @@ impl fmt::Display for TwinWarning {
                 f,
                 "Sq = {} lies outside the measured range {} to {}: the texture statistics are \
                  extrapolated",
-                micrometres(sq),
-                micrometres(min),
-                micrometres(max)
+                format_micrometres(sq),
+                format_micrometres(min),
+                format_micrometres(max)
             ),
             Self::HurstClamped { predicted, used } => write!(
                 f,

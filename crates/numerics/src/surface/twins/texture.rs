@@ -15,6 +15,7 @@
 //! ([`TwinError::NoDecay`]): the map does not show the texture's correlation along that axis, and
 //! an L-filter (high-pass) or a larger measured area is needed.
 
+use super::fit::least_squares;
 use super::{CorrelationMethod, MeasuredTexture, TextureOptions, TwinError};
 use crate::surface::spectral::{autocorrelation, hurst_exponent, Autocorrelation};
 use crate::surface::HeightMap;
@@ -123,25 +124,19 @@ pub fn correlation_length_along(
 /// `(τc, α)` of `ACF = exp(−(τ/τc)^α)` fitted to the lags with `threshold < ACF ≤ 0.95`;
 /// `None` with fewer than [`MIN_FIT_LAGS`] of them or α outside (0, 4].
 fn stretched_exponential_fit(profile: &[(f64, f64)], threshold: f64) -> Option<(f64, f64)> {
-    let points: Vec<(f64, f64)> = profile
+    let (ln_lag, ln_decay): (Vec<f64>, Vec<f64>) = profile
         .iter()
         .filter(|(_, a)| *a > threshold && *a <= FIT_MAX_ACF)
         .map(|&(lag, a)| (lag.ln(), (-a.ln()).ln()))
-        .collect();
-    if points.len() < MIN_FIT_LAGS {
-        return None;
-    }
-    let n = points.len() as f64;
-    let mean_x = points.iter().map(|p| p.0).sum::<f64>() / n;
-    let mean_y = points.iter().map(|p| p.1).sum::<f64>() / n;
-    let sxx: f64 = points.iter().map(|p| (p.0 - mean_x).powi(2)).sum();
-    let sxy: f64 = points.iter().map(|p| (p.0 - mean_x) * (p.1 - mean_y)).sum();
-    let alpha = sxy / sxx;
-    if !(alpha > 0.0 && alpha <= 4.0) {
+        .unzip();
+    if ln_lag.len() < MIN_FIT_LAGS {
         return None;
     }
     // ln(−ln ACF) = α ln τ − α ln τc.
-    let intercept = mean_y - alpha * mean_x;
+    let (intercept, alpha, _) = least_squares(&ln_lag, &ln_decay);
+    if !(alpha > 0.0 && alpha <= 4.0) {
+        return None;
+    }
     let tau_c = (-intercept / alpha).exp();
     tau_c.is_finite().then_some((tau_c, alpha))
 }
