@@ -358,11 +358,6 @@ impl NodeTask for ContactTask {
         let setup = self.problem(inputs)?;
         let options = SolverOptions {
             tolerance: self.tolerance,
-            fields: if self.fields {
-                FieldRequest::ALL
-            } else {
-                FieldRequest::NONE
-            },
             ..SolverOptions::default()
         };
         let mut solver =
@@ -386,8 +381,11 @@ impl NodeTask for ContactTask {
                 .arrays
                 .insert(String::from(COMPOSITE_HEIGHT), z.into_dyn());
         }
-        if let Some(f) = &last.fields {
-            store_fields(&mut artifact, f);
+        if self.fields {
+            let fields = solver
+                .last_fields(FieldRequest::ALL)
+                .ok_or_else(|| NodeError::new("the final load step left no fields"))?;
+            store_fields(&mut artifact, fields);
         }
         Ok(artifact)
     }
@@ -526,19 +524,17 @@ fn load_curve_table(curve: &LoadCurve) -> Table {
 }
 
 /// The final step's maps under the names of [`super::contact_view`].
-fn store_fields(artifact: &mut Artifact, f: &crate::contact::ContactFields) {
+fn store_fields(artifact: &mut Artifact, f: crate::contact::ContactFields) {
     let named = [
-        (PRESSURE, &f.pressure),
-        (GAP, &f.gap),
-        (DEFORMATION_LOWER, &f.deformation_first),
-        (DEFORMATION_UPPER, &f.deformation_second),
-        (PLASTIC_PENETRATION, &f.plastic_penetration),
+        (PRESSURE, f.pressure),
+        (GAP, f.gap),
+        (DEFORMATION_LOWER, f.deformation_first),
+        (DEFORMATION_UPPER, f.deformation_second),
+        (PLASTIC_PENETRATION, f.plastic_penetration),
     ];
     for (name, array) in named {
         if let Some(a) = array {
-            artifact
-                .arrays
-                .insert(name.to_string(), a.clone().into_dyn());
+            artifact.arrays.insert(name.to_string(), a.into_dyn());
         }
     }
 }

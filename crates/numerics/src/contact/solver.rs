@@ -10,7 +10,7 @@ use super::gap::CompositeGap;
 use super::influence::{Boundary, InfluenceOperator};
 use super::load_curve::{ContactFields, LoadCurve, LoadStep};
 use super::material::ContactMaterial;
-use super::options::{SolvePath, SolveStrategy, SolverOptions, Termination};
+use super::options::{FieldRequest, SolvePath, SolveStrategy, SolverOptions, Termination};
 use super::workspace::{Workspace, BLOCK};
 
 /// Sums over the fields of a converged step, block by block (combined in block order, so they do
@@ -339,12 +339,23 @@ impl ContactSolver {
             fft_transforms: outcome.fft_transforms,
             residuals: outcome.residuals,
             path,
-            fields: self.options.fields.any().then(|| self.fields()),
+            fields: self
+                .options
+                .fields
+                .any()
+                .then(|| self.fields_of_workspace(self.options.fields)),
         }
     }
 
-    fn fields(&self) -> ContactFields {
-        let request = self.options.fields;
+    /// The requested fields of the last converged step (`None` before the first step, after a
+    /// [`Self::reset`] or after a step that did not converge). With `SolverOptions::fields` off,
+    /// a load curve keeps no map of any step and the caller takes the final step's maps here:
+    /// one set of `ny × nx` arrays instead of one per step.
+    pub fn last_fields(&self, request: FieldRequest) -> Option<ContactFields> {
+        self.last_nominal.map(|_| self.fields_of_workspace(request))
+    }
+
+    fn fields_of_workspace(&self, request: FieldRequest) -> ContactFields {
         let ws = &self.workspace;
         let shape = (self.problem.gap().ny(), self.problem.gap().nx());
         let plim = self.problem.material().flow_pressure();
