@@ -1,15 +1,14 @@
 //! Execution: load what the cache has, compute the rest in parallel, upstream first.
 //!
-//! Only instances the requested tables need are touched. Instances run level by level of the DAG;
-//! within a level they run in parallel on the rayon pool, each first acquiring its memory estimate
-//! from a budget so large nodes do not run all at once. A failing node fails only its dependants.
+//! Only instances the requested tables need are touched. Instances run in parallel on the rayon
+//! pool as soon as their upstream finished, chains first (see `RunContext::spawn`), each first
+//! acquiring its memory estimate from a budget so large nodes do not run all at once. A failing
+//! node fails only its dependants.
 
 use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
-
-use rayon::prelude::*;
 
 use crate::artifact::{Artifact, Table};
 use crate::cache::{Cache, CacheError, CachedEntry, Manifest};
@@ -154,68 +153,64 @@ pub fn execute_nodes(
             }
         }
     }
-    let mut level = vec![0usize; n];
+    // Instances run as soon as their upstream finished; see [`RunContext::spawn`] for the order.
+    let mut waiting = vec![0usize; n];
+    let mut downstream: Vec<Vec<usize>> = vec![Vec::new(); n];
     for &i in &needed {
-        level[i] = plan.nodes[i]
-            .upstream
-            .iter()
-            .map(|(_, u)| level[*u] + 1)
-            .max()
-            .unwrap_or(0);
+        for (_, u) in &plan.nodes[i].upstream {
+            waiting[i] += 1;
+            downstream[*u].push(i);
+        }
     }
-    let max_level = needed.iter().map(|&i| level[i]).max().unwrap_or(0);
+    let ready: Vec<usize> = needed
+        .iter()
+        .copied()
+        .filter(|&i| waiting[i] == 0)
+        .collect();
     progress.start(needed.len());
     let budget = MemoryBudget::new(options.memory_budget);
-    let mut artifacts: Vec<Option<Arc<Artifact>>> = vec![None; n];
-    let mut outcomes: Vec<Option<NodeOutcome>> = vec![None; n];
-    let mut report = RunReport::default();
-    for lvl in 0..=max_level {
-        let batch: Vec<usize> = needed
-            .iter()
-            .copied()
-            .filter(|&i| level[i] == lvl)
-            .collect();
-        let results: Vec<(usize, NodeOutcome, Option<Arc<Artifact>>, bool)> = batch
-            .par_iter()
-            .map(|&i| {
-                let ctx = RunContext {
-                    plan,
-                    cache,
-                    options,
-                    progress,
-                    budget: &budget,
-                    artifacts: &artifacts,
-                    outcomes: &outcomes,
-                };
-                let (outcome, artifact, discarded) = ctx.run_node(i, wants_payload[i]);
-                progress.finished(&plan.nodes[i], &outcome.status);
-                (i, outcome, artifact, discarded)
-            })
-            .collect();
-        for (i, outcome, artifact, discarded) in results {
-            match &outcome.status {
-                NodeStatus::Computed => report.computed += 1,
-                NodeStatus::Cached => report.cached += 1,
-                NodeStatus::Failed(_) => report.failed += 1,
-                NodeStatus::Skipped(_) => report.skipped += 1,
-            }
-            report.discarded += usize::from(discarded);
-            artifacts[i] = artifact.filter(|_| dependants[i] > 0);
-            outcomes[i] = Some(outcome);
+    let shared = Mutex::new(Shared {
+        artifacts: vec![None; n],
+        outcomes: vec![None; n],
+        dependants,
+        waiting,
+        report: RunReport::default(),
+    });
+    let ctx = RunContext {
+        plan,
+        cache,
+        options,
+        progress,
+        budget: &budget,
+        shared: &shared,
+        wants_payload: &wants_payload,
+        downstream: &downstream,
+    };
+    rayon::scope(|scope| {
+        for &i in ready.iter().rev() {
+            ctx.spawn(scope, i);
         }
-        // Release arrays nobody downstream needs any more.
-        for &i in &batch {
-            for (_, u) in &plan.nodes[i].upstream {
-                dependants[*u] -= 1;
-                if dependants[*u] == 0 {
-                    artifacts[*u] = None;
-                }
-            }
-        }
-    }
+    });
+    let Shared {
+        outcomes,
+        mut report,
+        ..
+    } = shared.into_inner().unwrap_or_else(|p| p.into_inner());
     report.outcomes = outcomes;
     report.wall_seconds = start.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// What the running instances share.
+struct Shared {
+    /// Artifacts that dependants yet to run still need.
+    artifacts: Vec<Option<Arc<Artifact>>>,
+    outcomes: Vec<Option<NodeOutcome>>,
+    /// Per instance, its needed dependants that have not finished: its artifact is released at 0.
+    dependants: Vec<usize>,
+    /// Per instance, its upstream instances that have not finished: it is ready at 0.
+    waiting: Vec<usize>,
+    report: RunReport,
 }
 
 struct RunContext<'a> {
@@ -224,28 +219,95 @@ struct RunContext<'a> {
     options: &'a ExecuteOptions,
     progress: &'a dyn Progress,
     budget: &'a MemoryBudget,
-    artifacts: &'a [Option<Arc<Artifact>>],
-    outcomes: &'a [Option<NodeOutcome>],
+    shared: &'a Mutex<Shared>,
+    /// Per instance, whether its arrays are loaded from the cache (a dependant will be computed).
+    wants_payload: &'a [bool],
+    /// Per instance, its needed dependants.
+    downstream: &'a [Vec<usize>],
 }
 
-impl RunContext<'_> {
+impl<'a> RunContext<'a> {
+    /// Runs instance `i` on the pool, then spawns the dependants it made ready. A worker runs
+    /// the tasks it spawned last first, so a chain started (surfaces, then their contact, then
+    /// its friction) is finished before the next one is begun, and an artifact is released as
+    /// soon as its last dependant ran: at most a few chains' arrays are held at once, however
+    /// many scenarios the study has. Idle workers take the oldest ready instances.
+    fn spawn<'s>(&'s self, scope: &rayon::Scope<'s>, i: usize)
+    where
+        'a: 's,
+    {
+        scope.spawn(move |scope| {
+            let (outcome, artifact, discarded) = self.run_node(i, self.wants_payload[i]);
+            self.progress.finished(&self.plan.nodes[i], &outcome.status);
+            for d in self
+                .finish(i, outcome, artifact, discarded)
+                .into_iter()
+                .rev()
+            {
+                self.spawn(scope, d);
+            }
+        });
+    }
+
+    /// Records the result of instance `i`, releases the artifacts no dependant needs any more and
+    /// returns the dependants that became ready.
+    fn finish(
+        &self,
+        i: usize,
+        outcome: NodeOutcome,
+        artifact: Option<Arc<Artifact>>,
+        discarded: bool,
+    ) -> Vec<usize> {
+        let mut shared = self.lock();
+        let report = &mut shared.report;
+        match &outcome.status {
+            NodeStatus::Computed => report.computed += 1,
+            NodeStatus::Cached => report.cached += 1,
+            NodeStatus::Failed(_) => report.failed += 1,
+            NodeStatus::Skipped(_) => report.skipped += 1,
+        }
+        report.discarded += usize::from(discarded);
+        if shared.dependants[i] > 0 {
+            shared.artifacts[i] = artifact;
+        }
+        shared.outcomes[i] = Some(outcome);
+        for (_, u) in &self.plan.nodes[i].upstream {
+            shared.dependants[*u] -= 1;
+            if shared.dependants[*u] == 0 {
+                shared.artifacts[*u] = None;
+            }
+        }
+        let mut ready = Vec::new();
+        for &d in &self.downstream[i] {
+            shared.waiting[d] -= 1;
+            if shared.waiting[d] == 0 {
+                ready.push(d);
+            }
+        }
+        ready
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, Shared> {
+        self.shared.lock().unwrap_or_else(|p| p.into_inner())
+    }
     /// Loads or computes instance `i`. Returns the outcome, the artifact (for dependants) and
     /// whether a corrupt cache entry was discarded.
     fn run_node(&self, i: usize, with_payload: bool) -> (NodeOutcome, Option<Arc<Artifact>>, bool) {
         let node = &self.plan.nodes[i];
         let kind = node.task.kind();
         for (role, u) in &node.upstream {
-            if let Some(o) = &self.outcomes[*u] {
-                if !matches!(o.status, NodeStatus::Computed | NodeStatus::Cached) {
-                    let names = self.plan.nodes[*u].names.join(", ");
-                    return (
-                        failed_outcome(NodeStatus::Skipped(format!(
-                            "upstream {role} node '{names}' did not compute"
-                        ))),
-                        None,
-                        false,
-                    );
-                }
+            let upstream_ok = self.lock().outcomes[*u]
+                .as_ref()
+                .map(|o| matches!(o.status, NodeStatus::Computed | NodeStatus::Cached));
+            if upstream_ok == Some(false) {
+                let names = self.plan.nodes[*u].names.join(", ");
+                return (
+                    failed_outcome(NodeStatus::Skipped(format!(
+                        "upstream {role} node '{names}' did not compute"
+                    ))),
+                    None,
+                    false,
+                );
             }
         }
         let mut discarded = false;
@@ -293,8 +355,9 @@ impl RunContext<'_> {
             // Present when loaded with arrays or computed in this run; otherwise (it was loaded
             // metrics-only because its dependants were cached, then one turned out corrupt) the
             // upstream entry is read again with its arrays, or recomputed if they are not stored.
-            let artifact = match &self.artifacts[*u] {
-                Some(a) => a.clone(),
+            let in_memory = self.lock().artifacts[*u].clone();
+            let artifact = match in_memory {
+                Some(a) => a,
                 None if upstream.task.array_storage() == ArrayStorage::Regenerate => {
                     match self.run_compute(upstream) {
                         (Ok(artifact), _) => Arc::new(artifact),
