@@ -43,10 +43,13 @@ pub struct LoadStep {
     pub max_elastic_deformation: f64,
     /// Rigid-body approach `δ` in m.
     pub approach: f64,
-    /// CG iterations of this step.
+    /// CG iterations of this step on its own grid.
     pub iterations: usize,
-    /// Real 2-D FFTs (forward or inverse; a full convolution is two) of this step, including
-    /// the exact recomputations of the displacement and the start.
+    /// CG iterations of the multilevel start on the coarser grids (each with a quarter of the
+    /// points of the next finer one), summed over them; 0 after a warm start.
+    pub coarse_iterations: usize,
+    /// Real 2-D FFTs (forward or inverse; a full convolution is two) of this step on its own
+    /// grid, including the exact recomputations of the displacement and the start.
     pub fft_transforms: usize,
     /// Final residuals (all `≤` the tolerance).
     pub residuals: Residuals,

@@ -15,6 +15,7 @@ mod influence;
 mod load_balance;
 mod load_curve;
 mod material;
+mod multilevel;
 mod options;
 mod selection;
 mod solver;

@@ -70,6 +70,10 @@ pub struct SolverOptions {
     pub stall_iterations: usize,
     /// Algorithm choice.
     pub strategy: SolveStrategy,
+    /// Start a step without a warm start (the first step, or after `reset`) from the solution
+    /// on coarser grids where the grid allows it (default `true`; see `multilevel.rs`);
+    /// otherwise from the rigid-plastic start.
+    pub multilevel: bool,
     /// Fields returned with every load step.
     pub fields: FieldRequest,
 }
@@ -81,6 +85,7 @@ impl Default for SolverOptions {
             max_iterations: 10_000,
             stall_iterations: 60,
             strategy: SolveStrategy::Auto,
+            multilevel: true,
             fields: FieldRequest::NONE,
         }
     }

@@ -10,6 +10,7 @@ use super::gap::CompositeGap;
 use super::influence::{Boundary, InfluenceOperator};
 use super::load_curve::{ContactFields, LoadCurve, LoadStep};
 use super::material::ContactMaterial;
+use super::multilevel;
 use super::options::{FieldRequest, SolvePath, SolveStrategy, SolverOptions, Termination};
 use super::workspace::{Workspace, BLOCK};
 
@@ -232,12 +233,13 @@ impl ContactSolver {
             default_step: 1.0 / self.operator.self_influence(),
         };
         let n = self.workspace.p.len() as f64;
-        match self.last_nominal {
+        let coarse_iterations = match self.last_nominal {
             Some(_) => {
                 self.workspace.rebalance(pressure * n);
+                0
             }
-            None => self.workspace.start_rigid_plastic(pressure),
-        }
+            None => self.cold_start(pressure),
+        };
         self.last_nominal = None;
         let ws = &mut self.workspace;
         let op = &mut self.operator;
@@ -291,7 +293,39 @@ impl ContactSolver {
             });
         }
         self.last_nominal = Some(pressure);
-        Ok(self.step_result(pressure, &outcome, path))
+        let mut step = self.step_result(pressure, &outcome, path);
+        step.coarse_iterations = coarse_iterations;
+        Ok(step)
+    }
+
+    /// The start of a step without a warm start: the multilevel start where the grid can be
+    /// coarsened (`SolverOptions::multilevel`), else the rigid-plastic start. A coarse solve that
+    /// fails only costs its time: the fine step then starts rigid-plastic. Returns the CG
+    /// iterations on the coarse grids.
+    fn cold_start(&mut self, pressure: f64) -> usize {
+        if let Some(coarse_problem) = self
+            .options
+            .multilevel
+            .then(|| multilevel::coarsened(&self.problem))
+            .flatten()
+        {
+            let options = SolverOptions {
+                tolerance: self.options.tolerance.max(multilevel::COARSE_TOLERANCE),
+                fields: FieldRequest::NONE,
+                ..self.options
+            };
+            let coarse_step = ContactSolver::new(coarse_problem, options)
+                .and_then(|mut coarse| Ok((coarse.solve_on_worker(0, pressure)?, coarse)));
+            if let Ok((step, coarse)) = coarse_step {
+                let nx = self.problem.gap().nx();
+                multilevel::prolongate(&coarse.workspace.p, &mut self.workspace.p, nx);
+                let n = self.workspace.p.len() as f64;
+                self.workspace.rebalance(pressure * n);
+                return step.iterations + step.coarse_iterations;
+            }
+        }
+        self.workspace.start_rigid_plastic(pressure);
+        0
     }
 
     fn step_result(&self, pressure: f64, outcome: &CgOutcome, path: SolvePath) -> LoadStep {
@@ -336,6 +370,7 @@ impl ContactSolver {
             max_elastic_deformation: max_u,
             approach: outcome.approach,
             iterations: outcome.iterations,
+            coarse_iterations: 0,
             fft_transforms: outcome.fft_transforms,
             residuals: outcome.residuals,
             path,
