@@ -20,8 +20,9 @@ use crate::engine::value::Field;
 use crate::friction::SummitStatistics as GwSummits;
 use crate::nodes::surface_view::{DX, DY, GRID_NX, GRID_NY, M0, M2, M4};
 use crate::surface::spectral::{
-    autocorrelation, hurst_exponent, radial_psd, spectral_moments, texture_direction, AcfBoundary,
-    HurstFitOptions, MomentMethod, Window, ISO_ACF_THRESHOLD,
+    autocorrelation, hurst_exponent_of, periodogram, radial_psd_of, spectral_moments,
+    spectral_moments_of, texture_direction_of, AcfBoundary, HurstFitOptions, MomentMethod, Window,
+    ISO_ACF_THRESHOLD,
 };
 use crate::surface::{amplitude_statistics, find_summits, Boundary, HeightMap, SummitOptions};
 use crate::units::Dimension;
@@ -97,12 +98,16 @@ fn spectral_metrics(
     let periodic = boundary == Boundary::Periodic;
     let window = if periodic { Window::None } else { Window::Hann };
     let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
-    let method = if periodic {
-        MomentMethod::Spectrum
+    // One periodogram serves the moments (periodic maps: unwindowed), the texture direction,
+    // the Hurst fit and the PSD table.
+    let p = periodogram(map, window).map_err(|e| fail("PSD", &e))?;
+    let psd = radial_psd_of(&p, map);
+    let m = if periodic {
+        spectral_moments_of(&p, map)
     } else {
-        MomentMethod::FiniteDifference
-    };
-    let m = spectral_moments(map, method).map_err(|e| fail("spectral moments", &e))?;
+        spectral_moments(map, MomentMethod::FiniteDifference)
+    }
+    .map_err(|e| fail("spectral moments", &e))?;
     for (suffix, p) in [("", m.isotropic), ("_x", m.x), ("_y", m.y)] {
         metrics.push(Field::float(format!("{M0}{suffix}"), p.m0, Dimension::Area));
         metrics.push(num(&format!("{M2}{suffix}"), p.m2));
@@ -138,7 +143,7 @@ fn spectral_metrics(
         metrics.extend(lengths.x.map(|x| len("correlation_length_x", x)));
         metrics.extend(lengths.y.map(|y| len("correlation_length_y", y)));
     }
-    if let Ok(direction) = texture_direction(map, window) {
+    if let Ok(direction) = texture_direction_of(&p, map) {
         metrics.push(Field::float(
             "std",
             direction.std_deg.to_radians(),
@@ -147,7 +152,8 @@ fn spectral_metrics(
     }
     // The fit is reported only where the PSD in the band is self-affine (0 < H ≤ 1 and
     // r² ≥ 0.9); a band inside the roll-off plateau would give a meaningless exponent.
-    if let Ok(fit) = hurst_exponent(
+    if let Ok(fit) = hurst_exponent_of(
+        &psd,
         map,
         HurstFitOptions {
             q_min: None,
@@ -169,7 +175,6 @@ fn spectral_metrics(
     acf_table.push_float("r", Dimension::Length, radial.r);
     acf_table.push_float("acf", Dimension::Dimensionless, radial.acf);
     tables.insert(String::from("acf"), acf_table);
-    let psd = radial_psd(map, window).map_err(|e| fail("PSD", &e))?;
     let mut psd_table = Table::default();
     psd_table.push_float("q_rad_per_m", Dimension::Dimensionless, psd.q);
     psd_table.push_float("c_m4", Dimension::Dimensionless, psd.c);

@@ -1,9 +1,10 @@
 //! Spectral statistics on synthetic surfaces with known targets and on closed-form sinusoids.
 
 use asperity_numerics::surface::spectral::{
-    autocorrelation, hurst_exponent, periodogram, profile_psd, radial_psd, spectral_moments,
-    texture_direction, AcfBoundary, Autocorrelation, Axis, HurstFitOptions, MomentMethod,
-    SpectralError, Window, ISO_ACF_THRESHOLD,
+    autocorrelation, hurst_exponent, hurst_exponent_of, periodogram, profile_psd, radial_psd,
+    radial_psd_of, spectral_moments, spectral_moments_of, texture_direction, texture_direction_of,
+    AcfBoundary, Autocorrelation, Axis, HurstFitOptions, MomentMethod, SpectralError, Window,
+    ISO_ACF_THRESHOLD,
 };
 use asperity_numerics::surface::synthetic::{
     generate_synthetic_surface, model_autocorrelation, Anisotropy, SyntheticSurfaceSpec,
@@ -362,4 +363,37 @@ fn isotropic_moments_of_an_oblique_plane_wave() {
     assert!(relative_error(differences.isotropic.m2, spectrum.isotropic.m2) < 0.02);
     assert!(relative_error(differences.isotropic.m4, spectrum.isotropic.m4) < 0.02);
     assert!(relative_error(differences.y.m4, spectrum.y.m4) < 0.02);
+}
+
+#[test]
+fn statistics_of_one_shared_periodogram_equal_their_own() {
+    // The surface report computes one periodogram and derives the moments, the texture
+    // direction, the radial PSD and the Hurst fit from it: each must be bit-identical to the
+    // statistic computed from the map alone, and moments of a windowed periodogram an error.
+    let map = generate_synthetic_surface(&spec(0.8, 3)).unwrap();
+    let p = periodogram(&map, Window::None).unwrap();
+    assert_eq!(
+        spectral_moments_of(&p, &map).unwrap(),
+        spectral_moments(&map, MomentMethod::Spectrum).unwrap()
+    );
+    assert_eq!(
+        texture_direction_of(&p, &map).unwrap(),
+        texture_direction(&map, Window::None).unwrap()
+    );
+    let psd = radial_psd_of(&p, &map);
+    assert_eq!(psd, radial_psd(&map, Window::None).unwrap());
+    let options = HurstFitOptions {
+        q_min: None,
+        q_max: None,
+        window: Window::None,
+    };
+    assert_eq!(
+        hurst_exponent_of(&psd, &map, options).unwrap(),
+        hurst_exponent(&map, options).unwrap()
+    );
+    let hann = periodogram(&map, Window::Hann).unwrap();
+    assert!(matches!(
+        spectral_moments_of(&hann, &map),
+        Err(SpectralError::WindowedMoments)
+    ));
 }

@@ -18,7 +18,7 @@
 use std::f64::consts::PI;
 
 use super::error::SpectralError;
-use super::psd::{periodogram, Window};
+use super::psd::{periodogram, Periodogram, Window};
 use crate::surface::HeightMap;
 
 /// Half width, in 1° bins, of the moving average applied before locating the peak.
@@ -43,7 +43,14 @@ pub fn texture_direction(
     map: &HeightMap,
     window: Window,
 ) -> Result<TextureDirection, SpectralError> {
-    let p = periodogram(map, window)?;
+    texture_direction_of(&periodogram(map, window)?, map)
+}
+
+/// [`texture_direction`] from a periodogram of `map` (one FFT shared by several statistics).
+pub fn texture_direction_of(
+    p: &Periodogram,
+    map: &HeightMap,
+) -> Result<TextureDirection, SpectralError> {
     let q_max = (PI / map.dx()).min(PI / map.dy());
     let mut aps = vec![0.0; 180];
     for ((j, i), c) in p.c.indexed_iter() {

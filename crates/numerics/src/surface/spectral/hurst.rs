@@ -50,11 +50,20 @@ pub fn hurst_exponent(
     map: &HeightMap,
     options: HurstFitOptions,
 ) -> Result<HurstFit, SpectralError> {
+    hurst_exponent_of(&radial_psd(map, options.window)?, map, options)
+}
+
+/// [`hurst_exponent`] from the radial PSD of `map` (computed with `options.window`; one FFT
+/// shared by several statistics).
+pub fn hurst_exponent_of(
+    psd: &PsdTable,
+    map: &HeightMap,
+    options: HurstFitOptions,
+) -> Result<HurstFit, SpectralError> {
     let q_nyquist = (std::f64::consts::PI / map.dx()).min(std::f64::consts::PI / map.dy());
     let q_min = options.q_min.unwrap_or(q_nyquist / 8.0);
     let q_max = options.q_max.unwrap_or(q_nyquist / 2.0);
-    let psd = radial_psd(map, options.window)?;
-    fit_power_law(&psd, q_min, q_max)
+    fit_power_law(psd, q_min, q_max)
 }
 
 /// Fits `log C = a + s log q` to the rows of `psd` with `q_min ≤ q ≤ q_max` (rad/m).

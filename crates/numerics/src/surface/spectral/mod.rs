@@ -14,8 +14,12 @@ pub use autocorrelation::{
     autocorrelation, AcfBoundary, AcfTexture, Autocorrelation, CorrelationLengths, RadialAcf,
     ISO_ACF_THRESHOLD,
 };
-pub use direction::{texture_direction, TextureDirection};
+pub use direction::{texture_direction, texture_direction_of, TextureDirection};
 pub use error::SpectralError;
-pub use hurst::{fit_power_law, hurst_exponent, HurstFit, HurstFitOptions};
-pub use moments::{spectral_moments, MomentMethod, ProfileMoments, SpectralMoments};
-pub use psd::{periodogram, profile_psd, radial_psd, Axis, Periodogram, PsdTable, Window};
+pub use hurst::{fit_power_law, hurst_exponent, hurst_exponent_of, HurstFit, HurstFitOptions};
+pub use moments::{
+    spectral_moments, spectral_moments_of, MomentMethod, ProfileMoments, SpectralMoments,
+};
+pub use psd::{
+    periodogram, profile_psd, radial_psd, radial_psd_of, Axis, Periodogram, PsdTable, Window,
+};

@@ -28,7 +28,7 @@
 use rayon::prelude::*;
 
 use super::error::{require_complete, SpectralError};
-use super::psd::{periodogram, Window};
+use super::psd::{periodogram, Periodogram, Window};
 use crate::surface::HeightMap;
 
 /// How the moments are computed (see module docs).
@@ -84,7 +84,18 @@ pub fn spectral_moments(
 }
 
 fn from_spectrum(map: &HeightMap) -> Result<SpectralMoments, SpectralError> {
-    let p = periodogram(map, Window::None)?;
+    spectral_moments_of(&periodogram(map, Window::None)?, map)
+}
+
+/// [`spectral_moments`] by [`MomentMethod::Spectrum`] from the unwindowed periodogram of `map`
+/// (one FFT shared by several statistics); a windowed periodogram is an error.
+pub fn spectral_moments_of(
+    p: &Periodogram,
+    map: &HeightMap,
+) -> Result<SpectralMoments, SpectralError> {
+    if p.window != Window::None {
+        return Err(SpectralError::WindowedMoments);
+    }
     let (lx, ly) = map.size();
     let area = lx * ly;
     let mut sums = [0.0f64; 7]; // m0, m2x, m4x, m2y, m4y, Σ|q|²C, Σ|q|⁴C

@@ -52,6 +52,8 @@ pub struct Periodogram {
     pub dqy: f64,
     /// Points along x of the height map (the half grid has `nx/2 + 1` columns).
     pub nx: usize,
+    /// The window the heights were weighted with.
+    pub window: Window,
 }
 
 impl Periodogram {
@@ -95,6 +97,7 @@ pub fn periodogram(map: &HeightMap, window: Window) -> Result<Periodogram, Spect
         dqx: 2.0 * PI / lx,
         dqy: 2.0 * PI / ly,
         nx,
+        window,
     })
 }
 
@@ -126,10 +129,12 @@ pub struct PsdTable {
 /// `k = 1, 2, …`, with `Δq = max(2π/Lx, 2π/Ly)`, up to the smaller Nyquist wavenumber
 /// `min(π/dx, π/dy)` (annuli beyond are incomplete). Empty annuli are skipped.
 pub fn radial_psd(map: &HeightMap, window: Window) -> Result<PsdTable, SpectralError> {
-    Ok(radial_average(&periodogram(map, window)?, map))
+    Ok(radial_psd_of(&periodogram(map, window)?, map))
 }
 
-pub(crate) fn radial_average(p: &Periodogram, map: &HeightMap) -> PsdTable {
+/// [`radial_psd`] of a periodogram already computed from `map` (one FFT shared by several
+/// statistics).
+pub fn radial_psd_of(p: &Periodogram, map: &HeightMap) -> PsdTable {
     let dq = p.dqx.max(p.dqy);
     let q_max = (PI / map.dx()).min(PI / map.dy());
     let bins = (q_max / dq + 0.5).floor() as usize + 1;
