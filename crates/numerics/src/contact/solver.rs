@@ -298,34 +298,59 @@ impl ContactSolver {
         Ok(step)
     }
 
-    /// The start of a step without a warm start: the multilevel start where the grid can be
-    /// coarsened (`SolverOptions::multilevel`), else the rigid-plastic start. A coarse solve that
-    /// fails only costs its time: the fine step then starts rigid-plastic. Returns the CG
-    /// iterations on the coarse grids.
+    /// The start of a step without a warm start: the multilevel start where it applies
+    /// (`SolverOptions::multilevel`, see [`Self::multilevel_start`]), else the rigid-plastic
+    /// start. Returns the CG iterations on the coarse grids (also when they were discarded).
     fn cold_start(&mut self, pressure: f64) -> usize {
-        if let Some(coarse_problem) = self
-            .options
-            .multilevel
-            .then(|| multilevel::coarsened(&self.problem))
-            .flatten()
-        {
-            let options = SolverOptions {
-                tolerance: self.options.tolerance.max(multilevel::COARSE_TOLERANCE),
-                fields: FieldRequest::NONE,
-                ..self.options
-            };
-            let coarse_step = ContactSolver::new(coarse_problem, options)
-                .and_then(|mut coarse| Ok((coarse.solve_on_worker(0, pressure)?, coarse)));
-            if let Ok((step, coarse)) = coarse_step {
+        let (start, coarse_iterations) = if self.options.multilevel {
+            self.multilevel_start(pressure)
+        } else {
+            (None, 0)
+        };
+        match start {
+            Some(coarse) => {
                 let nx = self.problem.gap().nx();
-                multilevel::prolongate(&coarse.workspace.p, &mut self.workspace.p, nx);
+                multilevel::prolongate(&coarse, &mut self.workspace.p, nx);
                 let n = self.workspace.p.len() as f64;
                 self.workspace.rebalance(pressure * n);
-                return step.iterations + step.coarse_iterations;
             }
+            None => self.workspace.start_rigid_plastic(pressure),
         }
-        self.workspace.start_rigid_plastic(pressure);
-        0
+        coarse_iterations
+    }
+
+    /// The pressures of the next coarser grid for the multilevel start (`multilevel.rs`): the
+    /// coarsest grid solved from its rigid-plastic start, each finer one from the prolongated
+    /// pressures of the one below. `None` (with the iterations spent) when the grid cannot be
+    /// coarsened, when a coarse solve fails, or when the coarsest contact is mostly saturated.
+    fn multilevel_start(&self, pressure: f64) -> (Option<Vec<f64>>, usize) {
+        let options = SolverOptions {
+            tolerance: self.options.tolerance.max(multilevel::COARSE_TOLERANCE),
+            fields: FieldRequest::NONE,
+            multilevel: false,
+            ..self.options
+        };
+        let mut iterations = 0;
+        let mut start: Option<Vec<f64>> = None;
+        for level in multilevel::coarse_levels(&self.problem).into_iter().rev() {
+            let nx = level.gap().nx();
+            let Ok(mut solver) = ContactSolver::new(level, options) else {
+                return (None, iterations);
+            };
+            if let Some(coarser) = &start {
+                multilevel::prolongate(coarser, &mut solver.workspace.p, nx);
+                solver.last_nominal = Some(pressure);
+            }
+            let Ok(step) = solver.solve_on_worker(0, pressure) else {
+                return (None, iterations);
+            };
+            iterations += step.iterations;
+            if start.is_none() && step.plastic_area_share > multilevel::MAX_COARSE_PLASTIC_SHARE {
+                return (None, iterations);
+            }
+            start = Some(std::mem::take(&mut solver.workspace.p));
+        }
+        (start, iterations)
     }
 
     fn step_result(&self, pressure: f64, outcome: &CgOutcome, path: SolvePath) -> LoadStep {

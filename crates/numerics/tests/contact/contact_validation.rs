@@ -3,7 +3,7 @@
 use std::f64::consts::PI;
 
 use asperity_numerics::contact::{
-    Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver, FieldRequest,
+    Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver, FieldRequest, LoadStep,
     SolvePath, SolveStrategy, SolverOptions,
 };
 use asperity_numerics::surface::HeightMap;
@@ -347,4 +347,39 @@ fn multilevel_start_converges_to_the_same_contact_in_fewer_fine_iterations() {
         assert!(relative < 1e-3, "{boundary:?}: A/A₀ differs by {relative}");
         assert!((multi.approach - single.approach).abs() < 1e-12);
     }
+}
+
+#[test]
+fn saturated_contacts_keep_the_rigid_plastic_start() {
+    // 512² rough contact with most of the contact area at p_lim: the coarse grid is solved, its
+    // contact found mostly saturated, and the fine grid starts rigid-plastic, so the step is
+    // bit-identical to one solved without the multilevel start.
+    let surface = rough_surface(512, 1e-6, 1e-6, 5, 400);
+    let gap = CompositeGap::against_flat(&surface).unwrap();
+    let material = ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, 1e9).unwrap();
+    let solve = |multilevel: bool| {
+        let options = SolverOptions {
+            multilevel,
+            ..options(1e-6, FieldRequest::NONE)
+        };
+        let problem = ContactProblem::new(gap.clone(), material, Boundary::Periodic);
+        ContactSolver::new(problem, options)
+            .unwrap()
+            .solve(10e6)
+            .unwrap()
+    };
+    let (single, multi) = (solve(false), solve(true));
+    assert!(
+        single.plastic_area_share > 0.5,
+        "{}",
+        single.plastic_area_share
+    );
+    assert!(multi.coarse_iterations > 0);
+    assert_eq!(
+        LoadStep {
+            coarse_iterations: 0,
+            ..multi
+        },
+        single
+    );
 }
