@@ -21,14 +21,15 @@
 #
 # Usage: scripts/race-peers.sh [--grid N] [--repeat R] [--out FILE] [--skip SOLVER]...
 #                              [--tolerance RACE:SOLVER=VALUE]...
-#   --grid N       grid points per side (default 1024: about 10 min on a busy 2-core machine,
-#                  half of it Tamaas KatoSaturated; 512 takes about 1 min)
+#   --grid N       grid points per side (default 1024: about 11 min on a busy 2-core machine,
+#                  5 of them Tamaas KatoSaturated; 512: about 2 min)
 #   --repeat R     timed solves per racer, the median is reported (default 3)
 #   --out FILE     also write the table to FILE
 #   --skip SOLVER  leave out a peer (tamaas-pkr, tamaas-kato, cm-ccg, cm-plastic)
 #   --tolerance    race at this tolerance instead of searching one, e.g. capped:tamaas-kato=1e-5
 #                  (RACE is elastic or capped, SOLVER asperity or a peer)
-# Env: PYTHON (interpreter for the venv, default python3), RACE_VENV (default target/race-venv).
+# Env: PYTHON (interpreter for the venv, default python3; the pinned wheels need Python 3.11 to
+#      3.13 on x86-64 Linux), RACE_VENV (default target/race-venv).
 set -euo pipefail
 
 caller=$PWD
@@ -85,8 +86,8 @@ else
     for pin in "${PINS[@]}"; do
         log "pip install $pin"
         "$VENV/bin/python" -m pip install --quiet -c "$VENV/race-constraints.txt" "$pin" ||
-            die "pip could not install $pin into $VENV (see pip's message above). A missing wheel \
-for $("$VENV/bin/python" --version 2>&1) is the usual cause: try another interpreter, e.g. \
+            die "pip could not install $pin into $VENV (see pip's message above). If pip found \
+no wheel for $("$VENV/bin/python" --version 2>&1), use Python 3.11 to 3.13, e.g. \
 PYTHON=python3.11 RACE_VENV=target/race-venv-311 $0"
     done
     "$VENV/bin/python" -c "import tamaas, ContactMechanics, SurfaceTopography" ||
