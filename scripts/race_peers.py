@@ -64,9 +64,9 @@ NOTES = """\
 `RAYON_NUM_THREADS`, `OMP_NUM_THREADS`, `OPENBLAS_NUM_THREADS`, `MKL_NUM_THREADS` = 1), each \
 solver in its own process; imports, reading the surface and building the solver objects are \
 outside the timer.
-* asperity: `ContactSolver::solve` after `reset()` (`ContactSolver::new`, which plans the FFTs \
-and builds the kernel, is outside); tolerance: `SolverOptions::tolerance`, the bound on every \
-relative residual (gap / Sq, force balance).
+* asperity: `ContactSolver::solve` of a new `ContactSolver` (`ContactSolver::new`, which plans \
+the FFTs and builds the kernel, is outside); tolerance: `SolverOptions::tolerance`, the bound \
+on every relative residual (gap / Sq, force balance).
 * Tamaas (PyPI wheel, serial `cpp` backend): `solve(p)` of a solver built on a fresh `Model`; \
 tolerance: the solver's own error norm; inputs in µm and GPa.
 * ContactMechanics: `minimize_proxy(external_force=...)` of a system built on a fresh \
@@ -74,7 +74,8 @@ substrate and topography (the package's Python CCG loop and its FFTs); tolerance
 `pentol = ε Sq`, `forcetol = ε p̄ A_pixel`, `thermotol = ε`.
 * Matched accuracy: A/A₀ is the share of grid points with p > 0. The reference is asperity at \
 tolerance {reference}; each racer runs at the loosest of {ladder} whose A/A₀ is within \
-{match:g} % of it (the column before shows the next looser one); the script fails otherwise.
+{match:g} % of it (the column before shows the next looser one, empty if there is none); \
+the script fails otherwise.
 """
 
 
