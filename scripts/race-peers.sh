@@ -21,8 +21,8 @@
 #
 # Usage: scripts/race-peers.sh [--grid N] [--repeat R] [--out FILE] [--skip SOLVER]...
 #                              [--tolerance RACE:SOLVER=VALUE]...
-#   --grid N       grid points per side (default 1024: about 11 min on a busy 2-core machine,
-#                  5 of them Tamaas KatoSaturated; 512: about 2 min)
+#   --grid N       grid points per side (default 1024: 11 to 14 min on a busy 2-core machine,
+#                  about 5 of them Tamaas KatoSaturated; 512: about 2 min)
 #   --repeat R     timed solves per racer, the median is reported (default 3)
 #   --out FILE     also write the table to FILE
 #   --skip SOLVER  leave out a peer (tamaas-pkr, tamaas-kato, cm-ccg, cm-plastic)
@@ -116,7 +116,7 @@ fi
 cd "$caller"
 "${pin[@]}" "$VENV/bin/python" "$root/scripts/race_peers.py" \
     --asperity "$asperity" \
-    --asperity-version "$(git -C "$root" describe --always --dirty)" \
+    --asperity-version "$(git -C "$root" describe --always --dirty 2>/dev/null || echo unknown)" \
     --rustc "$(rustc --version)" \
     --workdir "$root/target/race" \
     "$@"
