@@ -12,6 +12,9 @@
 //! * `--tolerance`: `SolverOptions::tolerance` (default: the solver's default);
 //! * `--repeat`: number of timed solves, each by a new solver (default 1).
 //!
+//! `iterations` are the CG iterations on the grid, `coarse_iterations` those of the multilevel
+//! start on the coarser grids (their time is in `solve_s`).
+//!
 //! Each repetition builds a fresh `ContactSolver` (timed in `setup_s`: FFT plans, influence
 //! kernel, work arrays) and solves once (timed in `solve_s`: `ContactSolver::solve` from its
 //! cold start to the converged load step, area fraction included). Thread count: rayon's
@@ -165,10 +168,11 @@ fn run() -> Result<String, String> {
             .join(", ")
     };
     Ok(format!(
-        "{{\"area_fraction\": {}, \"iterations\": {}, \"residual\": {:e}, \
-         \"setup_s\": [{}], \"solve_s\": [{}]}}",
+        "{{\"area_fraction\": {}, \"iterations\": {}, \"coarse_iterations\": {}, \
+         \"residual\": {:e}, \"setup_s\": [{}], \"solve_s\": [{}]}}",
         step.area_fraction,
         step.iterations,
+        step.coarse_iterations,
         step.residuals.max(),
         list(&setups),
         list(&solves)
