@@ -158,6 +158,14 @@ fn outputs_limit_what_is_computed() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Flips one byte in the middle of a file.
+fn flip_a_byte(path: &Path) {
+    let mut bytes = std::fs::read(path).unwrap();
+    let mid = bytes.len() / 2;
+    bytes[mid] ^= 0x40;
+    std::fs::write(path, bytes).unwrap();
+}
+
 #[test]
 fn corrupted_payload_is_detected_discarded_and_recomputed() {
     let dir = tempdir("corrupt");
@@ -165,17 +173,17 @@ fn corrupted_payload_is_detected_discarded_and_recomputed() {
     let text = study_text("0.5 um", "[1]");
     let first = run(&dir, &text, &cache_dir, "out1");
     assert_eq!(first.report.computed, 2);
-    // Flip one byte in the middle of one heights payload.
+    // A damaged heights payload: a read of the arrays finds it; a read of the metrics and
+    // tables does not read the arrays.
     let cache = Cache::open(&cache_dir).unwrap();
     let node = &first.plan.nodes[0];
-    let payload = cache
-        .entry_dir("surface", &node.key)
-        .join("heights.npy.zst");
-    let mut bytes = std::fs::read(&payload).unwrap();
-    let mid = bytes.len() / 2;
-    bytes[mid] ^= 0x40;
-    std::fs::write(&payload, bytes).unwrap();
+    let entry = cache.entry_dir("surface", &node.key);
+    flip_a_byte(&entry.join("heights.npy.zst"));
     assert!(cache.load("surface", &node.key, true).is_err());
+    assert!(cache.load("surface", &node.key, false).unwrap().is_some());
+    // A damaged table is found by every read, so the rerun replaces the entry.
+    flip_a_byte(&entry.join("tables.json"));
+    assert!(cache.load("surface", &node.key, false).is_err());
 
     let second = run(&dir, &text, &cache_dir, "out2");
     assert_eq!(second.report.discarded, 1);
@@ -192,6 +200,50 @@ fn corrupted_payload_is_detected_discarded_and_recomputed() {
     assert!(cache.load("surface", &node.key, false).is_err());
     let third = run(&dir, &text, &cache_dir, "out3");
     assert_eq!(third.report.discarded, 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A surface whose contact is cached is read without its heights; when the contact's entry turns
+/// out corrupt, the heights are read for its recomputation, and damaged ones are recomputed too.
+#[test]
+fn damaged_arrays_read_for_a_recomputed_dependant_are_recomputed() {
+    let dir = tempdir("corrupt-upstream");
+    let cache_dir = dir.join("cache");
+    let text = r#"
+study: chain
+nodes:
+  s:
+    surface:
+      synthetic: {grid: [32, 32], size: [100 um, 100 um], sq: 0.1 um, hurst: 0.8,
+                  correlation_length: 20 um, seed: 7}
+  c:
+    contact: {lower: s, lower_material: s235jr, nominal_pressures: [20 MPa]}
+"#;
+    let first = run(&dir, text, &cache_dir, "out1");
+    assert_eq!(first.report.computed, 2);
+    let cache = Cache::open(&cache_dir).unwrap();
+    let [surface, contact] = [0, 1].map(|i| &first.plan.nodes[i]);
+    flip_a_byte(
+        &cache
+            .entry_dir("surface", &surface.key)
+            .join("heights.npy.zst"),
+    );
+    flip_a_byte(
+        &cache
+            .entry_dir("contact", &contact.key)
+            .join("manifest.json"),
+    );
+
+    let second = run(&dir, text, &cache_dir, "out2");
+    assert!(second.report.all_ok(), "{:?}", second.report.outcomes);
+    assert_eq!(second.report.discarded, 2);
+    for (a, b) in first.files.iter().zip(&second.files) {
+        assert!(same_cells(a, b), "{} differs", a.display());
+    }
+    for node in [surface, contact] {
+        let kind = node.task.kind();
+        assert!(cache.load(kind, &node.key, true).unwrap().is_some());
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

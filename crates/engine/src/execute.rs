@@ -11,6 +11,8 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
+use rayon::prelude::*;
+
 use crate::artifact::{Artifact, Table};
 use crate::cache::{Cache, CacheError, CachedEntry, Manifest};
 use crate::node::{ArrayStorage, NodeError};
@@ -141,6 +143,7 @@ pub fn execute_nodes(
         is_needed[i] = true;
     }
     let in_cache: Vec<bool> = (0..n)
+        .into_par_iter()
         .map(|i| is_needed[i] && cache.contains(plan.nodes[i].task.kind(), &plan.nodes[i].key))
         .collect();
     // An instance's arrays are loaded only when a dependant will be computed.
@@ -264,9 +267,9 @@ impl<'a> RunContext<'a> {
         let Some(i) = self.take_ready() else {
             return;
         };
-        let (outcome, artifact, discarded) = self.run_node(i, self.wants_payload[i]);
+        let (outcome, artifact) = self.run_node(i, self.wants_payload[i]);
         self.progress.finished(&self.plan.nodes[i], &outcome.status);
-        self.finish(i, outcome, artifact, discarded);
+        self.finish(i, outcome, artifact);
         self.spawn_pulls(scope);
     }
 
@@ -282,13 +285,7 @@ impl<'a> RunContext<'a> {
 
     /// Records the result of instance `i`, releases the artifacts no dependant needs any more and
     /// queues the dependants that became ready.
-    fn finish(
-        &self,
-        i: usize,
-        outcome: NodeOutcome,
-        artifact: Option<Arc<Artifact>>,
-        discarded: bool,
-    ) {
+    fn finish(&self, i: usize, outcome: NodeOutcome, artifact: Option<Arc<Artifact>>) {
         let mut shared = self.lock();
         shared.running -= 1;
         let report = &mut shared.report;
@@ -298,7 +295,6 @@ impl<'a> RunContext<'a> {
             NodeStatus::Failed(_) => report.failed += 1,
             NodeStatus::Skipped(_) => report.skipped += 1,
         }
-        report.discarded += usize::from(discarded);
         if shared.dependants[i] > 0 {
             shared.artifacts[i] = artifact;
         }
@@ -320,44 +316,51 @@ impl<'a> RunContext<'a> {
     fn lock(&self) -> std::sync::MutexGuard<'_, Shared> {
         self.shared.lock().unwrap_or_else(|p| p.into_inner())
     }
-    /// Loads or computes instance `i`. Returns the outcome, the artifact (for dependants) and
-    /// whether a corrupt cache entry was discarded.
-    fn run_node(&self, i: usize, with_payload: bool) -> (NodeOutcome, Option<Arc<Artifact>>, bool) {
+
+    /// Loads or computes instance `i`. Returns the outcome and the artifact (for dependants).
+    fn run_node(&self, i: usize, with_payload: bool) -> (NodeOutcome, Option<Arc<Artifact>>) {
         let node = &self.plan.nodes[i];
-        let kind = node.task.kind();
         for (role, u) in &node.upstream {
             let upstream_ok = self.lock().outcomes[*u]
                 .as_ref()
                 .map(|o| matches!(o.status, NodeStatus::Computed | NodeStatus::Cached));
             if upstream_ok == Some(false) {
                 let names = self.plan.nodes[*u].names.join(", ");
-                return (
-                    failed_outcome(NodeStatus::Skipped(format!(
-                        "upstream {role} node '{names}' did not compute"
-                    ))),
-                    None,
-                    false,
-                );
+                let status =
+                    NodeStatus::Skipped(format!("upstream {role} node '{names}' did not compute"));
+                return (failed_outcome(status), None);
             }
         }
-        let mut discarded = false;
-        match self.cache.load(kind, &node.key, with_payload) {
-            Ok(Some(entry))
+        match self.load(node, with_payload) {
+            Some(entry)
                 if with_payload && node.task.array_storage() == ArrayStorage::Regenerate =>
             {
-                return self.regenerate(node, entry);
+                self.regenerate(node, entry)
             }
-            Ok(Some(entry)) => {
+            Some(CachedEntry { manifest, artifact }) => {
+                let (tables, artifact) = if with_payload {
+                    (artifact.tables.clone(), Some(Arc::new(artifact)))
+                } else {
+                    (artifact.tables, None)
+                };
                 let outcome = NodeOutcome {
                     status: NodeStatus::Cached,
-                    metrics: entry.manifest.metrics.clone(),
-                    tables: entry.artifact.tables.clone(),
-                    compute_seconds: entry.manifest.compute_seconds,
+                    metrics: manifest.metrics,
+                    tables,
+                    compute_seconds: manifest.compute_seconds,
                 };
-                let artifact = with_payload.then(|| Arc::new(entry.artifact));
-                return (outcome, artifact, false);
+                (outcome, artifact)
             }
-            Ok(None) => {}
+            None => self.compute(node),
+        }
+    }
+
+    /// The verified cache entry of `node`, or `None` to compute it: not cached, unreadable (a
+    /// warning), or corrupt (a warning; the entry is discarded and counted).
+    fn load(&self, node: &PlannedNode, with_arrays: bool) -> Option<CachedEntry> {
+        let kind = node.task.kind();
+        match self.cache.load(kind, &node.key, with_arrays) {
+            Ok(entry) => entry,
             Err(CacheError::Corrupt { path, reason }) => {
                 self.progress.warn(&format!(
                     "discarding corrupt cache entry {} ({reason}); recomputing",
@@ -366,14 +369,15 @@ impl<'a> RunContext<'a> {
                 if let Err(e) = self.cache.discard(kind, &node.key) {
                     self.progress.warn(&e.to_string());
                 }
-                discarded = true;
+                self.lock().report.discarded += 1;
+                None
             }
-            Err(e) => self
-                .progress
-                .warn(&format!("cache read failed: {e}; recomputing")),
+            Err(e) => {
+                self.progress
+                    .warn(&format!("cache read failed: {e}; recomputing"));
+                None
+            }
         }
-        let (outcome, artifact) = self.compute(node);
-        (outcome, artifact, discarded)
     }
 
     /// Computes a node from its upstream artifacts (loading any that are not in memory), under
@@ -384,7 +388,8 @@ impl<'a> RunContext<'a> {
             let upstream = &self.plan.nodes[*u];
             // Present when loaded with arrays or computed in this run; otherwise (it was loaded
             // metrics-only because its dependants were cached, then one turned out corrupt) the
-            // upstream entry is read again with its arrays, or recomputed if they are not stored.
+            // upstream entry is read again with its arrays, or recomputed if they are not stored
+            // or that read finds the entry gone or corrupt.
             let in_memory = self.lock().artifacts[*u].clone();
             let artifact = match in_memory {
                 Some(a) => a,
@@ -400,16 +405,18 @@ impl<'a> RunContext<'a> {
                         }
                     }
                 }
-                None => match self.cache.load(upstream.task.kind(), &upstream.key, true) {
-                    Ok(Some(entry)) => Arc::new(entry.artifact),
-                    other => {
-                        let why = match other {
-                            Err(e) => e.to_string(),
-                            _ => String::from("it is no longer in the cache"),
-                        };
-                        let message = format!("cannot load upstream {role} node: {why}");
-                        return (Err(failed_outcome(NodeStatus::Failed(message))), 0.0);
-                    }
+                None => match self.load(upstream, true) {
+                    Some(entry) => Arc::new(entry.artifact),
+                    None => match self.compute(upstream) {
+                        (_, Some(artifact)) => artifact,
+                        (failed, None) => {
+                            let message = format!(
+                                "cannot load or recompute upstream {role} node: {}",
+                                failed.status.message()
+                            );
+                            return (Err(failed_outcome(NodeStatus::Failed(message))), 0.0);
+                        }
+                    },
                 },
             };
             inputs.push(artifact);
@@ -494,13 +501,13 @@ impl<'a> RunContext<'a> {
     }
 
     /// The arrays of a cached [`ArrayStorage::Regenerate`] entry, recomputed. The recomputed
-    /// metrics must equal the cached ones; if they do not, the entry is replaced and the node
-    /// counts as computed (the third value says an entry was discarded).
+    /// metrics must equal the cached ones; if they do not, the entry is replaced (and counted
+    /// as discarded) and the node counts as computed.
     fn regenerate(
         &self,
         node: &PlannedNode,
         entry: CachedEntry,
-    ) -> (NodeOutcome, Option<Arc<Artifact>>, bool) {
+    ) -> (NodeOutcome, Option<Arc<Artifact>>) {
         match self.run_compute(node) {
             (Ok(artifact), _) if artifact.metrics == entry.manifest.metrics => {
                 let outcome = NodeOutcome {
@@ -509,7 +516,7 @@ impl<'a> RunContext<'a> {
                     tables: entry.artifact.tables,
                     compute_seconds: entry.manifest.compute_seconds,
                 };
-                (outcome, Some(Arc::new(artifact)), false)
+                (outcome, Some(Arc::new(artifact)))
             }
             (Ok(artifact), seconds) => {
                 self.progress.warn(&format!(
@@ -522,10 +529,10 @@ impl<'a> RunContext<'a> {
                 if let Err(e) = self.cache.discard(node.task.kind(), &node.key) {
                     self.progress.warn(&e.to_string());
                 }
-                let (outcome, artifact) = self.store_computed(node, artifact, seconds);
-                (outcome, artifact, true)
+                self.lock().report.discarded += 1;
+                self.store_computed(node, artifact, seconds)
             }
-            (Err(failed), _) => (failed, None, false),
+            (Err(failed), _) => (failed, None),
         }
     }
 }

@@ -6,7 +6,9 @@
 //! parameters the node does not consume. Every item is length-prefixed so encodings are
 //! unambiguous.
 
+use std::collections::HashMap;
 use std::fmt;
+use std::hash::{BuildHasherDefault, Hash, Hasher};
 
 use crate::value::{Field, Value};
 
@@ -14,13 +16,51 @@ use crate::value::{Field, Value};
 pub const KEY_SCHEMA_VERSION: u32 = 1;
 
 /// The content key of a node instance.
-#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub struct NodeKey(pub [u8; 32]);
+
+/// A key is a blake3 digest, uniformly distributed: its first eight bytes hash it.
+impl Hash for NodeKey {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        let mut first = [0u8; 8];
+        first.copy_from_slice(&self.0[..8]);
+        state.write_u64(u64::from_le_bytes(first));
+    }
+}
+
+/// Hashes a [`NodeKey`] by taking its first eight bytes as they are, for maps keyed by node keys.
+#[derive(Default)]
+pub struct KeyHasher(u64);
+
+impl Hasher for KeyHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = self.0.rotate_left(8) ^ u64::from(b);
+        }
+    }
+
+    fn write_u64(&mut self, n: u64) {
+        self.0 = n;
+    }
+}
+
+/// A map keyed by node keys.
+pub type KeyMap<V> = HashMap<NodeKey, V, BuildHasherDefault<KeyHasher>>;
 
 impl NodeKey {
     /// Lower-case hex, 64 characters.
     pub fn to_hex(&self) -> String {
-        self.0.iter().map(|b| format!("{b:02x}")).collect()
+        const DIGITS: &[u8; 16] = b"0123456789abcdef";
+        let mut hex = String::with_capacity(64);
+        for b in self.0 {
+            hex.push(char::from(DIGITS[usize::from(b >> 4)]));
+            hex.push(char::from(DIGITS[usize::from(b & 0xf)]));
+        }
+        hex
     }
 
     /// Parses 64 hex characters.
@@ -53,58 +93,72 @@ impl fmt::Display for NodeKey {
     }
 }
 
-/// Computes a node key.
+/// Computes a node key: the blake3 hash of [`key_encoding`].
 pub fn node_key(
     kind: &str,
     version: u32,
     params: &[Field],
     upstream: &[(&str, NodeKey)],
 ) -> NodeKey {
-    let mut h = blake3::Hasher::new();
-    h.update(b"asperity-node-key");
-    h.update(&KEY_SCHEMA_VERSION.to_le_bytes());
-    put_str(&mut h, kind);
-    h.update(&version.to_le_bytes());
+    NodeKey(*blake3::hash(&key_encoding(kind, version, params, upstream)).as_bytes())
+}
+
+/// The canonical encoding a node key hashes, built in one buffer.
+fn key_encoding(
+    kind: &str,
+    version: u32,
+    params: &[Field],
+    upstream: &[(&str, NodeKey)],
+) -> Vec<u8> {
+    let mut out = Vec::with_capacity(256 + 48 * params.len() + 64 * upstream.len());
+    out.extend_from_slice(b"asperity-node-key");
+    out.extend_from_slice(&KEY_SCHEMA_VERSION.to_le_bytes());
+    put_str(&mut out, kind);
+    out.extend_from_slice(&version.to_le_bytes());
     let mut sorted: Vec<&Field> = params.iter().collect();
     sorted.sort_by(|a, b| a.name.cmp(&b.name));
-    h.update(&(sorted.len() as u64).to_le_bytes());
+    out.extend_from_slice(&(sorted.len() as u64).to_le_bytes());
     for field in sorted {
-        put_str(&mut h, &field.name);
-        put_str(&mut h, field.dimension.name());
-        match &field.value {
-            Value::Float(x) => {
-                h.update(b"f");
-                // -0.0 and 0.0 are the same physical value: one key.
-                let x = if *x == 0.0 { 0.0f64 } else { *x };
-                h.update(&x.to_bits().to_le_bytes());
-            }
-            Value::Int(i) => {
-                h.update(b"i");
-                h.update(&i.to_le_bytes());
-            }
-            Value::Bool(b) => {
-                h.update(b"b");
-                h.update(&[u8::from(*b)]);
-            }
-            Value::Text(s) => {
-                h.update(b"s");
-                put_str(&mut h, s);
-            }
-        }
+        put_str(&mut out, &field.name);
+        put_str(&mut out, field.dimension.name());
+        put_value(&mut out, &field.value);
     }
     let mut roles: Vec<&(&str, NodeKey)> = upstream.iter().collect();
     roles.sort_by(|a, b| a.0.cmp(b.0));
-    h.update(&(roles.len() as u64).to_le_bytes());
+    out.extend_from_slice(&(roles.len() as u64).to_le_bytes());
     for (role, key) in roles {
-        put_str(&mut h, role);
-        h.update(&key.0);
+        put_str(&mut out, role);
+        out.extend_from_slice(&key.0);
     }
-    NodeKey(*h.finalize().as_bytes())
+    out
 }
 
-fn put_str(h: &mut blake3::Hasher, s: &str) {
-    h.update(&(s.len() as u64).to_le_bytes());
-    h.update(s.as_bytes());
+fn put_value(out: &mut Vec<u8>, value: &Value) {
+    match value {
+        Value::Float(x) => {
+            out.push(b'f');
+            // -0.0 and 0.0 are the same physical value: one key.
+            let x = if *x == 0.0 { 0.0f64 } else { *x };
+            out.extend_from_slice(&x.to_bits().to_le_bytes());
+        }
+        Value::Int(i) => {
+            out.push(b'i');
+            out.extend_from_slice(&i.to_le_bytes());
+        }
+        Value::Bool(b) => {
+            out.push(b'b');
+            out.push(u8::from(*b));
+        }
+        Value::Text(s) => {
+            out.push(b's');
+            put_str(out, s);
+        }
+    }
+}
+
+fn put_str(out: &mut Vec<u8>, s: &str) {
+    out.extend_from_slice(&(s.len() as u64).to_le_bytes());
+    out.extend_from_slice(s.as_bytes());
 }
 
 #[cfg(test)]
@@ -144,6 +198,18 @@ mod tests {
             base,
             node_key("k", 1, &[Field::float("sq", 1e-6, Dimension::Length)], &[])
         );
+    }
+
+    #[test]
+    fn hex_is_lower_case_and_byte_ordered() {
+        let mut bytes = [0u8; 32];
+        bytes[0] = 0x0f;
+        bytes[1] = 0xa0;
+        bytes[31] = 0xff;
+        let hex = NodeKey(bytes).to_hex();
+        assert_eq!(&hex[..4], "0fa0");
+        assert_eq!(&hex[60..], "00ff");
+        assert_eq!(hex.len(), 64);
     }
 
     #[test]

@@ -3,15 +3,24 @@
 //! Each named node is instantiated under each scenario's parameter values, upstream first. Two
 //! instances with the same key (same kind, version, resolved parameters and upstream keys) are
 //! one node shared by every scenario that needs it, whatever their names.
+//!
+//! Scenarios are resolved in parallel, each with its own upstream tasks (instances with one key
+//! are interchangeable: the key is exactly what determines a result), and then merged in scenario
+//! order, so the instances, their order and the first error found are those of resolving the
+//! scenarios one after the other, whatever the thread count.
 
 use std::cell::RefCell;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 use std::fmt::Write as _;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
-use crate::hash::{node_key, NodeKey};
+use rayon::prelude::*;
+
+use crate::hash::{node_key, KeyMap, NodeKey};
 use crate::node::{NodeSpec, NodeTask};
+use crate::resolve::FileHashes;
 use crate::study::{ResolveContext, Scenarios, Study, StudyError};
+use crate::value::ParamValue;
 
 /// One unique node instance.
 #[derive(Debug, Clone)]
@@ -38,6 +47,20 @@ pub struct Plan {
     pub unused_parameters: Vec<String>,
 }
 
+/// Scenarios resolved by one parallel task before they are merged: per scenario, the task and
+/// key of each node in topological order, and which parameters the scenarios used.
+/// The instances of one scenario with their keys, upstream first.
+type KeyedInstances = Vec<(Arc<dyn NodeTask>, NodeKey)>;
+
+type Resolved = Result<(Vec<KeyedInstances>, Vec<bool>), StudyError>;
+
+/// Scenarios resolved while the block before them is merged (bounds the tasks held before
+/// deduplication).
+const BLOCK: usize = 1 << 12;
+
+/// Scenarios per parallel task.
+const CHUNK: usize = 128;
+
 impl Plan {
     /// Builds the plan of a study.
     pub fn build<N: NodeSpec>(study: &Study<N>) -> Result<Self, StudyError> {
@@ -45,89 +68,30 @@ impl Plan {
             study.error(e.location, format!("parameters.{}", e.parameter), e.message)
         })?;
         let node_names: Vec<String> = study.file.nodes.keys().cloned().collect();
-        let order: Vec<usize> = study
-            .order
-            .iter()
-            .filter_map(|n| node_names.iter().position(|m| m == n))
-            .collect();
-        let used = RefCell::new(vec![false; scenarios.names.len()]);
-        let file_hashes = RefCell::new(HashMap::new());
-        let mut nodes: Vec<PlannedNode> = Vec::new();
-        let mut by_key: HashMap<NodeKey, usize> = HashMap::new();
-        let mut scenario_nodes = Vec::with_capacity(scenarios.rows.len());
-        for row in &scenarios.rows {
-            let mut instance_of = vec![usize::MAX; node_names.len()];
-            for &n in &order {
-                let name = &node_names[n];
-                let spec = &study.file.nodes[n];
-                let upstream_refs = spec.value.upstream();
-                let mut upstream = Vec::with_capacity(upstream_refs.len());
-                for r in &upstream_refs {
-                    let u = node_names
-                        .iter()
-                        .position(|m| *m == r.node.value)
-                        .map(|i| instance_of[i])
-                        .filter(|&i| i != usize::MAX)
-                        .ok_or_else(|| {
-                            study.error(
-                                r.node.location,
-                                format!("nodes.{name}"),
-                                format!("upstream node '{}' is not planned", r.node.value),
-                            )
-                        })?;
-                    upstream.push((r.role, u));
-                }
-                let upstream_tasks: Vec<Arc<dyn NodeTask>> = upstream
-                    .iter()
-                    .map(|(_, u)| nodes[*u].task.clone())
-                    .collect();
-                let ctx = ResolveContext {
-                    names: &scenarios.names,
-                    values: row,
-                    upstream: &upstream_tasks,
-                    study_dir: study.dir(),
-                    used: &used,
-                    file_hashes: &file_hashes,
-                };
-                let task = spec.value.instantiate(&ctx).map_err(|e| {
-                    study.error(
-                        e.location,
-                        format!("nodes.{name}.{}.{}", spec.value.kind(), e.field),
-                        e.message,
-                    )
-                })?;
-                let upstream_keys: Vec<(&str, NodeKey)> =
-                    upstream.iter().map(|(r, u)| (*r, nodes[*u].key)).collect();
-                let key = node_key(task.kind(), task.version(), &task.params(), &upstream_keys);
-                let index = *by_key.entry(key).or_insert_with(|| {
-                    nodes.push(PlannedNode {
-                        key,
-                        task,
-                        names: Vec::new(),
-                        upstream,
-                    });
-                    nodes.len() - 1
-                });
-                if !nodes[index].names.contains(name) {
-                    nodes[index].names.push(name.clone());
-                }
-                instance_of[n] = index;
-            }
-            scenario_nodes.push(instance_of);
+        let resolver = Resolver::new(study, &scenarios.names, &node_names)?;
+        let mut merge = Merge::new(scenarios.rows.len(), scenarios.names.len());
+        let mut pending: Vec<Resolved> = Vec::new();
+        for block in scenarios.rows.chunks(BLOCK) {
+            let (resolved, merged) = rayon::join(
+                || resolver.resolve_block(block),
+                || merge.add_block(&resolver, std::mem::take(&mut pending)),
+            );
+            merged?;
+            pending = resolved;
         }
-        let used = used.into_inner();
+        merge.add_block(&resolver, pending)?;
         let unused_parameters = scenarios
             .names
             .iter()
-            .zip(&used)
+            .zip(&merge.used)
             .filter(|(_, u)| !**u)
             .map(|(n, _)| n.clone())
             .collect();
         Ok(Self {
             scenarios,
             node_names,
-            nodes,
-            scenario_nodes,
+            nodes: merge.nodes,
+            scenario_nodes: merge.scenario_nodes,
             unused_parameters,
         })
     }
@@ -202,5 +166,173 @@ impl Plan {
             }
         }
         out
+    }
+}
+
+/// What resolving a scenario needs from the study: the node specs in topological order and the
+/// upstream links between them.
+struct Resolver<'a, N> {
+    study: &'a Study<N>,
+    parameter_names: &'a [String],
+    /// Study node names in file order.
+    node_names: &'a [String],
+    /// File index of each node, in topological order.
+    order: Vec<usize>,
+    /// `links[p]`: `(role, position in order)` of each upstream node of the node at position `p`.
+    links: Vec<Vec<(&'static str, usize)>>,
+    file_hashes: FileHashes,
+}
+
+impl<'a, N: NodeSpec> Resolver<'a, N> {
+    fn new(
+        study: &'a Study<N>,
+        parameter_names: &'a [String],
+        node_names: &'a [String],
+    ) -> Result<Self, StudyError> {
+        let order: Vec<usize> = study
+            .order
+            .iter()
+            .filter_map(|n| node_names.iter().position(|m| m == n))
+            .collect();
+        let mut links = Vec::with_capacity(order.len());
+        for (p, &n) in order.iter().enumerate() {
+            let mut upstream = Vec::new();
+            for r in study.file.nodes[n].value.upstream() {
+                let position = order[..p]
+                    .iter()
+                    .position(|&m| node_names[m] == r.node.value)
+                    .ok_or_else(|| {
+                        study.error(
+                            r.node.location,
+                            format!("nodes.{}", node_names[n]),
+                            format!("upstream node '{}' is not planned", r.node.value),
+                        )
+                    })?;
+                upstream.push((r.role, position));
+            }
+            links.push(upstream);
+        }
+        Ok(Self {
+            study,
+            parameter_names,
+            node_names,
+            order,
+            links,
+            file_hashes: Mutex::default(),
+        })
+    }
+
+    /// Resolves a block of scenarios in parallel, in chunks of consecutive scenarios.
+    fn resolve_block(&self, block: &[Vec<ParamValue>]) -> Vec<Resolved> {
+        block
+            .par_chunks(CHUNK)
+            .map(|rows| {
+                let used = RefCell::new(vec![false; self.parameter_names.len()]);
+                let resolved = rows
+                    .iter()
+                    .map(|row| self.resolve_scenario(row, &used))
+                    .collect::<Result<_, _>>()?;
+                Ok((resolved, used.into_inner()))
+            })
+            .collect()
+    }
+
+    /// Instantiates and keys every node of one scenario, upstream first.
+    fn resolve_scenario(
+        &self,
+        row: &[ParamValue],
+        used: &RefCell<Vec<bool>>,
+    ) -> Result<KeyedInstances, StudyError> {
+        let mut own: KeyedInstances = Vec::with_capacity(self.order.len());
+        for (&n, links) in self.order.iter().zip(&self.links) {
+            let spec = &self.study.file.nodes[n].value;
+            let upstream: Vec<Arc<dyn NodeTask>> =
+                links.iter().map(|&(_, u)| own[u].0.clone()).collect();
+            let ctx = ResolveContext {
+                names: self.parameter_names,
+                values: row,
+                upstream: &upstream,
+                study_dir: self.study.dir(),
+                used,
+                file_hashes: &self.file_hashes,
+            };
+            let task = spec.instantiate(&ctx).map_err(|e| {
+                self.study.error(
+                    e.location,
+                    format!("nodes.{}.{}.{}", self.node_names[n], spec.kind(), e.field),
+                    e.message,
+                )
+            })?;
+            let upstream_keys: Vec<(&str, NodeKey)> =
+                links.iter().map(|&(role, u)| (role, own[u].1)).collect();
+            let key = node_key(task.kind(), task.version(), &task.params(), &upstream_keys);
+            own.push((task, key));
+        }
+        Ok(own)
+    }
+}
+
+/// The instances found so far, deduplicated by key in scenario order.
+#[derive(Default)]
+struct Merge {
+    nodes: Vec<PlannedNode>,
+    by_key: KeyMap<usize>,
+    scenario_nodes: Vec<Vec<usize>>,
+    /// Which parameters the scenarios merged so far used.
+    used: Vec<bool>,
+}
+
+impl Merge {
+    fn new(scenarios: usize, parameters: usize) -> Self {
+        Self {
+            scenario_nodes: Vec::with_capacity(scenarios),
+            used: vec![false; parameters],
+            ..Self::default()
+        }
+    }
+
+    /// Adds the chunks of a resolved block in order; the first error found is the first of the
+    /// block's scenarios.
+    fn add_block<N>(
+        &mut self,
+        r: &Resolver<'_, N>,
+        block: Vec<Resolved>,
+    ) -> Result<(), StudyError> {
+        for chunk in block {
+            let (scenarios, used) = chunk?;
+            self.used.iter_mut().zip(used).for_each(|(u, c)| *u |= c);
+            self.nodes.reserve(scenarios.len() * r.order.len());
+            self.by_key.reserve(scenarios.len() * r.order.len());
+            scenarios.into_iter().for_each(|s| self.add(r, s));
+        }
+        Ok(())
+    }
+
+    /// Adds one resolved scenario: each node becomes a new instance or joins the one with its key.
+    fn add<N>(&mut self, r: &Resolver<'_, N>, scenario: KeyedInstances) {
+        let mut instance_at = Vec::with_capacity(scenario.len());
+        let mut instance_of = vec![usize::MAX; r.node_names.len()];
+        for (p, (task, key)) in scenario.into_iter().enumerate() {
+            let index = *self.by_key.entry(key).or_insert_with(|| {
+                let upstream = r.links[p]
+                    .iter()
+                    .map(|&(role, u)| (role, instance_at[u]))
+                    .collect();
+                self.nodes.push(PlannedNode {
+                    key,
+                    task,
+                    names: Vec::new(),
+                    upstream,
+                });
+                self.nodes.len() - 1
+            });
+            let name = &r.node_names[r.order[p]];
+            if !self.nodes[index].names.contains(name) {
+                self.nodes[index].names.push(name.clone());
+            }
+            instance_at.push(index);
+            instance_of[r.order[p]] = index;
+        }
+        self.scenario_nodes.push(instance_of);
     }
 }

@@ -2,14 +2,39 @@
 //! values, the upstream tasks and the study's folder, and the resolution of `Param` fields
 //! (whole `${name}` references, `${name}` inside strings, literals) into typed, checked values.
 
+use std::borrow::Cow;
 use std::cell::RefCell;
 use std::collections::HashMap;
+use std::fmt;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
-use crate::syntax::{did_you_mean, is_parameter_name, FromParamValue, Param, RawValue, SpecError};
+use crate::syntax::{did_you_mean, is_parameter_name, FromParamValue, Param, ParamForm, SpecError};
 use crate::task::NodeTask;
 use crate::value::ParamValue;
+
+/// Where a resolved value came from, as error messages say it.
+enum Origin<'a> {
+    Literal,
+    Parameter(&'a str),
+    /// The text as written and the parameters substituted into it.
+    Interpolated(&'a str, Vec<String>),
+}
+
+impl fmt::Display for Origin<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Origin::Literal => Ok(()),
+            Origin::Parameter(name) => write!(f, " (from parameter '{name}')"),
+            Origin::Interpolated(text, names) => write!(
+                f,
+                " ('{text}' with parameter{} {})",
+                if names.len() == 1 { "" } else { "s" },
+                names.join(", ")
+            ),
+        }
+    }
+}
 
 /// What a node spec sees while it is instantiated for one scenario.
 pub struct ResolveContext<'a> {
@@ -18,7 +43,7 @@ pub struct ResolveContext<'a> {
     pub(crate) upstream: &'a [Arc<dyn NodeTask>],
     pub(crate) study_dir: &'a Path,
     pub(crate) used: &'a RefCell<Vec<bool>>,
-    pub(crate) file_hashes: &'a RefCell<HashMap<PathBuf, Result<String, String>>>,
+    pub(crate) file_hashes: &'a FileHashes,
 }
 
 impl ResolveContext<'_> {
@@ -44,43 +69,42 @@ impl ResolveContext<'_> {
             field: field.to_string(),
             message,
         };
-        // The parsed value, where it came from, and the text as written (after substitution).
-        let (parsed, origin, written) = match (param.raw(), param.raw().as_reference()) {
-            (_, Some(name)) => {
-                let index = self.parameter_index(name).map_err(&error)?;
-                let origin = format!(" (from parameter '{name}')");
-                (Ok(self.values[index].clone()), origin, None)
-            }
-            (RawValue::Text(text), None) if text.contains("${") => {
-                let (substituted, names) = self.interpolate(text).map_err(&error)?;
-                let origin = format!(
-                    " ('{text}' with parameter{} {})",
-                    if names.len() == 1 { "" } else { "s" },
-                    names.join(", ")
-                );
-                let parsed = RawValue::Text(substituted.clone()).to_param_value();
-                (parsed, origin, Some(substituted))
-            }
-            (RawValue::Text(text), None) => (
-                param.raw().to_param_value(),
-                String::new(),
-                Some(text.clone()),
+        // The parsed value, the names of the parameters it came from and the text as written
+        // (after substitution).
+        let (parsed, from, written) = match param.form() {
+            ParamForm::Literal { value, text } => (
+                value.as_ref().map(Cow::Borrowed).map_err(String::clone),
+                Origin::Literal,
+                text.as_deref().map(Cow::Borrowed),
             ),
-            (raw, None) => (raw.to_param_value(), String::new(), None),
+            ParamForm::Reference(name) => {
+                let index = self.parameter_index(name).map_err(&error)?;
+                let value = Cow::Borrowed(&self.values[index]);
+                (Ok(value), Origin::Parameter(name), None)
+            }
+            ParamForm::Interpolated(text) => {
+                let (substituted, names) = self.interpolate(text).map_err(&error)?;
+                let parsed = ParamValue::from_text(&substituted).map(Cow::Owned);
+                let origin = Origin::Interpolated(text, names);
+                (parsed, origin, Some(Cow::Owned(substituted)))
+            }
         };
         // Text that reads like a quantity ("01-upper.x3p") or is not a valid one ("3 um.x3p")
         // is still text to a text field.
-        let as_text = written
-            .map(ParamValue::Text)
-            .filter(|t| T::from_param(t).is_ok());
-        let value = match (parsed, as_text) {
-            (Ok(v), Some(text)) if T::from_param(&v).is_err() => text,
-            (Ok(v), _) => v,
-            (Err(_), Some(text)) => text,
-            (Err(m), None) => return Err(error(format!("{m}{origin}"))),
+        let as_text = || {
+            let text = ParamValue::Text(written?.into_owned());
+            T::from_param(&text)
+                .ok()
+                .map(|typed| (typed, Cow::Owned(text)))
         };
-        let typed = T::from_param(&value).map_err(|m| error(format!("{m}{origin}")))?;
-        check(&typed).map_err(|m| error(format!("{value} {m}{origin}")))?;
+        let (typed, value) = match parsed.map(|v| (T::from_param(&v), v)) {
+            Ok((Ok(typed), v)) => (typed, v),
+            Ok((Err(m), _)) | Err(m) => match as_text() {
+                Some(text) => text,
+                None => return Err(error(format!("{m}{from}"))),
+            },
+        };
+        check(&typed).map_err(|m| error(format!("{value} {m}{from}")))?;
         Ok(typed)
     }
 
@@ -149,26 +173,34 @@ impl ResolveContext<'_> {
         self.study_dir
     }
 
-    /// blake3 hex digest of a file's content (memoised per plan): content, not path or
-    /// modification time, identifies input files.
+    /// blake3 hex digest of a file's content (memoised per plan, read once even when scenarios
+    /// resolved in parallel ask for it together): content, not path or modification time,
+    /// identifies input files.
     pub fn file_content_hash(&self, path: &Path) -> Result<String, String> {
-        if let Some(h) = self.file_hashes.borrow().get(path) {
-            return h.clone();
-        }
-        // A device or a pipe would be read forever (`/dev/zero`) or block planning (a FIFO).
-        let hash = match std::fs::metadata(path) {
-            Ok(meta) if !meta.is_file() => Err(format!(
-                "cannot read {}: not a regular file (a directory, device or pipe); give the path \
-                 of a topography file",
-                path.display()
-            )),
-            _ => std::fs::read(path)
-                .map(|bytes| blake3::hash(&bytes).to_hex().to_string())
-                .map_err(|e| format!("cannot read {}: {e}", path.display())),
-        };
-        self.file_hashes
-            .borrow_mut()
-            .insert(path.to_path_buf(), hash.clone());
-        hash
+        let slot = self
+            .file_hashes
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .entry(path.to_path_buf())
+            .or_default()
+            .clone();
+        slot.get_or_init(|| hash_file(path)).clone()
+    }
+}
+
+/// The file hashes of a plan, by path.
+pub(crate) type FileHashes = Mutex<HashMap<PathBuf, Arc<OnceLock<Result<String, String>>>>>;
+
+fn hash_file(path: &Path) -> Result<String, String> {
+    // A device or a pipe would be read forever (`/dev/zero`) or block planning (a FIFO).
+    match std::fs::metadata(path) {
+        Ok(meta) if !meta.is_file() => Err(format!(
+            "cannot read {}: not a regular file (a directory, device or pipe); give the path \
+             of a topography file",
+            path.display()
+        )),
+        _ => std::fs::read(path)
+            .map(|bytes| blake3::hash(&bytes).to_hex().to_string())
+            .map_err(|e| format!("cannot read {}: {e}", path.display())),
     }
 }

@@ -99,7 +99,8 @@ pub fn summary_columns(
                         let instance = plan.scenario_nodes[s][n];
                         let outcome = report.outcomes.get(instance)?.as_ref()?;
                         if available.is_empty() {
-                            available = outcome.metrics.iter().map(|f| f.name.clone()).collect();
+                            available =
+                                outcome.metrics.iter().map(|f| f.name.to_string()).collect();
                         }
                         let f = outcome.metrics.iter().find(|f| f.name == field)?;
                         dimension = Some(f.dimension);

@@ -1,6 +1,7 @@
 //! Values that flow through the engine: study parameter values, resolved node parameters and
 //! metrics. They carry their physical dimension so tables can name units in column names.
 
+use std::borrow::Cow;
 use std::fmt;
 
 use serde::{Deserialize, Serialize};
@@ -134,8 +135,9 @@ impl fmt::Display for Value {
 /// A named, dimensioned value: one resolved parameter or one metric of a node.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Field {
-    /// Name without unit ("sq").
-    pub name: String,
+    /// Name without unit ("sq"); a node kind's names are static text, so making a field does
+    /// not allocate one.
+    pub name: Cow<'static, str>,
     pub value: Value,
     /// Physical dimension; the SI unit is appended to the column name.
     pub dimension: Dimension,
@@ -143,7 +145,7 @@ pub struct Field {
 
 impl Field {
     /// A floating-point field in SI units.
-    pub fn float(name: impl Into<String>, value: f64, dimension: Dimension) -> Self {
+    pub fn float(name: impl Into<Cow<'static, str>>, value: f64, dimension: Dimension) -> Self {
         Self {
             name: name.into(),
             value: Value::Float(value),
@@ -152,7 +154,7 @@ impl Field {
     }
 
     /// A dimensionless integer field.
-    pub fn int(name: impl Into<String>, value: i64) -> Self {
+    pub fn int(name: impl Into<Cow<'static, str>>, value: i64) -> Self {
         Self {
             name: name.into(),
             value: Value::Int(value),
@@ -161,7 +163,7 @@ impl Field {
     }
 
     /// A text field.
-    pub fn text(name: impl Into<String>, value: impl Into<String>) -> Self {
+    pub fn text(name: impl Into<Cow<'static, str>>, value: impl Into<String>) -> Self {
         Self {
             name: name.into(),
             value: Value::Text(value.into()),
@@ -170,7 +172,7 @@ impl Field {
     }
 
     /// A boolean field.
-    pub fn bool(name: impl Into<String>, value: bool) -> Self {
+    pub fn bool(name: impl Into<Cow<'static, str>>, value: bool) -> Self {
         Self {
             name: name.into(),
             value: Value::Bool(value),

@@ -130,7 +130,7 @@ fn push_forces(
     scale: f64,
     contact_normal_load: f64,
 ) {
-    let force = |name: &str, v: f64| Field::float(name, scale * v, Dimension::Force);
+    let force = |name: &'static str, v: f64| Field::float(name, scale * v, Dimension::Force);
     metrics.extend([
         force(
             "external_load",
@@ -151,7 +151,7 @@ fn push_spot_statistics(
     section_area: f64,
     area: f64,
 ) {
-    let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
+    let n = |name: &'static str, v: f64| Field::float(name, v, Dimension::Dimensionless);
     let share = |load: f64| {
         if result.total_normal_force > 0.0 {
             load / result.total_normal_force
@@ -194,7 +194,11 @@ fn push_spot_statistics(
     }
     if !local.is_empty() {
         for (name, q) in [("p10", 0.1), ("median", 0.5), ("p90", 0.9)] {
-            metrics.push(n(&format!("local_mu_{name}"), quantile(&local, q)));
+            metrics.push(Field::float(
+                format!("local_mu_{name}"),
+                quantile(&local, q),
+                Dimension::Dimensionless,
+            ));
         }
     }
 }

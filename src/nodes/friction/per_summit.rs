@@ -142,7 +142,7 @@ pub(super) fn compute(
     Ok(())
 }
 
-fn dimensionless(name: &str, v: f64) -> Field {
+fn dimensionless(name: &'static str, v: f64) -> Field {
     Field::float(name, v, Dimension::Dimensionless)
 }
 

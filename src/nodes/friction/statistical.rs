@@ -140,7 +140,7 @@ fn solve_each_load(
 /// The row of the last load: forces, separation, contact, the summit statistics the model used
 /// and the solve's diagnostics.
 fn result_fields(last: &StaticFrictionResult, summits: &SummitStatistics, area: f64) -> Vec<Field> {
-    let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
+    let n = |name: &'static str, v: f64| Field::float(name, v, Dimension::Dimensionless);
     vec![
         beyond_fit_field(last.load_beyond_fit, last.contact_load),
         Field::float("external_load", last.external_load, Dimension::Force),

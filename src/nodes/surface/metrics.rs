@@ -12,6 +12,7 @@
 //!   (Nayak/McCool, `friction::SummitStatistics`); omitted when α ≤ 0.8968, where they are undefined.
 //! * Identified summits (8-neighbour maxima): count, density, mean radius, and one row each.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 
 use crate::engine::artifact::Table;
@@ -38,11 +39,11 @@ pub(super) struct SurfaceReport {
     pub sdq: Option<f64>,
 }
 
-fn len(name: &str, v: f64) -> Field {
+fn len(name: &'static str, v: f64) -> Field {
     Field::float(name, v, Dimension::Length)
 }
 
-fn num(name: &str, v: f64) -> Field {
+fn num(name: impl Into<Cow<'static, str>>, v: f64) -> Field {
     Field::float(name, v, Dimension::Dimensionless)
 }
 
@@ -110,7 +111,7 @@ fn spectral_metrics(
     .map_err(|e| fail("spectral moments", &e))?;
     for (suffix, p) in [("", m.isotropic), ("_x", m.x), ("_y", m.y)] {
         metrics.push(Field::float(format!("{M0}{suffix}"), p.m0, Dimension::Area));
-        metrics.push(num(&format!("{M2}{suffix}"), p.m2));
+        metrics.push(num(format!("{M2}{suffix}"), p.m2));
         metrics.push(Field::float(
             format!("{M4}{suffix}"),
             p.m4,

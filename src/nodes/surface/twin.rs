@@ -373,8 +373,8 @@ fn twin_metrics(
     twin: &SyntheticTwin,
 ) -> Vec<Field> {
     let p = &twin.prediction;
-    let n = |name: &str, v: f64| Field::float(name, v, Dimension::Dimensionless);
-    let length = |name: &str, v: f64| Field::float(name, v, Dimension::Length);
+    let n = |name: &'static str, v: f64| Field::float(name, v, Dimension::Dimensionless);
+    let length = |name: &'static str, v: f64| Field::float(name, v, Dimension::Length);
     let extrapolated = p
         .warnings
         .iter()
@@ -417,10 +417,18 @@ fn twin_metrics(
         ("correlation_length_y", model.correlation_length_y.fit),
         ("hurst", model.hurst.fit),
     ] {
-        fields.push(n(&format!("twin_fit_rms_{name}"), fit.rms_residual));
+        fields.push(Field::float(
+            format!("twin_fit_rms_{name}"),
+            fit.rms_residual,
+            Dimension::Dimensionless,
+        ));
         // R² needs three or more files: the column is empty otherwise.
         if let Some(r2) = fit.r_squared {
-            fields.push(n(&format!("twin_fit_r2_{name}"), r2));
+            fields.push(Field::float(
+                format!("twin_fit_r2_{name}"),
+                r2,
+                Dimension::Dimensionless,
+            ));
         }
     }
     fields.push(Field::int(

@@ -7,5 +7,6 @@ mod param;
 mod raw;
 
 pub use located::{Located, SourceLocation, SpannedName};
+pub(crate) use param::ParamForm;
 pub use param::{did_you_mean, is_parameter_name, FromParamValue, Param, SpecError};
 pub use raw::RawValue;

@@ -15,15 +15,30 @@ use crate::value::ParamValue;
 /// range checks happen when the node is instantiated, so every error names this field's location.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Param<T> {
-    raw: RawValue,
+    form: ParamForm,
     location: SourceLocation,
     _type: PhantomData<T>,
 }
 
+/// How a field is written, told apart once when the study is read.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum ParamForm {
+    /// A literal: its value, parsed once (units, numbers) rather than under every scenario, and
+    /// its text when it is written as text.
+    Literal {
+        value: Result<ParamValue, String>,
+        text: Option<String>,
+    },
+    /// `${name}`: the parameter name.
+    Reference(String),
+    /// Text with `${name}` inside.
+    Interpolated(String),
+}
+
 impl<T> Param<T> {
-    /// The value as written.
-    pub fn raw(&self) -> &RawValue {
-        &self.raw
+    /// How the field is written.
+    pub(crate) fn form(&self) -> &ParamForm {
+        &self.form
     }
 
     /// Where the field is written.
@@ -33,15 +48,30 @@ impl<T> Param<T> {
 
     /// The referenced parameter name, if the field is `${name}`.
     pub fn reference(&self) -> Option<&str> {
-        self.raw.as_reference()
+        match &self.form {
+            ParamForm::Reference(name) => Some(name),
+            _ => None,
+        }
     }
 }
 
 impl<'de, T> Deserialize<'de> for Param<T> {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         let located = Located::<RawValue>::deserialize(deserializer)?;
+        let reference = located.value.as_reference().map(str::to_string);
+        let form = match (reference, located.value) {
+            (Some(name), _) => ParamForm::Reference(name),
+            (None, RawValue::Text(text)) if text.contains("${") => ParamForm::Interpolated(text),
+            (None, raw) => ParamForm::Literal {
+                value: raw.to_param_value(),
+                text: match raw {
+                    RawValue::Text(text) => Some(text),
+                    _ => None,
+                },
+            },
+        };
         Ok(Self {
-            raw: located.value,
+            form,
             location: located.location,
             _type: PhantomData,
         })

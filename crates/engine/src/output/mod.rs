@@ -11,15 +11,16 @@
 //! the separate `timings.parquet` ([`write_timings`]), the one file that differs between runs.
 //! Each file is written to a temporary name and renamed.
 
+mod row_table;
+
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::path::{Path, PathBuf};
 
 use indexmap::IndexMap;
 use polars::io::parquet::write::KeyValueMetadata;
-use polars::prelude::{
-    Column as PlColumn, DataFrame, NamedFrom, ParquetCompression, ParquetWriter, Series,
-};
+use polars::prelude::{Column as PlColumn, DataFrame, ParquetCompression, ParquetWriter};
 
 use crate::artifact::{ColumnData, Table};
 use crate::execute::{NodeOutcome, NodeStatus, RunReport};
@@ -27,7 +28,9 @@ use crate::plan::Plan;
 use crate::study::{Located, SCENARIOS_TABLE};
 use crate::summary::{summary_columns, SummarySpec, RUN_TIME_METRIC};
 use crate::units::Dimension;
-use crate::value::{column_name, Field, ParamValue, Value};
+use crate::value::{ParamValue, Value};
+
+use row_table::{field_cell, text, to_series, RowTable};
 
 /// Identification written into every file's metadata.
 #[derive(Debug, Clone)]
@@ -90,78 +93,42 @@ pub fn write_summaries(
                 path: dir.join(format!("{table}.parquet")),
                 message: e.to_string(),
             })?;
-        let rows = columns.first().map_or(0, |c| c.2.len());
         written.push(write_parquet(
             dir,
             &table,
-            RowTable { columns, rows },
+            RowTable::from_columns(columns),
             meta,
         )?);
     }
     Ok(written)
 }
 
-/// A table being assembled row by row; columns appear in first-seen order, missing cells are null.
-#[derive(Default)]
-struct RowTable {
-    columns: Vec<(String, Dimension, Vec<Option<Value>>)>,
-    rows: usize,
-}
-
-impl RowTable {
-    fn push_row(&mut self, cells: Vec<(String, Dimension, Option<Value>)>) {
-        for (name, dim, value) in cells {
-            let col = match self.columns.iter().position(|c| c.0 == name) {
-                Some(i) => i,
-                None => {
-                    self.columns.push((name, dim, vec![None; self.rows]));
-                    self.columns.len() - 1
-                }
-            };
-            self.columns[col].2.push(value);
-        }
-        self.rows += 1;
-        for c in &mut self.columns {
-            c.2.resize(self.rows, None);
-        }
-    }
-}
-
-fn field_cell(f: &Field) -> (String, Dimension, Option<Value>) {
-    (f.column_name(), f.dimension, Some(f.value.clone()))
-}
-
-fn text(name: &str, value: impl Into<String>) -> (String, Dimension, Option<Value>) {
-    (
-        name.to_string(),
-        Dimension::Dimensionless,
-        Some(Value::Text(value.into())),
-    )
-}
-
 fn scenarios_table(plan: &Plan, report: &RunReport) -> RowTable {
+    let types: Vec<ColumnType> = (0..plan.scenarios.names.len())
+        .map(|c| ColumnType::of(plan, c))
+        .collect();
+    let key_columns: Vec<String> = plan
+        .node_names
+        .iter()
+        .map(|name| format!("{name}_key"))
+        .collect();
     let mut t = RowTable::default();
     for (s, row) in plan.scenarios.rows.iter().enumerate() {
         let mut cells = vec![(
-            String::from("scenario"),
+            Cow::Borrowed("scenario"),
             Dimension::Dimensionless,
             Some(Value::Int(s as i64)),
         )];
-        for (name, value) in plan.scenarios.names.iter().zip(row) {
-            let dim = value.dimension();
+        for ((name, value), ty) in plan.scenarios.names.iter().zip(row).zip(&types) {
             cells.push((
-                column_name(name, dim),
-                dim,
-                Some(scenario_value(plan, name, value)),
+                Cow::Borrowed(name.as_str()),
+                value.dimension(),
+                Some(ty.cell(value)),
             ));
         }
         let mut status = "ok";
-        for (n, name) in plan.node_names.iter().enumerate() {
-            let instance = plan.scenario_nodes[s][n];
-            cells.push(text(
-                &format!("{name}_key"),
-                plan.nodes[instance].key.to_hex(),
-            ));
+        for (&instance, key_column) in plan.scenario_nodes[s].iter().zip(&key_columns) {
+            cells.push(text(key_column, plan.nodes[instance].key.to_hex()));
             match report.outcomes.get(instance).and_then(Option::as_ref) {
                 Some(o) if o.status.label() != "ok" => status = "failed",
                 None if status == "ok" => status = "not_computed",
@@ -176,26 +143,33 @@ fn scenarios_table(plan: &Plan, report: &RunReport) -> RowTable {
 
 /// Parameter values are written with one type per column: a column whose values mix integers and
 /// floats is written as floats; anything else mixed as text.
-fn scenario_value(plan: &Plan, name: &str, value: &ParamValue) -> Value {
-    let col = plan.scenarios.names.iter().position(|n| n == name);
-    let all_int = col.is_some_and(|c| {
-        plan.scenarios
-            .rows
-            .iter()
-            .all(|r| matches!(r[c], ParamValue::Int(_)))
-    });
-    let all_numeric = col.is_some_and(|c| {
-        plan.scenarios
-            .rows
-            .iter()
-            .all(|r| r[c].as_dimensioned().is_some() && r[c].dimension() == value.dimension())
-    });
-    match value {
-        ParamValue::Int(i) if all_int => Value::Int(*i),
-        v if all_numeric => Value::Float(v.as_dimensioned().map_or(f64::NAN, |d| d.si)),
-        ParamValue::Text(s) => Value::Text(s.clone()),
-        ParamValue::Bool(b) if col.is_some() => Value::Bool(*b),
-        other => Value::Text(other.to_string()),
+struct ColumnType {
+    all_int: bool,
+    /// Numbers or quantities of one dimension.
+    all_numeric: bool,
+}
+
+impl ColumnType {
+    /// The type of parameter column `c`.
+    fn of(plan: &Plan, c: usize) -> Self {
+        let rows = &plan.scenarios.rows;
+        let dimension = rows.first().map(|r| r[c].dimension());
+        Self {
+            all_int: rows.iter().all(|r| matches!(r[c], ParamValue::Int(_))),
+            all_numeric: rows
+                .iter()
+                .all(|r| r[c].as_dimensioned().is_some() && Some(r[c].dimension()) == dimension),
+        }
+    }
+
+    fn cell(&self, value: &ParamValue) -> Value {
+        match value {
+            ParamValue::Int(i) if self.all_int => Value::Int(*i),
+            v if self.all_numeric => Value::Float(v.as_dimensioned().map_or(f64::NAN, |d| d.si)),
+            ParamValue::Text(s) => Value::Text(s.clone()),
+            ParamValue::Bool(b) => Value::Bool(*b),
+            other => Value::Text(other.to_string()),
+        }
     }
 }
 
@@ -219,15 +193,16 @@ fn kind_tables(
             text("key", key.clone()),
             text("nodes", node.names.join(",")),
             (
-                String::from("kind_version"),
+                Cow::Borrowed("kind_version"),
                 Dimension::Dimensionless,
                 Some(Value::Int(i64::from(node.task.version()))),
             ),
         ];
         for (role, u) in &node.upstream {
-            cells.push(text(&format!("{role}_key"), plan.nodes[*u].key.to_hex()));
+            cells.push(text(format!("{role}_key"), plan.nodes[*u].key.to_hex()));
         }
-        cells.extend(node.task.params().iter().map(field_cell));
+        let params = node.task.params();
+        cells.extend(params.iter().map(field_cell));
         cells.extend(outcome.metrics.iter().map(field_cell));
         cells.push(text("status", outcome.status.label()));
         cells.push(text("message", outcome.status.message()));
@@ -279,12 +254,12 @@ pub fn write_timings(
             text("nodes", node.names.join(",")),
             text("status", outcome.status.label()),
             (
-                String::from("from_cache"),
+                Cow::Borrowed("from_cache"),
                 Dimension::Dimensionless,
                 Some(Value::Bool(matches!(outcome.status, NodeStatus::Cached))),
             ),
             (
-                String::from(RUN_TIME_METRIC),
+                Cow::Borrowed(RUN_TIME_METRIC),
                 Dimension::Dimensionless,
                 Some(Value::Float(outcome.compute_seconds)),
             ),
@@ -310,58 +285,9 @@ fn append_long(target: &mut RowTable, key: &str, t: &Table) {
                 ColumnData::Bool(v) => v.get(r).map(|x| Value::Bool(*x)),
                 ColumnData::Text(v) => v.get(r).map(|x| Value::Text(x.clone())),
             };
-            cells.push((c.column_name(), c.dimension, v));
+            cells.push((Cow::Borrowed(c.name.as_str()), c.dimension, v));
         }
         target.push_row(cells);
-    }
-}
-
-fn to_series(name: &str, values: &[Option<Value>]) -> Series {
-    let first = values.iter().flatten().next();
-    match first {
-        Some(Value::Int(_)) if values.iter().flatten().all(|v| matches!(v, Value::Int(_))) => {
-            let v: Vec<Option<i64>> = values
-                .iter()
-                .map(|x| match x {
-                    Some(Value::Int(i)) => Some(*i),
-                    _ => None,
-                })
-                .collect();
-            Series::new(name.into(), v)
-        }
-        Some(Value::Float(_) | Value::Int(_))
-            if values
-                .iter()
-                .flatten()
-                .all(|v| matches!(v, Value::Float(_) | Value::Int(_))) =>
-        {
-            let v: Vec<Option<f64>> = values
-                .iter()
-                .map(|x| match x {
-                    Some(Value::Float(f)) => Some(*f),
-                    Some(Value::Int(i)) => Some(*i as f64),
-                    _ => None,
-                })
-                .collect();
-            Series::new(name.into(), v)
-        }
-        Some(Value::Bool(_)) if values.iter().flatten().all(|v| matches!(v, Value::Bool(_))) => {
-            let v: Vec<Option<bool>> = values
-                .iter()
-                .map(|x| match x {
-                    Some(Value::Bool(b)) => Some(*b),
-                    _ => None,
-                })
-                .collect();
-            Series::new(name.into(), v)
-        }
-        _ => {
-            let v: Vec<Option<String>> = values
-                .iter()
-                .map(|x| x.as_ref().map(ToString::to_string))
-                .collect();
-            Series::new(name.into(), v)
-        }
     }
 }
 
@@ -381,12 +307,14 @@ fn write_parquet(
         .iter()
         .map(|(n, d, _)| (n.as_str(), d.si_symbol()))
         .collect();
+    let units = serde_json::to_string(&units).map_err(|e| err(e.to_string()))?;
+    let rows = table.rows;
     let columns: Vec<PlColumn> = table
         .columns
-        .iter()
-        .map(|(n, _, v)| PlColumn::from(to_series(n, v)))
+        .into_iter()
+        .map(|(n, _, v)| PlColumn::from(to_series(&n, v)))
         .collect();
-    let mut df = DataFrame::new(table.rows, columns).map_err(|e| err(e.to_string()))?;
+    let mut df = DataFrame::new(rows, columns).map_err(|e| err(e.to_string()))?;
     let metadata = KeyValueMetadata::from_static(vec![
         (String::from("asperity.study"), meta.study.clone()),
         (
@@ -403,10 +331,7 @@ fn write_parquet(
             serde_json::to_string(&meta.overrides.iter().cloned().collect::<IndexMap<_, _>>())
                 .map_err(|e| err(e.to_string()))?,
         ),
-        (
-            String::from("asperity.units"),
-            serde_json::to_string(&units).map_err(|e| err(e.to_string()))?,
-        ),
+        (String::from("asperity.units"), units),
     ]);
     let tmp = dir.join(format!(".{name}.parquet.tmp"));
     let file = File::create(&tmp).map_err(|e| err(e.to_string()))?;

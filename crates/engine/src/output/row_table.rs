@@ -1,0 +1,142 @@
+//! A table assembled row by row and its conversion into typed Parquet columns.
+
+use std::borrow::Cow;
+use std::collections::HashMap;
+
+use polars::prelude::{NamedFrom, Series};
+
+use crate::units::Dimension;
+use crate::value::{column_name, Field, Value};
+
+/// One cell of a row: the column's name without unit, its dimension and the value.
+pub(super) type Cell<'a> = (Cow<'a, str>, Dimension, Option<Value>);
+
+/// One column: name with unit, dimension, cells.
+pub(super) type RowColumn = (String, Dimension, Vec<Option<Value>>);
+
+/// A table being assembled row by row; columns appear in first-seen order, missing cells are null.
+#[derive(Default)]
+pub(super) struct RowTable {
+    pub columns: Vec<RowColumn>,
+    pub rows: usize,
+    /// The column of each cell name and dimension seen so far (the column's name is the cell's
+    /// name with its unit, made once per column rather than per cell).
+    index: HashMap<String, Vec<(Dimension, usize)>>,
+}
+
+impl RowTable {
+    /// A table of whole columns.
+    pub fn from_columns(columns: Vec<RowColumn>) -> Self {
+        let rows = columns.first().map_or(0, |c| c.2.len());
+        Self {
+            columns,
+            rows,
+            index: HashMap::new(),
+        }
+    }
+
+    pub fn push_row<'a>(&mut self, cells: impl IntoIterator<Item = Cell<'a>>) {
+        for (name, dim, value) in cells {
+            let col = self.column(&name, dim);
+            self.columns[col].2.push(value);
+        }
+        self.rows += 1;
+        for c in &mut self.columns {
+            c.2.resize(self.rows, None);
+        }
+    }
+
+    /// The column of cells called `name` with dimension `dim`, added when new.
+    fn column(&mut self, name: &str, dim: Dimension) -> usize {
+        if let Some(&(_, col)) = self
+            .index
+            .get(name)
+            .and_then(|seen| seen.iter().find(|(d, _)| *d == dim))
+        {
+            return col;
+        }
+        let full = column_name(name, dim);
+        let col = match self.columns.iter().position(|c| c.0 == full) {
+            Some(col) => col,
+            None => {
+                self.columns.push((full, dim, vec![None; self.rows]));
+                self.columns.len() - 1
+            }
+        };
+        self.index
+            .entry(name.to_string())
+            .or_default()
+            .push((dim, col));
+        col
+    }
+}
+
+/// A field as a cell.
+pub(super) fn field_cell(f: &Field) -> Cell<'_> {
+    (
+        Cow::Borrowed(f.name.as_ref()),
+        f.dimension,
+        Some(f.value.clone()),
+    )
+}
+
+/// A text cell.
+pub(super) fn text<'a>(name: impl Into<Cow<'a, str>>, value: impl Into<String>) -> Cell<'a> {
+    (
+        name.into(),
+        Dimension::Dimensionless,
+        Some(Value::Text(value.into())),
+    )
+}
+
+/// The typed Parquet column of `values`: integers, floats (integers mixed in), booleans, or text.
+pub(super) fn to_series(name: &str, values: Vec<Option<Value>>) -> Series {
+    let all = |f: fn(&Value) -> bool| values.iter().flatten().all(f);
+    match values.iter().flatten().next() {
+        Some(Value::Int(_)) if all(|v| matches!(v, Value::Int(_))) => {
+            let v: Vec<Option<i64>> = values
+                .iter()
+                .map(|x| match x {
+                    Some(Value::Int(i)) => Some(*i),
+                    _ => None,
+                })
+                .collect();
+            Series::new(name.into(), v)
+        }
+        Some(Value::Float(_) | Value::Int(_))
+            if all(|v| matches!(v, Value::Float(_) | Value::Int(_))) =>
+        {
+            let v: Vec<Option<f64>> = values
+                .iter()
+                .map(|x| match x {
+                    Some(Value::Float(f)) => Some(*f),
+                    Some(Value::Int(i)) => Some(*i as f64),
+                    _ => None,
+                })
+                .collect();
+            Series::new(name.into(), v)
+        }
+        Some(Value::Bool(_)) if all(|v| matches!(v, Value::Bool(_))) => {
+            let v: Vec<Option<bool>> = values
+                .iter()
+                .map(|x| match x {
+                    Some(Value::Bool(b)) => Some(*b),
+                    _ => None,
+                })
+                .collect();
+            Series::new(name.into(), v)
+        }
+        _ => {
+            let v: Vec<Option<String>> = values
+                .into_iter()
+                .map(|x| {
+                    x.map(|v| match v {
+                        Value::Text(s) => s,
+                        other => other.to_string(),
+                    })
+                })
+                .collect();
+            Series::new(name.into(), v)
+        }
+    }
+}
