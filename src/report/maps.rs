@@ -51,7 +51,7 @@ fn load(cache: &Cache, kind: &str, key: &str, arrays: bool) -> Result<CachedEntr
 }
 
 fn spacing(entry: &CachedEntry) -> Option<(f64, f64)> {
-    let metric = |name: &str| match entry.manifest.metrics.iter().find(|f| f.name == name) {
+    let metric = |name: &str| match entry.artifact.metrics.iter().find(|f| f.name == name) {
         Some(f) => match f.value {
             Value::Float(v) if v > 0.0 && v.is_finite() => Some(v),
             _ => None,
@@ -160,7 +160,7 @@ fn pressure_figure(cache: &Cache, key: &str, node: &str, context: &str) -> MapRe
     let surface = load(cache, "surface", &lower.1, false)?;
     let (dx, dy) = spacing(&surface).ok_or("the lower surface records no grid spacing")?;
     let nominal = entry
-        .manifest
+        .artifact
         .metrics
         .iter()
         .find(|f| f.name == "nominal_pressure")

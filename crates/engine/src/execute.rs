@@ -338,18 +338,18 @@ impl<'a> RunContext<'a> {
                 self.regenerate(node, entry)
             }
             Some(CachedEntry { manifest, artifact }) => {
-                let (tables, artifact) = if with_payload {
-                    (artifact.tables.clone(), Some(Arc::new(artifact)))
-                } else {
-                    (artifact.tables, None)
-                };
-                let outcome = NodeOutcome {
+                let outcome = |metrics, tables| NodeOutcome {
                     status: NodeStatus::Cached,
-                    metrics: manifest.metrics,
+                    metrics,
                     tables,
                     compute_seconds: manifest.compute_seconds,
                 };
-                (outcome, artifact)
+                if with_payload {
+                    let row = outcome(artifact.metrics.clone(), artifact.tables.clone());
+                    (row, Some(Arc::new(artifact)))
+                } else {
+                    (outcome(artifact.metrics, artifact.tables), None)
+                }
             }
             None => self.compute(node),
         }
@@ -509,10 +509,10 @@ impl<'a> RunContext<'a> {
         entry: CachedEntry,
     ) -> (NodeOutcome, Option<Arc<Artifact>>) {
         match self.run_compute(node) {
-            (Ok(artifact), _) if artifact.metrics == entry.manifest.metrics => {
+            (Ok(artifact), _) if artifact.metrics == entry.artifact.metrics => {
                 let outcome = NodeOutcome {
                     status: NodeStatus::Cached,
-                    metrics: entry.manifest.metrics,
+                    metrics: entry.artifact.metrics,
                     tables: entry.artifact.tables,
                     compute_seconds: entry.manifest.compute_seconds,
                 };

@@ -21,6 +21,7 @@ use std::path::{Path, PathBuf};
 use indexmap::IndexMap;
 use polars::io::parquet::write::KeyValueMetadata;
 use polars::prelude::{Column as PlColumn, DataFrame, ParquetCompression, ParquetWriter};
+use rayon::prelude::*;
 
 use crate::artifact::{ColumnData, Table};
 use crate::execute::{NodeOutcome, NodeStatus, RunReport};
@@ -49,7 +50,8 @@ pub enum OutputError {
     Write { path: PathBuf, message: String },
 }
 
-/// Writes the requested tables into `dir`; returns the files written.
+/// Writes the requested tables into `dir` (in parallel, one file per task); returns the files
+/// written, in the order of `tables`, each kind table followed by its long tables.
 pub fn write_tables(
     dir: &Path,
     plan: &Plan,
@@ -61,20 +63,24 @@ pub fn write_tables(
         path: dir.to_path_buf(),
         message: e.to_string(),
     })?;
-    let mut written = Vec::new();
-    for table in tables {
-        if table == SCENARIOS_TABLE {
-            let t = scenarios_table(plan, report);
-            written.push(write_parquet(dir, SCENARIOS_TABLE, t, meta)?);
-            continue;
-        }
-        let (main, long) = kind_tables(plan, report, table);
-        written.push(write_parquet(dir, table, main, meta)?);
-        for (name, t) in long {
-            written.push(write_parquet(dir, &format!("{table}_{name}"), t, meta)?);
-        }
-    }
-    Ok(written)
+    let written: Vec<Vec<Result<PathBuf, OutputError>>> = tables
+        .par_iter()
+        .map(|table| {
+            let files: Vec<(String, RowTable)> = if table == SCENARIOS_TABLE {
+                vec![(table.clone(), scenarios_table(plan, report))]
+            } else {
+                let (main, long) = kind_tables(plan, report, table);
+                std::iter::once((table.clone(), main))
+                    .chain(long.into_iter().map(|(n, t)| (format!("{table}_{n}"), t)))
+                    .collect()
+            };
+            files
+                .into_par_iter()
+                .map(|(name, t)| write_parquet(dir, &name, t, meta))
+                .collect()
+        })
+        .collect();
+    written.into_iter().flatten().collect()
 }
 
 /// Writes one `summary_<name>` table per study summary into `dir`; returns the files written.

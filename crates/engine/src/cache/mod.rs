@@ -72,9 +72,30 @@ impl Payload {
 /// A verified cache entry.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CachedEntry {
-    pub manifest: Manifest,
-    /// The artifact; its arrays are only decoded when requested.
+    pub manifest: EntryManifest,
+    /// The artifact (metrics, tables and, when requested, arrays).
     pub artifact: Artifact,
+}
+
+/// What a read of an entry keeps of its manifest besides the metrics (which go to the artifact);
+/// the parameters, versions and times are not parsed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EntryManifest {
+    /// `(role, key)` of each upstream node.
+    pub upstream: Vec<(String, String)>,
+    pub payloads: Vec<Payload>,
+    pub compute_seconds: f64,
+}
+
+/// The fields of a manifest a read parses.
+#[derive(Deserialize)]
+struct ManifestRead {
+    key: String,
+    kind: String,
+    upstream: Vec<(String, String)>,
+    metrics: Vec<Field>,
+    payloads: Vec<Payload>,
+    compute_seconds: f64,
 }
 
 /// Cache failures.
@@ -166,12 +187,18 @@ impl Cache {
         if blake3::hash(&manifest_bytes).to_hex().as_bytes() != recorded.trim_ascii() {
             return Err(corrupt(String::from("manifest checksum mismatch")));
         }
-        let manifest: Manifest = serde_json::from_slice(&manifest_bytes)
+        let read: ManifestRead = serde_json::from_slice(&manifest_bytes)
             .map_err(|e| corrupt(format!("manifest.json: {e}")))?;
-        if manifest.key != key.to_hex() || manifest.kind != kind {
+        if read.key != key.to_hex() || read.kind != kind {
             return Err(corrupt(String::from("manifest names another key or kind")));
         }
-        let artifact = read_payloads(&dir, &manifest, with_arrays).map_err(corrupt)?;
+        let manifest = EntryManifest {
+            upstream: read.upstream,
+            payloads: read.payloads,
+            compute_seconds: read.compute_seconds,
+        };
+        let mut artifact = read_payloads(&dir, &manifest.payloads, with_arrays).map_err(corrupt)?;
+        artifact.metrics = read.metrics;
         Ok(Some(CachedEntry { manifest, artifact }))
     }
 
@@ -325,16 +352,13 @@ fn hostname() -> String {
         .unwrap_or_else(|| String::from("localhost"))
 }
 
-/// The artifact of a verified manifest: its metrics, its tables and (`with_arrays`) its arrays,
-/// each payload read checked against the manifest's size and checksum. Errors say what is corrupt.
-fn read_payloads(dir: &Path, manifest: &Manifest, with_arrays: bool) -> Result<Artifact, String> {
-    let mut artifact = Artifact {
-        metrics: manifest.metrics.clone(),
-        ..Artifact::default()
-    };
+/// The tables and (`with_arrays`) the arrays of the payloads of a verified manifest, each payload
+/// read checked against the manifest's size and checksum. Errors say what is corrupt.
+fn read_payloads(dir: &Path, payloads: &[Payload], with_arrays: bool) -> Result<Artifact, String> {
+    let mut artifact = Artifact::default();
     // Arrays decoded so far by file: an array equal to an earlier one names its file.
     let mut decoded: BTreeMap<&str, ndarray::ArrayD<f64>> = BTreeMap::new();
-    for payload in &manifest.payloads {
+    for payload in payloads {
         let array = payload.array_name();
         if array.is_some() && !with_arrays {
             continue;
