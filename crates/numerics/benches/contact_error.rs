@@ -30,6 +30,7 @@ use asperity_numerics::contact::{
     Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver, LoadStep, RealFft2d,
     SolverOptions,
 };
+use asperity_numerics::fft2::fast_even_length;
 use asperity_numerics::surface::HeightMap;
 use ndarray::Array2;
 use rustfft::num_complex::Complex;
@@ -252,7 +253,7 @@ fn main() {
             ((ix as f64 - c).powi(2) + (iy as f64 - c).powi(2)) * dx * dx / (2.0 * radius)
         });
         let material = ContactMaterial::against_rigid_flat(e_star, f64::INFINITY).unwrap();
-        let mut clock = FftClock::new(2 * n);
+        let mut clock = FftClock::new(fast_even_length(2 * n));
         for &tol in &tolerances {
             let problem =
                 ContactProblem::from_gap_array(gap.view(), dx, dx, material, Boundary::NonPeriodic)

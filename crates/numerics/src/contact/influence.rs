@@ -2,7 +2,7 @@
 
 use std::f64::consts::PI;
 
-use crate::fft2::{FftFailure, RealFft2d, RowSink, RowSource};
+use crate::fft2::{fast_even_length, FftFailure, RealFft2d, RowSink, RowSource};
 
 /// Lateral boundary condition of the contact domain.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -14,7 +14,10 @@ pub enum Boundary {
     Periodic,
     /// An isolated patch on an infinite half-space, outside of which the pressure is zero.
     /// Discrete convolution–FFT (DC-FFT, Liu, Wang & Liu 2000, Wear 243) on a grid zero-padded to
-    /// `2nx × 2ny` with the influence coefficients of uniform pressure on one `dx × dy` pixel
+    /// at least `2nx × 2ny` (the next even lengths with prime factors 2, 3, 5 and 7 only, see
+    /// [`fast_even_length`]: `2n − 1` suffice for the linear convolution of `n` points, so the
+    /// padding changes nothing but the speed) with the influence coefficients of uniform pressure
+    /// on one `dx × dy` pixel
     /// (Love 1929; Johnson 1985, eq. 3.25):
     /// `K(x, y) = 1/(π E*) Σ± G(x ± dx/2, y ± dy/2)`,
     /// `G(X, Y) = X asinh(Y/|X|) + Y asinh(X/|Y|)`. Displacements are absolute (zero at infinity).
@@ -94,25 +97,26 @@ impl InfluenceOperator {
                 (fft, kernel)
             }
             Boundary::NonPeriodic => {
-                let (mx, my) = (2 * nx, 2 * ny);
+                let (mx, my) = (fast_even_length(2 * nx), fast_even_length(2 * ny));
                 let mut stencil = vec![0.0; mx * my];
-                let offset = |j: usize, n: usize| -> f64 {
-                    if j < n {
+                // Pixel offset of padded index `j` on a circle of even length `m`: the stencil is
+                // even (`j` and `m − j` hold opposite offsets), so its spectrum is real.
+                let offset = |j: usize, m: usize| -> f64 {
+                    if j < m / 2 {
                         j as f64
                     } else {
-                        j as f64 - 2.0 * n as f64
+                        j as f64 - m as f64
                     }
                 };
                 for jy in 0..my {
-                    let y = offset(jy, ny) * dy;
+                    let y = offset(jy, my) * dy;
                     for jx in 0..mx {
-                        let x = offset(jx, nx) * dx;
+                        let x = offset(jx, mx) * dx;
                         stencil[jy * mx + jx] = pixel_influence(x, y, dx, dy) / composite_modulus;
                     }
                 }
                 let mut fft = RealFft2d::new(mx, my);
                 let norm = 1.0 / (mx as f64 * my as f64);
-                // The stencil is even in x and y, so its spectrum is real.
                 let kernel = fft.forward(&stencil)?.iter().map(|c| c.re * norm).collect();
                 (fft, kernel)
             }
@@ -241,7 +245,14 @@ mod tests {
 
     #[test]
     fn non_periodic_operator_matches_direct_sum() {
-        let (nx, ny, dx, dy) = (6, 5, 1.0, 1.5);
+        // 2 · 6 and 2 · 5 are padded to themselves, 2 · 11 and 2 · 13 to 24 and 28.
+        for (nx, ny) in [(6, 5), (11, 13)] {
+            non_periodic_operator_matches_direct_sum_on(nx, ny);
+        }
+    }
+
+    fn non_periodic_operator_matches_direct_sum_on(nx: usize, ny: usize) {
+        let (dx, dy) = (1.0, 1.5);
         let mut op = InfluenceOperator::new(nx, ny, dx, dy, 2.0, Boundary::NonPeriodic).unwrap();
         let p: Vec<f64> = (0..nx * ny).map(|i| ((i * 37) % 11) as f64).collect();
         let mut u = vec![0.0; nx * ny];

@@ -17,8 +17,11 @@ use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
+mod fast_length;
 mod grid;
 mod rows;
+
+pub use fast_length::fast_even_length;
 
 pub(crate) use grid::{forward_real_2d, inverse_real_2d};
 use rows::{dense_rows, Copy};

@@ -1,0 +1,55 @@
+//! Transform lengths the FFT handles quickly.
+
+/// The smallest even length `≥ min` whose prime factors are all in `{2, 3, 5, 7}`.
+///
+/// `rustfft` has specialised butterflies for these radices; a length with a large prime factor
+/// (3512 = 8 · 439, say) is transformed by Bluestein's algorithm through a longer FFT and costs
+/// several times as much. Zero-padding to such a length is free wherever the padding only has to
+/// be long enough (a linear convolution of `n` points needs `≥ 2n − 1`). Powers of two are
+/// returned unchanged. Even, so that the real transform of a row packs into a half-length
+/// complex one.
+pub fn fast_even_length(min: usize) -> usize {
+    let mut length = min.max(2);
+    length += length % 2;
+    while !is_7_smooth(length) {
+        length += 2;
+    }
+    length
+}
+
+fn is_7_smooth(mut n: usize) -> bool {
+    for p in [2, 3, 5, 7] {
+        while n.is_multiple_of(p) {
+            n /= p;
+        }
+    }
+    n == 1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fast_lengths_are_the_smallest_even_7_smooth_ones() {
+        for (min, expected) in [
+            (0, 2),
+            (1, 2),
+            (3, 4),
+            (512, 512),
+            (1024, 1024),
+            (1023, 1024),
+            (2 * 439, 882),
+            (7024, 7056),
+            (3512, 3528),
+            (2 * 1250, 2500),
+        ] {
+            assert_eq!(fast_even_length(min), expected, "min {min}");
+        }
+        for min in 1..2000 {
+            let length = fast_even_length(min);
+            assert!(length >= min && length.is_multiple_of(2) && is_7_smooth(length));
+            assert!((min..length).all(|l| !l.is_multiple_of(2) || !is_7_smooth(l)));
+        }
+    }
+}
