@@ -38,52 +38,11 @@ impl Workspace {
             place_ranked(&mut self.p, lowest, plim, remainder);
             return;
         }
-        // k < n here. The k-th smallest gap (0-based), ties broken by index as in a stable order
-        // of (gap, index): the first `k` points of that order carry p_lim, the next one the rest.
-        let Some(kth) = kth_smallest(&self.g0, k) else {
-            self.p.fill(nominal);
-            return;
-        };
-        // Per block: points below the k-th gap and points tied with it.
-        let counts: Vec<(usize, usize)> = self
-            .g0
-            .par_chunks(BLOCK)
-            .map(|g0| {
-                g0.iter()
-                    .fold((0, 0), |(below, tied), g| match g.total_cmp(&kth) {
-                        Ordering::Less => (below + 1, tied),
-                        Ordering::Equal => (below, tied + 1),
-                        Ordering::Greater => (below, tied),
-                    })
-            })
-            .collect();
-        // The tied points carrying p_lim, then the one with the remainder, in index order.
-        let full_ties = k - counts.iter().map(|&(below, _)| below).sum::<usize>();
-        let ties_before = counts.iter().scan(0, |before, &(_, tied)| {
-            let first = *before;
-            *before += tied;
-            Some(first)
-        });
-        self.p
-            .par_chunks_mut(BLOCK)
-            .zip(self.g0.par_chunks(BLOCK))
-            .zip(ties_before.collect::<Vec<_>>())
-            .for_each(|((p, g0), mut tie)| {
-                for (pi, g) in p.iter_mut().zip(g0) {
-                    *pi = match g.total_cmp(&kth) {
-                        Ordering::Less => plim,
-                        Ordering::Equal => {
-                            tie += 1;
-                            match (tie - 1).cmp(&full_ties) {
-                                Ordering::Less => plim,
-                                Ordering::Equal => remainder,
-                                Ordering::Greater => 0.0,
-                            }
-                        }
-                        Ordering::Greater => 0.0,
-                    };
-                }
-            });
+        // k < n here.
+        match kth_smallest(&self.g0, k) {
+            Some(kth) => place_smallest(&mut self.p, &self.g0, (k, kth), plim, remainder, |_| 0.0),
+            None => self.p.fill(nominal),
+        }
     }
 
     /// Restores `Σ p = total` from pressures set outside the iteration (a warm start).
@@ -97,8 +56,8 @@ impl Workspace {
     /// `p_lim` (Newton on the concave, piecewise-linear `s ↦ Σ_F min(s p, p_lim)`, started left
     /// of the root at `s₀ = need / Σ_F p`, so it increases monotonically). If the free set cannot
     /// carry the load, it is saturated and the rest goes to the points out of contact of smallest
-    /// gap (see [`Self::spread_by_gap`]). Otherwise (and when that ranking declines) all
-    /// pressures are shifted, `p ← clamp(p + c, 0, p_lim)`, with `c` by bisection, and the
+    /// gap (see [`Self::spread_by_gap`]). Otherwise (and when too few points are out of contact,
+    /// or nothing caps the pressure) all pressures are shifted, `p ← clamp(p + c, 0, p_lim)`, with `c` by bisection, and the
     /// contact lists rebuilt. `stats` are the free-set statistics of the current pressures.
     pub(super) fn rebalance_with(&mut self, total: f64, stats: FreeStats) -> Rebalanced {
         let plim = self.plim;
@@ -163,8 +122,10 @@ impl Workspace {
     /// Saturates the free set and gives the load `rest` it cannot carry to the points out of
     /// contact of smallest gap `g₀ + u`, `p_lim` each and the last one the remainder: the
     /// rigid-plastic rule of [`Self::start_rigid_plastic`] on the deformed gap, where contact
-    /// would form next. `None` (nothing changed) when the ranking declines (more than
-    /// `N/16` points, see `selection::lowest_ranks`) or too few points are out of contact.
+    /// would form next. The sampled ranking (`selection::lowest_ranks`) is tried first, the
+    /// exact radix selection when it declines (more than `N/16` points, or a sample that misled:
+    /// strided samples of a surface with a lay along a grid axis see few independent heights).
+    /// `None` (nothing changed) when too few points are out of contact.
     ///
     /// Ranking by gap matters: a uniform upward shift gives every point out of contact the same
     /// pressure whatever its gap, the free set becomes most of the grid and the load-controlled
@@ -178,17 +139,29 @@ impl Workspace {
         }
         let share = rest / plim;
         let m = share.floor() as usize;
+        let remainder = (share - m as f64) * plim;
         self.write_out_of_contact_gap();
-        let lowest = lowest_ranks(&self.g, m, &mut self.ranks)?;
-        if lowest.last()?.0.is_infinite() {
-            return None;
-        }
-        self.p.par_iter_mut().for_each(|p| {
-            if *p > 0.0 {
-                *p = plim;
+        let saturate = |p: &mut [f64]| {
+            p.par_iter_mut().for_each(|p| {
+                if *p > 0.0 {
+                    *p = plim;
+                }
+            })
+        };
+        if let Some(lowest) = lowest_ranks(&self.g, m, &mut self.ranks) {
+            if lowest.last()?.0.is_infinite() {
+                return None;
             }
-        });
-        place_ranked(&mut self.p, lowest, plim, (share - m as f64) * plim);
+            saturate(&mut self.p);
+            place_ranked(&mut self.p, lowest, plim, remainder);
+        } else {
+            let kth = kth_smallest(&self.g, m)?;
+            if kth.is_infinite() {
+                return None;
+            }
+            saturate(&mut self.p);
+            place_smallest(&mut self.p, &self.g, (m, kth), plim, remainder, |p| p);
+        }
         self.rebuild_contact();
         Some(Rebalanced {
             pressure_sum: self.free_stats().total(),
@@ -204,6 +177,58 @@ fn place_ranked(p: &mut [f64], lowest: &[(f64, usize)], plim: f64, remainder: f6
         full.iter().for_each(|&(_, i)| p[i] = plim);
         p[last] = remainder;
     }
+}
+
+/// Sets `p_lim` at the `k` smallest of `values` in the order of `(value, index)` (ties broken
+/// by index, as in a stable order), `remainder` at the next one and `other(p)` everywhere else,
+/// given `kth`, the `k`-th smallest value (0-based; `selection::kth_smallest`).
+fn place_smallest(
+    p: &mut [f64],
+    values: &[f64],
+    (k, kth): (usize, f64),
+    plim: f64,
+    remainder: f64,
+    other: impl Fn(f64) -> f64 + Sync,
+) {
+    // Per block: points below the k-th value and points tied with it.
+    let counts: Vec<(usize, usize)> = values
+        .par_chunks(BLOCK)
+        .map(|block| {
+            block
+                .iter()
+                .fold((0, 0), |(below, tied), v| match v.total_cmp(&kth) {
+                    Ordering::Less => (below + 1, tied),
+                    Ordering::Equal => (below, tied + 1),
+                    Ordering::Greater => (below, tied),
+                })
+        })
+        .collect();
+    // The tied points carrying p_lim, then the one with the remainder, in index order.
+    let full_ties = k - counts.iter().map(|&(below, _)| below).sum::<usize>();
+    let ties_before = counts.iter().scan(0, |before, &(_, tied)| {
+        let first = *before;
+        *before += tied;
+        Some(first)
+    });
+    p.par_chunks_mut(BLOCK)
+        .zip(values.par_chunks(BLOCK))
+        .zip(ties_before.collect::<Vec<_>>())
+        .for_each(|((p, block), mut tie)| {
+            for (pi, v) in p.iter_mut().zip(block) {
+                *pi = match v.total_cmp(&kth) {
+                    Ordering::Less => plim,
+                    Ordering::Equal => {
+                        tie += 1;
+                        match (tie - 1).cmp(&full_ties) {
+                            Ordering::Less => plim,
+                            Ordering::Equal => remainder,
+                            Ordering::Greater => other(*pi),
+                        }
+                    }
+                    Ordering::Greater => other(*pi),
+                };
+            }
+        });
 }
 
 #[cfg(test)]
@@ -244,12 +269,36 @@ mod tests {
             expected[receiver] = 5.0;
             assert_eq!(ws.p, expected, "u₀ = {u0}");
         }
-        // More points than the ranking takes (N/16): the uniform shift, which also restores Σ p.
+        // More points than the sampled ranking takes (N/16): the exact selection, same rule.
         let mut ws = start(0.0);
         ws.rebalance(60.0);
-        let sum: f64 = ws.p.iter().sum();
-        assert!((sum - 60.0).abs() < 1e-9, "Σ p = {sum}");
-        assert!(ws.p.iter().all(|&p| p > 0.0));
+        let mut expected = vec![0.0; n];
+        expected[58..].fill(plim);
+        assert_eq!(ws.p, expected);
+    }
+
+    #[test]
+    fn load_spreads_by_gap_also_where_the_strided_sample_misleads() {
+        // 512² points, gap 1 µm but 0.5 µm at every point with i % 64 = 1, which the strided
+        // sample (every 64th point from 0) never sees: its bound ties with almost every gap and
+        // the sampled ranking declines. Two points carry 4 Pa of p_lim = 10 Pa; the load asks
+        // 10.5 p_lim more than they can carry: the ten smallest gaps in index order take p_lim,
+        // the eleventh the half, as the exact selection finds them (not a shift of every point).
+        let (nx, plim) = (512, 10.0);
+        let n = nx * nx;
+        let g0: Vec<f64> = (0..n)
+            .map(|i| if i % 64 == 1 { 0.5e-6 } else { 1e-6 })
+            .collect();
+        let mut ws = Workspace::new(g0, nx, plim);
+        ws.p[0] = 4.0;
+        ws.p[2] = 4.0;
+        ws.rebalance(2.0 * plim + 10.5 * plim);
+        let mut expected = vec![0.0; n];
+        expected[0] = plim;
+        expected[2] = plim;
+        (0..10).for_each(|j| expected[64 * j + 1] = plim);
+        expected[64 * 10 + 1] = 0.5 * plim;
+        assert!(ws.p == expected, "not the smallest gaps in index order");
     }
 
     #[test]
