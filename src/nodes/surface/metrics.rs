@@ -21,9 +21,9 @@ use crate::engine::value::Field;
 use crate::friction::SummitStatistics as GwSummits;
 use crate::nodes::surface_view::{DX, DY, GRID_NX, GRID_NY, M0, M2, M4};
 use crate::surface::spectral::{
-    autocorrelation, hurst_exponent_of, periodogram, radial_psd_of, spectral_moments,
-    spectral_moments_of, texture_direction_of, AcfBoundary, HurstFitOptions, MomentMethod, Window,
-    ISO_ACF_THRESHOLD,
+    autocorrelation, hurst_exponent_of, periodic_autocorrelation_of, periodogram, radial_psd_of,
+    spectral_moments, spectral_moments_of, texture_direction_of, AcfBoundary, HurstFitOptions,
+    MomentMethod, Window, ISO_ACF_THRESHOLD,
 };
 use crate::surface::{amplitude_statistics, find_summits, Boundary, HeightMap, SummitOptions};
 use crate::units::Dimension;
@@ -99,8 +99,8 @@ fn spectral_metrics(
     let periodic = boundary == Boundary::Periodic;
     let window = if periodic { Window::None } else { Window::Hann };
     let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
-    // One periodogram serves the moments (periodic maps: unwindowed), the texture direction,
-    // the Hurst fit and the PSD table.
+    // One periodogram serves the moments and the ACF (periodic maps: unwindowed), the texture
+    // direction, the Hurst fit and the PSD table.
     let p = periodogram(map, window).map_err(|e| fail("PSD", &e))?;
     let psd = radial_psd_of(&p, map);
     let m = if periodic {
@@ -128,12 +128,12 @@ fn spectral_metrics(
             num("gw_alpha", gw.alpha),
         ]);
     }
-    let acf_boundary = if periodic {
-        AcfBoundary::Periodic
+    let acf = if periodic {
+        periodic_autocorrelation_of(&p, map)
     } else {
-        AcfBoundary::ZeroPadded
-    };
-    let acf = autocorrelation(map, acf_boundary).map_err(|e| fail("autocorrelation", &e))?;
+        autocorrelation(map, AcfBoundary::ZeroPadded)
+    }
+    .map_err(|e| fail("autocorrelation", &e))?;
     if let Ok(texture) = acf.texture(ISO_ACF_THRESHOLD) {
         metrics.push(len("sal", texture.sal));
         if let Some(str_ratio) = texture.str_ratio {

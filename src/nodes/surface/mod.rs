@@ -31,7 +31,7 @@ pub(crate) const TABLE: &str = "surfaces";
 
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
 /// computed statistics change, so stale cache entries are never reused.
-pub const SURFACE_KIND_VERSION: u32 = 6;
+pub const SURFACE_KIND_VERSION: u32 = 7;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
 /// cache but regenerated when a dependant needs their heights.

@@ -1,10 +1,10 @@
 //! Spectral statistics on synthetic surfaces with known targets and on closed-form sinusoids.
 
 use asperity_numerics::surface::spectral::{
-    autocorrelation, hurst_exponent, hurst_exponent_of, periodogram, profile_psd, radial_psd,
-    radial_psd_of, spectral_moments, spectral_moments_of, texture_direction, texture_direction_of,
-    AcfBoundary, Autocorrelation, Axis, HurstFitOptions, MomentMethod, SpectralError, Window,
-    ISO_ACF_THRESHOLD,
+    autocorrelation, hurst_exponent, hurst_exponent_of, periodic_autocorrelation_of, periodogram,
+    profile_psd, radial_psd, radial_psd_of, spectral_moments, spectral_moments_of,
+    texture_direction, texture_direction_of, AcfBoundary, Autocorrelation, Axis, HurstFitOptions,
+    MomentMethod, SpectralError, Window, ISO_ACF_THRESHOLD,
 };
 use asperity_numerics::surface::synthetic::{
     generate_synthetic_surface, model_autocorrelation, Anisotropy, SyntheticSurfaceSpec,
@@ -163,6 +163,43 @@ fn zero_padded_acf_agrees_with_periodic_at_short_lags() {
     let radial = padded.radial();
     assert_eq!(radial.acf.first(), Some(&1.0));
     assert!(radial.r.windows(2).all(|w| w[1] > w[0]));
+}
+
+#[test]
+fn zero_padded_acf_is_the_overlap_average_on_any_grid() {
+    // 11 × 13 points: the padded grid (24 × 28, not 22 × 26) is longer than twice the map, which
+    // must change nothing: every lag up to half the map against the direct overlap average.
+    let (nx, ny) = (11, 13);
+    let z = Array2::from_shape_fn((ny, nx), |(j, i)| {
+        ((i * 7 + j * 13) % 17) as f64 - 8.0 + 0.1 * i as f64
+    });
+    let map = HeightMap::new(z.clone(), 1e-6, 2e-6).unwrap();
+    let acf = autocorrelation(&map, AcfBoundary::ZeroPadded).unwrap();
+    let mean = z.sum() / (nx * ny) as f64;
+    let direct = |ix: isize, iy: isize| {
+        let mut sum = 0.0;
+        for j in 0..ny as isize {
+            for i in 0..nx as isize {
+                let (i2, j2) = (i + ix, j + iy);
+                if (0..nx as isize).contains(&i2) && (0..ny as isize).contains(&j2) {
+                    sum += (z[[j as usize, i as usize]] - mean)
+                        * (z[[j2 as usize, i2 as usize]] - mean);
+                }
+            }
+        }
+        sum / ((nx - ix.unsigned_abs()) * (ny - iy.unsigned_abs())) as f64
+    };
+    let zero = direct(0, 0);
+    for iy in -6..=6 {
+        for ix in -5..=5 {
+            let expected = direct(ix, iy) / zero;
+            let got = acf.at(ix, iy).unwrap();
+            assert!(
+                (got - expected).abs() < 1e-12,
+                "lag ({ix}, {iy}): {got} vs {expected}"
+            );
+        }
+    }
 }
 
 #[test]
@@ -394,6 +431,18 @@ fn statistics_of_one_shared_periodogram_equal_their_own() {
     let hann = periodogram(&map, Window::Hann).unwrap();
     assert!(matches!(
         spectral_moments_of(&hann, &map),
-        Err(SpectralError::WindowedMoments)
+        Err(SpectralError::Windowed { .. })
+    ));
+    // The periodic ACF from the periodogram: one inverse transform of a rescaled power spectrum
+    // instead of a forward and an inverse one, so equal to round-off (a few ulps of f ≤ 1).
+    let from_p = periodic_autocorrelation_of(&p, &map).unwrap();
+    let direct = autocorrelation(&map, AcfBoundary::Periodic).unwrap();
+    assert_eq!(from_p.values().dim(), direct.values().dim());
+    for (a, b) in from_p.values().iter().zip(direct.values()) {
+        assert!((a - b).abs() < 1e-13, "{a} vs {b}");
+    }
+    assert!(matches!(
+        periodic_autocorrelation_of(&hann, &map),
+        Err(SpectralError::Windowed { .. })
     ));
 }

@@ -4,8 +4,8 @@
 //! `f(τ) = ⟨z(r) z(r + τ)⟩ / ⟨z²⟩` for mean-removed heights, computed by FFT
 //! (Wiener–Khinchin). Two boundary treatments:
 //! * [`AcfBoundary::Periodic`] — circular correlation, for periodic (synthetic) surfaces;
-//! * [`AcfBoundary::ZeroPadded`] — the map is zero-padded to twice its size so no lag wraps
-//!   around, and each lag is averaged over its overlap `(nx − |ix|)(ny − |iy|)` points
+//! * [`AcfBoundary::ZeroPadded`] — the map is zero-padded to (at least) twice its size so no lag
+//!   wraps around, and each lag is averaged over its overlap `(nx − |ix|)(ny − |iy|)` points
 //!   (the unbiased estimator used by e.g. Gwyddion). For measured surfaces.
 //!
 //! Lags are kept up to half the map, `|ix| ≤ nx/2`, `|iy| ≤ ny/2`, beyond which fewer than half
@@ -23,8 +23,8 @@ use ndarray::Array2;
 use realfft::num_complex::Complex64;
 
 use super::error::{require_complete, SpectralError};
-use super::psd::Axis;
-use crate::fft2::{forward_real_2d, inverse_real_2d};
+use super::psd::{Axis, Periodogram, Window};
+use crate::fft2::{fast_even_length, forward_real_2d, inverse_real_2d};
 use crate::surface::HeightMap;
 
 /// ISO 25178-2 default threshold `s` for Sal and Str.
@@ -82,7 +82,9 @@ pub struct CorrelationLengths {
     pub threshold: f64,
 }
 
-/// Computes the normalised ACF of a complete height map.
+/// Computes the normalised ACF of a complete height map. The zero-padded grid is at least twice
+/// the map along each axis (the next even FFT length with prime factors 2, 3, 5 and 7 only,
+/// [`fast_even_length`]: `2n − 1` points keep every lag from wrapping).
 pub fn autocorrelation(
     map: &HeightMap,
     boundary: AcfBoundary,
@@ -93,7 +95,7 @@ pub fn autocorrelation(
     let mean = z.sum() / (nx * ny) as f64;
     let (px, py) = match boundary {
         AcfBoundary::Periodic => (nx, ny),
-        AcfBoundary::ZeroPadded => (2 * nx, 2 * ny),
+        AcfBoundary::ZeroPadded => (fast_even_length(2 * nx), fast_even_length(2 * ny)),
     };
     let mut padded = Array2::<f64>::zeros((py, px));
     padded
@@ -104,6 +106,38 @@ pub fn autocorrelation(
     power.mapv_inplace(|v| Complex64::new(v.norm_sqr(), 0.0));
     let circular = inverse_real_2d(&power, px)?;
     drop(power);
+    centred_lags(&circular, boundary, map)
+}
+
+/// The periodic ACF ([`AcfBoundary::Periodic`]) of `map` from its unwindowed periodogram: by
+/// Wiener–Khinchin the circular autocorrelation is the inverse transform of `|Z(q)|²`, and the
+/// periodogram's constant factor cancels in the normalisation. One inverse FFT instead of a
+/// forward and an inverse one; equal to [`autocorrelation`] up to round-off.
+pub fn periodic_autocorrelation_of(
+    p: &Periodogram,
+    map: &HeightMap,
+) -> Result<Autocorrelation, SpectralError> {
+    if p.window != Window::None {
+        return Err(SpectralError::Windowed {
+            what: "the periodic autocorrelation",
+        });
+    }
+    require_complete(map)?;
+    let power = p.c.mapv(|c| Complex64::new(c, 0.0));
+    let circular = inverse_real_2d(&power, map.nx())?;
+    drop(power);
+    centred_lags(&circular, AcfBoundary::Periodic, map)
+}
+
+/// The normalised ACF on the centred lag grid from the circular correlation `circular` of the
+/// (padded) grid, each lag averaged over its overlap for [`AcfBoundary::ZeroPadded`].
+fn centred_lags(
+    circular: &Array2<f64>,
+    boundary: AcfBoundary,
+    map: &HeightMap,
+) -> Result<Autocorrelation, SpectralError> {
+    let (nx, ny) = (map.nx(), map.ny());
+    let (py, px) = circular.dim();
     let (hx, hy) = (nx / 2, ny / 2);
     let mut values = Array2::<f64>::zeros((2 * hy + 1, 2 * hx + 1));
     for ((row, col), value) in values.indexed_iter_mut() {

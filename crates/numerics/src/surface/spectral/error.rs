@@ -28,10 +28,8 @@ pub enum SpectralError {
         "autocorrelation does not decay to {threshold} within the largest lag {max_lag:e} m in any direction"
     )]
     NoDecay { threshold: f64, max_lag: f64 },
-    #[error(
-        "spectral moments need the unwindowed periodogram; this one was computed with a window"
-    )]
-    WindowedMoments,
+    #[error("{what} need the unwindowed periodogram; this one was computed with a window")]
+    Windowed { what: &'static str },
     #[error(transparent)]
     Fft(#[from] FftFailure),
 }

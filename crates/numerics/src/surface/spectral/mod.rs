@@ -11,8 +11,8 @@ pub mod psd;
 
 pub use crate::fft2::FftFailure;
 pub use autocorrelation::{
-    autocorrelation, AcfBoundary, AcfTexture, Autocorrelation, CorrelationLengths, RadialAcf,
-    ISO_ACF_THRESHOLD,
+    autocorrelation, periodic_autocorrelation_of, AcfBoundary, AcfTexture, Autocorrelation,
+    CorrelationLengths, RadialAcf, ISO_ACF_THRESHOLD,
 };
 pub use direction::{texture_direction, texture_direction_of, TextureDirection};
 pub use error::SpectralError;

@@ -94,7 +94,9 @@ pub fn spectral_moments_of(
     map: &HeightMap,
 ) -> Result<SpectralMoments, SpectralError> {
     if p.window != Window::None {
-        return Err(SpectralError::WindowedMoments);
+        return Err(SpectralError::Windowed {
+            what: "spectral moments",
+        });
     }
     let (lx, ly) = map.size();
     let area = lx * ly;
