@@ -130,13 +130,25 @@ fn a_regenerated_node_must_reproduce_its_cached_metrics() {
     let cache_dir = dir.join("cache");
     let (plan, _) = run(&dir, &study("20 MPa"), &cache_dir, "out-a");
     let cache = Cache::open(&cache_dir).unwrap();
+    // The summary a read returns (magic 16 bytes, version 4, blake3 of the body 32, body)
+    // names the metric sq as length-prefixed text: rename it and recompute the checksum.
     let entry = cache.entry_dir("surface", &plan.nodes[0].key);
-    let manifest = std::fs::read_to_string(entry.join("manifest.json")).unwrap();
-    let edited = manifest.replacen("\"name\": \"sq\"", "\"name\": \"sq_edited\"", 1);
-    assert_ne!(edited, manifest, "the manifest names the metric sq");
-    std::fs::write(entry.join("manifest.json"), &edited).unwrap();
-    let checksum = blake3::hash(edited.as_bytes()).to_hex().to_string();
-    std::fs::write(entry.join("manifest.blake3"), checksum).unwrap();
+    let mut summary = std::fs::read(entry.join("summary.bin")).unwrap();
+    let sq = [
+        &2u64.to_le_bytes()[..],
+        b"sq",
+        &6u64.to_le_bytes(),
+        b"length",
+    ]
+    .concat();
+    let at = summary
+        .windows(sq.len())
+        .position(|w| w == sq.as_slice())
+        .expect("the summary names the metric sq");
+    summary[at + 9] = b'Q';
+    let checksum = *blake3::hash(&summary[52..]).as_bytes();
+    summary[20..52].copy_from_slice(&checksum);
+    std::fs::write(entry.join("summary.bin"), &summary).unwrap();
 
     let (_, report) = run(&dir, &study("10 MPa"), &cache_dir, "out-b");
     assert_eq!((report.discarded, report.computed), (1, 2));

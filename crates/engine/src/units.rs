@@ -25,7 +25,19 @@ pub enum Dimension {
 }
 
 impl Dimension {
-    /// Lower-case name used in messages ("a length").
+    /// Every dimension.
+    pub const ALL: [Dimension; 8] = [
+        Dimension::Dimensionless,
+        Dimension::Length,
+        Dimension::Area,
+        Dimension::Pressure,
+        Dimension::Force,
+        Dimension::SurfaceEnergy,
+        Dimension::Angle,
+        Dimension::InverseArea,
+    ];
+
+    /// Lower-case name used in messages ("a length"), node keys and cache summaries.
     pub fn name(self) -> &'static str {
         match self {
             Dimension::Dimensionless => "dimensionless number",
