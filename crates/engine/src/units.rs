@@ -25,18 +25,6 @@ pub enum Dimension {
 }
 
 impl Dimension {
-    /// Every dimension.
-    pub const ALL: [Dimension; 8] = [
-        Dimension::Dimensionless,
-        Dimension::Length,
-        Dimension::Area,
-        Dimension::Pressure,
-        Dimension::Force,
-        Dimension::SurfaceEnergy,
-        Dimension::Angle,
-        Dimension::InverseArea,
-    ];
-
     /// Lower-case name used in messages ("a length"), node keys and cache summaries.
     pub fn name(self) -> &'static str {
         match self {
@@ -49,6 +37,21 @@ impl Dimension {
             Dimension::Angle => "angle",
             Dimension::InverseArea => "inverse area",
         }
+    }
+
+    /// The dimension called `name` (as [`Dimension::name`] writes it).
+    pub fn from_name(name: &str) -> Option<Self> {
+        Some(match name {
+            "dimensionless number" => Dimension::Dimensionless,
+            "length" => Dimension::Length,
+            "area" => Dimension::Area,
+            "pressure" => Dimension::Pressure,
+            "force" => Dimension::Force,
+            "surface energy" => Dimension::SurfaceEnergy,
+            "angle" => Dimension::Angle,
+            "inverse area" => Dimension::InverseArea,
+            _ => return None,
+        })
     }
 
     /// The SI unit symbol written in column names ("m", "Pa", …); empty when dimensionless.
@@ -458,6 +461,24 @@ impl<D: DimensionMarker> schemars::JsonSchema for Quantity<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_dimension_is_found_by_its_name() {
+        use Dimension::*;
+        for d in [
+            Dimensionless,
+            Length,
+            Area,
+            Pressure,
+            Force,
+            SurfaceEnergy,
+            Angle,
+            InverseArea,
+        ] {
+            assert_eq!(Dimension::from_name(d.name()), Some(d));
+        }
+        assert_eq!(Dimension::from_name("volume"), None);
+    }
 
     #[test]
     fn parses_units_to_si() {

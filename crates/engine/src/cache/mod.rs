@@ -19,12 +19,14 @@
 
 mod summary;
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap, HashSet};
+use std::ffi::{OsStr, OsString};
 use std::fs::{self, File};
 use std::io::{ErrorKind, Read, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::artifact::{Artifact, Table};
@@ -166,6 +168,41 @@ impl Cache {
     /// `true` when an entry directory exists (it may still fail verification).
     pub fn contains(&self, kind: &str, key: &NodeKey) -> bool {
         self.entry_dir(kind, key).join("manifest.json").exists()
+    }
+
+    /// For each `(kind, key)`, whether its entry directory exists (it may still fail
+    /// verification). Each prefix directory (`entries/<kind>/<key[..2]>`) is listed once, in
+    /// parallel, rather than every entry queried: a study's worth of entries at once.
+    pub fn present(&self, entries: &[(&str, &NodeKey)]) -> Vec<bool> {
+        let mut groups: HashMap<(&str, u8), Vec<usize>> = HashMap::new();
+        for (i, (kind, key)) in entries.iter().enumerate() {
+            groups.entry((kind, key.0[0])).or_default().push(i);
+        }
+        let found: Vec<Vec<usize>> = groups
+            .into_par_iter()
+            .map(|((kind, prefix), members)| {
+                let dir = self
+                    .root
+                    .join("entries")
+                    .join(kind)
+                    .join(format!("{prefix:02x}"));
+                let names: HashSet<OsString> = fs::read_dir(dir)
+                    .into_iter()
+                    .flatten()
+                    .flatten()
+                    .map(|e| e.file_name())
+                    .collect();
+                members
+                    .into_iter()
+                    .filter(|&i| names.contains(OsStr::new(&entries[i].1.to_hex())))
+                    .collect()
+            })
+            .collect();
+        let mut present = vec![false; entries.len()];
+        for i in found.into_iter().flatten() {
+            present[i] = true;
+        }
+        present
     }
 
     /// Loads and verifies an entry. `Ok(None)`: not cached. `Err(Corrupt)`: present but failed

@@ -250,15 +250,16 @@ impl<'a> Reader<'a> {
 
     fn list<T>(&mut self, item: impl Fn(&mut Self) -> Result<T, String>) -> Result<Vec<T>, String> {
         let n = self.len()?;
-        (0..n).map(|_| item(self)).collect()
+        let mut items = Vec::with_capacity(n);
+        for _ in 0..n {
+            items.push(item(self)?);
+        }
+        Ok(items)
     }
 
     fn dimension(&mut self) -> Result<Dimension, String> {
         let name = self.str()?;
-        Dimension::ALL
-            .into_iter()
-            .find(|d| d.name() == name)
-            .ok_or_else(|| format!("unknown dimension '{name}'"))
+        Dimension::from_name(name).ok_or_else(|| format!("unknown dimension '{name}'"))
     }
 
     fn payload(&mut self) -> Result<Payload, String> {
