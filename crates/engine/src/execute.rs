@@ -1,11 +1,12 @@
 //! Execution: load what the cache has, compute the rest in parallel, upstream first.
 //!
 //! Only instances the requested tables need are touched. Instances run in parallel on the rayon
-//! pool as soon as their upstream finished, chains first (see `RunContext::spawn`), each first
+//! pool as soon as their upstream finished, deepest first (see `RunContext::pull`), each first
 //! acquiring its memory estimate from a budget so large nodes do not run all at once. A failing
 //! node fails only its dependants.
 
-use std::collections::BTreeMap;
+use std::cmp::Reverse;
+use std::collections::{BTreeMap, BinaryHeap};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
@@ -155,19 +156,21 @@ pub fn execute_nodes(
             }
         }
     }
-    // Instances run as soon as their upstream finished; see [`RunContext::spawn`] for the order.
+    // Instances run as soon as their upstream finished, deepest first; see [`RunContext::pull`].
     let mut waiting = vec![0usize; n];
     let mut downstream: Vec<Vec<usize>> = vec![Vec::new(); n];
+    let mut level = vec![0usize; n];
     for &i in &needed {
         for (_, u) in &plan.nodes[i].upstream {
             waiting[i] += 1;
             downstream[*u].push(i);
+            level[i] = level[i].max(level[*u] + 1);
         }
     }
-    let ready: Vec<usize> = needed
+    let ready = needed
         .iter()
-        .copied()
-        .filter(|&i| waiting[i] == 0)
+        .filter(|&&i| waiting[i] == 0)
+        .map(|&i| (level[i], Reverse(i)))
         .collect();
     progress.start(needed.len());
     let budget = MemoryBudget::new(options.memory_budget);
@@ -176,6 +179,8 @@ pub fn execute_nodes(
         outcomes: vec![None; n],
         dependants,
         waiting,
+        ready,
+        running: 0,
         report: RunReport::default(),
     });
     let ctx = RunContext {
@@ -187,12 +192,10 @@ pub fn execute_nodes(
         shared: &shared,
         wants_payload: &wants_payload,
         downstream: &downstream,
+        level: &level,
+        slots: rayon::current_num_threads().max(1),
     };
-    rayon::scope(|scope| {
-        for &i in ready.iter().rev() {
-            ctx.spawn(scope, i);
-        }
-    });
+    rayon::scope(|scope| ctx.spawn_pulls(scope));
     let Shared {
         outcomes,
         mut report,
@@ -212,6 +215,11 @@ struct Shared {
     dependants: Vec<usize>,
     /// Per instance, its upstream instances that have not finished: it is ready at 0.
     waiting: Vec<usize>,
+    /// Ready instances by priority: the deepest (longest upstream chain) first, then the first
+    /// in plan order.
+    ready: BinaryHeap<(usize, Reverse<usize>)>,
+    /// Instances being loaded or computed.
+    running: usize,
     report: RunReport,
 }
 
@@ -226,36 +234,59 @@ struct RunContext<'a> {
     wants_payload: &'a [bool],
     /// Per instance, its needed dependants.
     downstream: &'a [Vec<usize>],
+    /// Per instance, the length of its longest upstream chain (0 for a surface).
+    level: &'a [usize],
+    /// Instances that may run at once: the pool's thread count.
+    slots: usize,
 }
 
 impl<'a> RunContext<'a> {
-    /// Runs instance `i` on the pool, then spawns the dependants it made ready. A worker runs
-    /// the tasks it spawned last first, so a chain started (surfaces, then their contact, then
-    /// its friction) is finished before the next one is begun, and an artifact is released as
-    /// soon as its last dependant ran: at most a few chains' arrays are held at once, however
-    /// many scenarios the study has. Idle workers take the oldest ready instances.
-    fn spawn<'s>(&'s self, scope: &rayon::Scope<'s>, i: usize)
+    /// Spawns one [`Self::pull`] per slot.
+    fn spawn_pulls<'s>(&'s self, scope: &rayon::Scope<'s>)
     where
         'a: 's,
     {
-        scope.spawn(move |scope| {
-            let (outcome, artifact) = self.run_node(i, self.wants_payload[i]);
-            self.progress.finished(&self.plan.nodes[i], &outcome.status);
-            for d in self.finish(i, outcome, artifact).into_iter().rev() {
-                self.spawn(scope, d);
-            }
-        });
+        for _ in 0..self.slots {
+            scope.spawn(move |scope| self.pull(scope));
+        }
+    }
+
+    /// Runs the ready instance of highest priority, if a slot is free, then spawns new pulls.
+    ///
+    /// At most one instance per pool thread runs at once (a pull taken by a thread that waits
+    /// inside a running node's parallel loop finds no free slot and returns), and the deepest
+    /// ready instance goes first: a chain once started (surfaces, their contact, its friction)
+    /// is finished before the next one is begun, and each artifact is released after its last
+    /// dependant, so only a few chains' arrays are in memory at once, however many scenarios
+    /// the study has. A node's own parallel loops still use every thread of the pool.
+    fn pull<'s>(&'s self, scope: &rayon::Scope<'s>)
+    where
+        'a: 's,
+    {
+        let Some(i) = self.take_ready() else {
+            return;
+        };
+        let (outcome, artifact) = self.run_node(i, self.wants_payload[i]);
+        self.progress.finished(&self.plan.nodes[i], &outcome.status);
+        self.finish(i, outcome, artifact);
+        self.spawn_pulls(scope);
+    }
+
+    fn take_ready(&self) -> Option<usize> {
+        let mut shared = self.lock();
+        if shared.running >= self.slots {
+            return None;
+        }
+        let (_, Reverse(i)) = shared.ready.pop()?;
+        shared.running += 1;
+        Some(i)
     }
 
     /// Records the result of instance `i`, releases the artifacts no dependant needs any more and
-    /// returns the dependants that became ready.
-    fn finish(
-        &self,
-        i: usize,
-        outcome: NodeOutcome,
-        artifact: Option<Arc<Artifact>>,
-    ) -> Vec<usize> {
+    /// queues the dependants that became ready.
+    fn finish(&self, i: usize, outcome: NodeOutcome, artifact: Option<Arc<Artifact>>) {
         let mut shared = self.lock();
+        shared.running -= 1;
         let report = &mut shared.report;
         match &outcome.status {
             NodeStatus::Computed => report.computed += 1,
@@ -273,14 +304,12 @@ impl<'a> RunContext<'a> {
                 shared.artifacts[*u] = None;
             }
         }
-        let mut ready = Vec::new();
         for &d in &self.downstream[i] {
             shared.waiting[d] -= 1;
             if shared.waiting[d] == 0 {
-                ready.push(d);
+                shared.ready.push((self.level[d], Reverse(d)));
             }
         }
-        ready
     }
 
     fn lock(&self) -> std::sync::MutexGuard<'_, Shared> {
