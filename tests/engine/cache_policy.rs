@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use asperity::engine::cache::Cache;
+use asperity::engine::cache::{Cache, Manifest};
 use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, RunReport};
 use asperity::engine::output::{write_tables, OutputMetadata};
 use asperity::engine::plan::Plan;
@@ -62,14 +62,14 @@ fn run(dir: &Path, text: &str, cache: &Path, out: &str) -> (Plan, RunReport) {
     (plan, report)
 }
 
+/// The payload files and sizes the manifest of instance `i`'s entry lists.
 fn payloads(cache: &Path, kind: &str, plan: &Plan, i: usize) -> Vec<(String, u64)> {
-    let cache = Cache::open(cache).unwrap();
-    let entry = cache
-        .load(kind, &plan.nodes[i].key, false)
+    let dir = Cache::open(cache)
         .unwrap()
-        .unwrap();
-    entry
-        .manifest
+        .entry_dir(kind, &plan.nodes[i].key);
+    let manifest: Manifest =
+        serde_json::from_slice(&std::fs::read(dir.join("manifest.json")).unwrap()).unwrap();
+    manifest
         .payloads
         .iter()
         .map(|p| (p.file.clone(), p.bytes))
@@ -130,25 +130,31 @@ fn a_regenerated_node_must_reproduce_its_cached_metrics() {
     let cache_dir = dir.join("cache");
     let (plan, _) = run(&dir, &study("20 MPa"), &cache_dir, "out-a");
     let cache = Cache::open(&cache_dir).unwrap();
-    // The summary a read returns (magic 16 bytes, version 4, blake3 of the body 32, body)
-    // names the metric sq as length-prefixed text: rename it and recompute the checksum.
+    // Made an entry without a summary (read through its manifest), its metric sq renamed and
+    // the manifest's checksum recomputed.
     let entry = cache.entry_dir("surface", &plan.nodes[0].key);
-    let mut summary = std::fs::read(entry.join("summary.bin")).unwrap();
-    let sq = [
-        &2u64.to_le_bytes()[..],
-        b"sq",
-        &6u64.to_le_bytes(),
-        b"length",
-    ]
-    .concat();
-    let at = summary
-        .windows(sq.len())
-        .position(|w| w == sq.as_slice())
-        .expect("the summary names the metric sq");
-    summary[at + 9] = b'Q';
-    let checksum = *blake3::hash(&summary[52..]).as_bytes();
-    summary[20..52].copy_from_slice(&checksum);
-    std::fs::write(entry.join("summary.bin"), &summary).unwrap();
+    std::fs::remove_file(entry.join("summary.bin")).unwrap();
+    let path = entry.join("manifest.json");
+    let mut manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    manifest["payloads"]
+        .as_array_mut()
+        .unwrap()
+        .retain(|p| p["file"] != "summary.bin");
+    let sq = manifest["metrics"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|m| m["name"] == "sq")
+        .expect("the surface has the metric sq");
+    sq["name"] = serde_json::Value::from("sQ");
+    let bytes = serde_json::to_vec_pretty(&manifest).unwrap();
+    std::fs::write(&path, &bytes).unwrap();
+    std::fs::write(
+        entry.join("manifest.blake3"),
+        blake3::hash(&bytes).to_hex().as_bytes(),
+    )
+    .unwrap();
 
     let (_, report) = run(&dir, &study("10 MPa"), &cache_dir, "out-b");
     assert_eq!((report.discarded, report.computed), (1, 2));

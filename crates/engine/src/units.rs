@@ -39,17 +39,17 @@ impl Dimension {
         }
     }
 
-    /// The dimension called `name` (as [`Dimension::name`] writes it).
-    pub fn from_name(name: &str) -> Option<Self> {
+    /// The dimension whose name (as [`Dimension::name`] writes it) has the bytes `name`.
+    pub fn from_name(name: &[u8]) -> Option<Self> {
         Some(match name {
-            "dimensionless number" => Dimension::Dimensionless,
-            "length" => Dimension::Length,
-            "area" => Dimension::Area,
-            "pressure" => Dimension::Pressure,
-            "force" => Dimension::Force,
-            "surface energy" => Dimension::SurfaceEnergy,
-            "angle" => Dimension::Angle,
-            "inverse area" => Dimension::InverseArea,
+            b"dimensionless number" => Dimension::Dimensionless,
+            b"length" => Dimension::Length,
+            b"area" => Dimension::Area,
+            b"pressure" => Dimension::Pressure,
+            b"force" => Dimension::Force,
+            b"surface energy" => Dimension::SurfaceEnergy,
+            b"angle" => Dimension::Angle,
+            b"inverse area" => Dimension::InverseArea,
             _ => return None,
         })
     }
@@ -475,9 +475,9 @@ mod tests {
             Angle,
             InverseArea,
         ] {
-            assert_eq!(Dimension::from_name(d.name()), Some(d));
+            assert_eq!(Dimension::from_name(d.name().as_bytes()), Some(d));
         }
-        assert_eq!(Dimension::from_name("volume"), None);
+        assert_eq!(Dimension::from_name(b"volume"), None);
     }
 
     #[test]

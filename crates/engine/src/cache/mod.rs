@@ -17,6 +17,7 @@
 //! reads (a read for metrics and tables leaves the arrays unread); an entry that fails is
 //! reported, discarded and recomputed by the caller — never used.
 
+mod names;
 mod summary;
 
 use std::collections::{BTreeMap, HashMap, HashSet};
@@ -86,14 +87,22 @@ pub struct CachedEntry {
     pub artifact: Artifact,
 }
 
-/// What a read of an entry keeps of its manifest besides the metrics (which go to the artifact);
-/// the parameters, versions and times are not parsed.
+/// What a read of an entry keeps of its manifest besides the metrics (which go to the artifact)
+/// and the payload list (which the read itself uses); the parameters, versions and times are not
+/// parsed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EntryManifest {
     /// `(role, key)` of each upstream node.
     pub upstream: Vec<(String, String)>,
-    pub payloads: Vec<Payload>,
     pub compute_seconds: f64,
+}
+
+/// What a read finds of an entry before its arrays: the manifest part, the metrics and tables,
+/// and the payload list (read from a summary only when the arrays are wanted).
+struct EntryRead {
+    manifest: EntryManifest,
+    artifact: Artifact,
+    payloads: Vec<Payload>,
 }
 
 /// The fields of a manifest a read parses.
@@ -155,14 +164,17 @@ impl Cache {
         &self.root
     }
 
-    /// The directory of the entry for `key` of kind `kind`.
+    /// The directory of the entry for `key` of kind `kind`, made in one allocation with room for
+    /// the name of a file in it.
     pub fn entry_dir(&self, kind: &str, key: &NodeKey) -> PathBuf {
         let hex = key.to_hex();
-        self.root
-            .join("entries")
-            .join(kind)
-            .join(&hex[..2])
-            .join(hex)
+        let mut dir = PathBuf::with_capacity(self.root.as_os_str().len() + kind.len() + 128);
+        for part in [self.root.as_os_str(), "entries".as_ref(), kind.as_ref()] {
+            dir.push(part);
+        }
+        dir.push(&hex[..2]);
+        dir.push(hex);
+        dir
     }
 
     /// `true` when an entry directory exists (it may still fail verification).
@@ -208,10 +220,10 @@ impl Cache {
     /// Loads and verifies an entry. `Ok(None)`: not cached. `Err(Corrupt)`: present but failed
     /// verification — call [`Cache::discard`] and recompute. Everything read is verified. An
     /// entry is read from its summary (`summary.bin`, which carries its own checksum), one file;
-    /// an entry written before summaries through its manifest (checked against
-    /// `manifest.blake3`) and `tables.json`. The arrays are read only `with_arrays`, each checked
-    /// against the size and checksum listed for it, so a damaged array is found when its arrays
-    /// are next loaded, or by [`Cache::verify`].
+    /// an entry written before summaries (or with a summary of another format version) through
+    /// its manifest (checked against `manifest.blake3`) and `tables.json`. The arrays are read
+    /// only `with_arrays`, each checked against the size and checksum listed for it, so a damaged
+    /// array is found when its arrays are next loaded, or by [`Cache::verify`].
     pub fn load(
         &self,
         kind: &str,
@@ -223,26 +235,30 @@ impl Cache {
             path: dir.clone(),
             reason,
         };
-        let (manifest, mut artifact) = match read_file(&dir.join(SUMMARY_FILE), READ_CAPACITY) {
-            Ok(bytes) => summary::decode(&bytes, key, kind)
+        let summary = match read_file(&dir.join(SUMMARY_FILE), READ_CAPACITY) {
+            Ok(bytes) => summary::decode(&bytes, key, kind, with_arrays)
                 .map_err(|e| corrupt(format!("{SUMMARY_FILE}: {e}")))?,
-            Err(e) if e.kind() == ErrorKind::NotFound => {
-                let Some((manifest, metrics)) = self.read_manifest(&dir, kind, key)? else {
-                    return Ok(None);
-                };
-                let artifact = Artifact {
-                    metrics,
-                    tables: read_payloads(&dir, &manifest.payloads, false, true)
-                        .map_err(corrupt)?
-                        .tables,
-                    ..Artifact::default()
-                };
-                (manifest, artifact)
-            }
+            Err(e) if e.kind() == ErrorKind::NotFound => None,
             Err(e) => return Err(corrupt(format!("{SUMMARY_FILE}: {e}"))),
         };
+        let read = match summary {
+            Some(d) => EntryRead {
+                manifest: d.manifest,
+                artifact: d.artifact,
+                payloads: d.payloads,
+            },
+            None => match self.read_manifest(&dir, kind, key)? {
+                Some(read) => read,
+                None => return Ok(None),
+            },
+        };
+        let EntryRead {
+            manifest,
+            mut artifact,
+            payloads,
+        } = read;
         if with_arrays {
-            artifact.arrays = read_payloads(&dir, &manifest.payloads, true, false)
+            artifact.arrays = read_payloads(&dir, &payloads, true, false)
                 .map_err(corrupt)?
                 .arrays;
         }
@@ -250,19 +266,20 @@ impl Cache {
     }
 
     /// Verifies an entry fully: the manifest against its checksum, every payload it lists
-    /// (arrays decoded, tables parsed) and the summary. `Ok(false)`: not cached.
+    /// (arrays decoded, tables parsed) and the summary (a summary of another format version is
+    /// checked only as a payload). `Ok(false)`: not cached.
     pub fn verify(&self, kind: &str, key: &NodeKey) -> Result<bool, CacheError> {
         let dir = self.entry_dir(kind, key);
         let corrupt = |reason: String| CacheError::Corrupt {
             path: dir.clone(),
             reason,
         };
-        let Some((manifest, _)) = self.read_manifest(&dir, kind, key)? else {
+        let Some(read) = self.read_manifest(&dir, kind, key)? else {
             return Ok(false);
         };
-        read_payloads(&dir, &manifest.payloads, true, true).map_err(corrupt)?;
+        read_payloads(&dir, &read.payloads, true, true).map_err(corrupt)?;
         match read_file(&dir.join(SUMMARY_FILE), READ_CAPACITY) {
-            Ok(bytes) => summary::decode(&bytes, key, kind)
+            Ok(bytes) => summary::decode(&bytes, key, kind, true)
                 .map(drop)
                 .map_err(|e| corrupt(format!("{SUMMARY_FILE}: {e}"))),
             Err(e) if e.kind() == ErrorKind::NotFound => Ok(()),
@@ -271,14 +288,15 @@ impl Cache {
         Ok(true)
     }
 
-    /// The manifest of the entry in `dir`, checked against `manifest.blake3`, and its metrics;
-    /// `None` when there is no entry.
+    /// The entry in `dir` read through its manifest (checked against `manifest.blake3`): the
+    /// manifest part, the metrics and the tables (from `tables.json`, checked against the
+    /// manifest); `None` when there is no entry.
     fn read_manifest(
         &self,
         dir: &Path,
         kind: &str,
         key: &NodeKey,
-    ) -> Result<Option<(EntryManifest, Vec<Field>)>, CacheError> {
+    ) -> Result<Option<EntryRead>, CacheError> {
         let corrupt = |reason: String| CacheError::Corrupt {
             path: dir.to_path_buf(),
             reason,
@@ -298,12 +316,21 @@ impl Cache {
         if read.key != key.to_hex() || read.kind != kind {
             return Err(corrupt(String::from("manifest names another key or kind")));
         }
-        let manifest = EntryManifest {
-            upstream: read.upstream,
+        let tables = read_payloads(dir, &read.payloads, false, true)
+            .map_err(corrupt)?
+            .tables;
+        Ok(Some(EntryRead {
+            manifest: EntryManifest {
+                upstream: read.upstream,
+                compute_seconds: read.compute_seconds,
+            },
+            artifact: Artifact {
+                metrics: read.metrics,
+                tables,
+                ..Artifact::default()
+            },
             payloads: read.payloads,
-            compute_seconds: read.compute_seconds,
-        };
-        Ok(Some((manifest, read.metrics)))
+        }))
     }
 
     /// Publishes an entry atomically. Returns `false` when another writer published the same

@@ -293,7 +293,7 @@ fn append_long(target: &mut RowTable, key: &str, t: &Table) {
             ColumnData::Bool(v) => v.iter().map(|x| Some(Value::Bool(*x))).collect(),
             ColumnData::Text(v) => v.iter().map(|x| Some(Value::Text(x.clone()))).collect(),
         };
-        (Cow::Borrowed(c.name.as_str()), c.dimension, cells)
+        (Cow::Borrowed(c.name.as_ref()), c.dimension, cells)
     });
     let key_column = (Cow::Borrowed("key"), Dimension::Dimensionless, key_cells);
     target.push_columns(rows, std::iter::once(key_column).chain(columns));
