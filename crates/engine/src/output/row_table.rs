@@ -22,8 +22,9 @@ pub(super) struct RowTable {
     /// The column of each cell name and dimension seen so far (the column's name is the cell's
     /// name with its unit, made once per column rather than per cell).
     index: HashMap<String, Vec<(Dimension, usize)>>,
-    /// The cell name and dimension that made each column: rows mostly repeat the previous row's
-    /// cells in the same order, so the column after the last one filled is tried first.
+    /// The cell name and dimension that made each column: rows (and the long tables of one kind)
+    /// mostly repeat the previous row's cells in the same order, so the column after the last one
+    /// filled is tried first.
     sources: Vec<(String, Dimension)>,
     next: usize,
 }
@@ -42,12 +43,8 @@ impl RowTable {
     pub fn push_row<'a>(&mut self, cells: impl IntoIterator<Item = Cell<'a>>) {
         self.next = 0;
         for (name, dim, value) in cells {
-            let col = match self.sources.get(self.next) {
-                Some((n, d)) if *n == name && *d == dim => self.next,
-                _ => self.column(&name, dim),
-            };
+            let col = self.column_after_last(&name, dim);
             self.columns[col].2.push(value);
-            self.next = col + 1;
         }
         self.rows += 1;
         for c in &mut self.columns {
@@ -67,8 +64,9 @@ impl RowTable {
             return;
         }
         let start = self.rows;
+        self.next = 0;
         for (name, dim, mut cells) in columns {
-            let col = self.column(&name, dim);
+            let col = self.column_after_last(&name, dim);
             let column = &mut self.columns[col].2;
             if column.len() == start {
                 cells.resize(rows, None);
@@ -79,6 +77,17 @@ impl RowTable {
         for c in &mut self.columns {
             c.2.resize(self.rows, None);
         }
+    }
+
+    /// The column of cells called `name` with dimension `dim`, tried first against the column
+    /// after the last one filled; that column is the last one filled then.
+    fn column_after_last(&mut self, name: &str, dim: Dimension) -> usize {
+        let col = match self.sources.get(self.next) {
+            Some((n, d)) if n == name && *d == dim => self.next,
+            _ => self.column(name, dim),
+        };
+        self.next = col + 1;
+        col
     }
 
     /// The column of cells called `name` with dimension `dim`, added when new.
