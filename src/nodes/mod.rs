@@ -89,6 +89,12 @@ pub fn study_schema_json() -> String {
 /// A list of numbers (SI) as one text field, `"1e+07,2e+07"`: how load steps enter a key and a
 /// table row.
 pub(crate) fn number_list(name: &'static str, values: &[f64]) -> Field {
-    let items: Vec<String> = values.iter().map(|v| format_number(*v)).collect();
-    Field::text(name, items.join(","))
+    let mut text = String::new();
+    for (i, v) in values.iter().enumerate() {
+        if i > 0 {
+            text.push(',');
+        }
+        text.push_str(&format_number(*v));
+    }
+    Field::text(name, text)
 }

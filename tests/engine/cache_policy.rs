@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use asperity::engine::cache::Cache;
+use asperity::engine::cache::{Cache, Manifest};
 use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, RunReport};
 use asperity::engine::output::{write_tables, OutputMetadata};
 use asperity::engine::plan::Plan;
@@ -62,14 +62,14 @@ fn run(dir: &Path, text: &str, cache: &Path, out: &str) -> (Plan, RunReport) {
     (plan, report)
 }
 
+/// The payload files and sizes the manifest of instance `i`'s entry lists.
 fn payloads(cache: &Path, kind: &str, plan: &Plan, i: usize) -> Vec<(String, u64)> {
-    let cache = Cache::open(cache).unwrap();
-    let entry = cache
-        .load(kind, &plan.nodes[i].key, false)
+    let dir = Cache::open(cache)
         .unwrap()
-        .unwrap();
-    entry
-        .manifest
+        .entry_dir(kind, &plan.nodes[i].key);
+    let manifest: Manifest =
+        serde_json::from_slice(&std::fs::read(dir.join("manifest.json")).unwrap()).unwrap();
+    manifest
         .payloads
         .iter()
         .map(|p| (p.file.clone(), p.bytes))
@@ -130,13 +130,31 @@ fn a_regenerated_node_must_reproduce_its_cached_metrics() {
     let cache_dir = dir.join("cache");
     let (plan, _) = run(&dir, &study("20 MPa"), &cache_dir, "out-a");
     let cache = Cache::open(&cache_dir).unwrap();
+    // Made an entry without a summary (read through its manifest), its metric sq renamed and
+    // the manifest's checksum recomputed.
     let entry = cache.entry_dir("surface", &plan.nodes[0].key);
-    let manifest = std::fs::read_to_string(entry.join("manifest.json")).unwrap();
-    let edited = manifest.replacen("\"name\": \"sq\"", "\"name\": \"sq_edited\"", 1);
-    assert_ne!(edited, manifest, "the manifest names the metric sq");
-    std::fs::write(entry.join("manifest.json"), &edited).unwrap();
-    let checksum = blake3::hash(edited.as_bytes()).to_hex().to_string();
-    std::fs::write(entry.join("manifest.blake3"), checksum).unwrap();
+    std::fs::remove_file(entry.join("summary.bin")).unwrap();
+    let path = entry.join("manifest.json");
+    let mut manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    manifest["payloads"]
+        .as_array_mut()
+        .unwrap()
+        .retain(|p| p["file"] != "summary.bin");
+    let sq = manifest["metrics"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|m| m["name"] == "sq")
+        .expect("the surface has the metric sq");
+    sq["name"] = serde_json::Value::from("sQ");
+    let bytes = serde_json::to_vec_pretty(&manifest).unwrap();
+    std::fs::write(&path, &bytes).unwrap();
+    std::fs::write(
+        entry.join("manifest.blake3"),
+        blake3::hash(&bytes).to_hex().as_bytes(),
+    )
+    .unwrap();
 
     let (_, report) = run(&dir, &study("10 MPa"), &cache_dir, "out-b");
     assert_eq!((report.discarded, report.computed), (1, 2));

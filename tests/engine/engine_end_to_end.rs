@@ -181,8 +181,8 @@ fn corrupted_payload_is_detected_discarded_and_recomputed() {
     flip_a_byte(&entry.join("heights.npy.zst"));
     assert!(cache.load("surface", &node.key, true).is_err());
     assert!(cache.load("surface", &node.key, false).unwrap().is_some());
-    // A damaged table is found by every read, so the rerun replaces the entry.
-    flip_a_byte(&entry.join("tables.json"));
+    // A damaged summary is found by every read, so the rerun replaces the entry.
+    flip_a_byte(&entry.join("summary.bin"));
     assert!(cache.load("surface", &node.key, false).is_err());
 
     let second = run(&dir, &text, &cache_dir, "out2");
@@ -193,14 +193,34 @@ fn corrupted_payload_is_detected_discarded_and_recomputed() {
     }
     assert!(cache.load("surface", &node.key, true).unwrap().is_some());
 
-    // A truncated manifest is corrupt too.
-    let manifest = cache.entry_dir("surface", &node.key).join("manifest.json");
+    // An entry written before summaries is read through its manifest, and a truncated manifest
+    // is corrupt.
+    let manifest = without_summary(&entry);
+    let loaded = cache.load("surface", &node.key, true).unwrap().unwrap();
+    assert!(loaded.artifact.arrays.contains_key("heights"));
+    assert!(!loaded.artifact.tables.is_empty());
     let m = std::fs::read(&manifest).unwrap();
     std::fs::write(&manifest, &m[..m.len() / 2]).unwrap();
     assert!(cache.load("surface", &node.key, false).is_err());
     let third = run(&dir, &text, &cache_dir, "out3");
     assert_eq!(third.report.discarded, 1);
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Makes the entry in `entry` one written before summaries: no `summary.bin` and a manifest
+/// (with its checksum) that does not list it. Returns the manifest's path.
+fn without_summary(entry: &Path) -> PathBuf {
+    std::fs::remove_file(entry.join("summary.bin")).unwrap();
+    let path = entry.join("manifest.json");
+    let mut manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    let payloads = manifest["payloads"].as_array_mut().unwrap();
+    payloads.retain(|p| p["file"] != "summary.bin");
+    let bytes = serde_json::to_vec_pretty(&manifest).unwrap();
+    std::fs::write(&path, &bytes).unwrap();
+    let checksum = blake3::hash(&bytes).to_hex().to_string();
+    std::fs::write(entry.join("manifest.blake3"), checksum).unwrap();
+    path
 }
 
 /// A surface whose contact is cached is read without its heights; when the contact's entry turns
@@ -228,11 +248,7 @@ nodes:
             .entry_dir("surface", &surface.key)
             .join("heights.npy.zst"),
     );
-    flip_a_byte(
-        &cache
-            .entry_dir("contact", &contact.key)
-            .join("manifest.json"),
-    );
+    flip_a_byte(&cache.entry_dir("contact", &contact.key).join("summary.bin"));
 
     let second = run(&dir, text, &cache_dir, "out2");
     assert!(second.report.all_ok(), "{:?}", second.report.outcomes);

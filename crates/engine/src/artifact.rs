@@ -1,6 +1,7 @@
 //! What a computed node produces and the cache stores: one row of metrics for the kind's table,
 //! named arrays (stored as `.npy`) and named long tables (e.g. one row per load step).
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 
 use ndarray::ArrayD;
@@ -40,27 +41,32 @@ impl Table {
     }
 
     /// Appends a float column in SI units.
-    pub fn push_float(&mut self, name: &str, dimension: Dimension, data: Vec<f64>) {
+    pub fn push_float(
+        &mut self,
+        name: impl Into<Cow<'static, str>>,
+        dimension: Dimension,
+        data: Vec<f64>,
+    ) {
         self.columns.push(Column {
-            name: name.to_string(),
+            name: name.into(),
             dimension,
             data: ColumnData::Float(data),
         });
     }
 
     /// Appends an integer column.
-    pub fn push_int(&mut self, name: &str, data: Vec<i64>) {
+    pub fn push_int(&mut self, name: impl Into<Cow<'static, str>>, data: Vec<i64>) {
         self.columns.push(Column {
-            name: name.to_string(),
+            name: name.into(),
             dimension: Dimension::Dimensionless,
             data: ColumnData::Int(data),
         });
     }
 
     /// Appends a text column.
-    pub fn push_text(&mut self, name: &str, data: Vec<String>) {
+    pub fn push_text(&mut self, name: impl Into<Cow<'static, str>>, data: Vec<String>) {
         self.columns.push(Column {
-            name: name.to_string(),
+            name: name.into(),
             dimension: Dimension::Dimensionless,
             data: ColumnData::Text(data),
         });
@@ -70,8 +76,8 @@ impl Table {
 /// One column of a [`Table`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Column {
-    /// Name without unit.
-    pub name: String,
+    /// Name without unit; a node kind's names are static text, as for [`Field`].
+    pub name: Cow<'static, str>,
     pub dimension: Dimension,
     pub data: ColumnData,
 }

@@ -64,7 +64,7 @@ pub fn list_entries(cache: &Cache) -> Result<Vec<EntryInfo>, CacheError> {
 }
 
 /// Verifies one entry fully (manifest checksum, every payload's size and checksum, arrays
-/// decoded). `Ok(())` when it is sound; the reason otherwise.
+/// decoded, the summary). `Ok(())` when it is sound; the reason otherwise.
 pub fn verify_entry(cache: &Cache, entry: &EntryInfo) -> Result<(), String> {
     let key = NodeKey::from_hex(&entry.key)
         .ok_or_else(|| format!("directory name '{}' is not a node key", entry.key))?;
@@ -73,9 +73,9 @@ pub fn verify_entry(cache: &Cache, entry: &EntryInfo) -> Result<(), String> {
             "entry is not under its key's prefix directory",
         ));
     }
-    match cache.load(&entry.kind, &key, true) {
-        Ok(Some(_)) => Ok(()),
-        Ok(None) => Err(String::from("entry vanished while being verified")),
+    match cache.verify(&entry.kind, &key) {
+        Ok(true) => Ok(()),
+        Ok(false) => Err(String::from("entry vanished while being verified")),
         Err(CacheError::Corrupt { reason, .. }) => Err(reason),
         Err(e) => Err(e.to_string()),
     }

@@ -11,10 +11,9 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
-use rayon::prelude::*;
-
 use crate::artifact::{Artifact, Table};
 use crate::cache::{Cache, CacheError, CachedEntry, Manifest};
+use crate::hash::NodeKey;
 use crate::node::{ArrayStorage, NodeError};
 use crate::plan::{Plan, PlannedNode};
 use crate::value::Field;
@@ -138,14 +137,14 @@ pub fn execute_nodes(
     }
     let needed = plan.upstream_closure(nodes, None);
     let n = plan.nodes.len();
-    let mut is_needed = vec![false; n];
-    for &i in &needed {
-        is_needed[i] = true;
-    }
-    let in_cache: Vec<bool> = (0..n)
-        .into_par_iter()
-        .map(|i| is_needed[i] && cache.contains(plan.nodes[i].task.kind(), &plan.nodes[i].key))
+    let entries: Vec<(&str, &NodeKey)> = needed
+        .iter()
+        .map(|&i| (plan.nodes[i].task.kind(), &plan.nodes[i].key))
         .collect();
+    let mut in_cache = vec![false; n];
+    for (&i, present) in needed.iter().zip(cache.present(&entries)) {
+        in_cache[i] = present;
+    }
     // An instance's arrays are loaded only when a dependant will be computed.
     let mut wants_payload = vec![false; n];
     let mut dependants = vec![0usize; n];

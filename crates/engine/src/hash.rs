@@ -28,7 +28,8 @@ impl Hash for NodeKey {
     }
 }
 
-/// Hashes a [`NodeKey`] by taking its first eight bytes as they are, for maps keyed by node keys.
+/// Hashes a [`NodeKey`] by taking its first eight bytes as they are, for maps keyed by node keys
+/// (and a `u64` that is a hash already, as it is).
 #[derive(Default)]
 pub struct KeyHasher(u64);
 

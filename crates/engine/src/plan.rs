@@ -47,12 +47,10 @@ pub struct Plan {
     pub unused_parameters: Vec<String>,
 }
 
-/// Scenarios resolved by one parallel task before they are merged: per scenario, the task and
-/// key of each node in topological order, and which parameters the scenarios used.
-/// The instances of one scenario with their keys, upstream first.
-type KeyedInstances = Vec<(Arc<dyn NodeTask>, NodeKey)>;
-
-type Resolved = Result<(Vec<KeyedInstances>, Vec<bool>), StudyError>;
+/// Scenarios resolved by one parallel task before they are merged: the task and key of each node
+/// of each scenario (scenario after scenario, nodes in topological order), and which parameters
+/// the scenarios used.
+type Resolved = Result<(Vec<(Arc<dyn NodeTask>, NodeKey)>, Vec<bool>), StudyError>;
 
 /// Scenarios resolved while the block before them is merged (bounds the tasks held before
 /// deduplication).
@@ -60,6 +58,9 @@ const BLOCK: usize = 1 << 12;
 
 /// Scenarios per parallel task.
 const CHUNK: usize = 128;
+
+/// Instances the plan makes room for at once (more are added as they come).
+const INITIAL_CAPACITY: usize = 1 << 20;
 
 impl Plan {
     /// Builds the plan of a study.
@@ -69,7 +70,8 @@ impl Plan {
         })?;
         let node_names: Vec<String> = study.file.nodes.keys().cloned().collect();
         let resolver = Resolver::new(study, &scenarios.names, &node_names)?;
-        let mut merge = Merge::new(scenarios.rows.len(), scenarios.names.len());
+        let instances = scenarios.rows.len().saturating_mul(resolver.order.len());
+        let mut merge = Merge::new(scenarios.rows.len(), instances, scenarios.names.len());
         let mut pending: Vec<Resolved> = Vec::new();
         for block in scenarios.rows.chunks(BLOCK) {
             let (resolved, merged) = rayon::join(
@@ -80,6 +82,7 @@ impl Plan {
             pending = resolved;
         }
         merge.add_block(&resolver, pending)?;
+        merge.nodes.shrink_to_fit();
         let unused_parameters = scenarios
             .names
             .iter()
@@ -228,23 +231,25 @@ impl<'a, N: NodeSpec> Resolver<'a, N> {
             .par_chunks(CHUNK)
             .map(|rows| {
                 let used = RefCell::new(vec![false; self.parameter_names.len()]);
-                let resolved = rows
-                    .iter()
-                    .map(|row| self.resolve_scenario(row, &used))
-                    .collect::<Result<_, _>>()?;
+                let mut resolved = Vec::with_capacity(rows.len() * self.order.len());
+                for row in rows {
+                    self.resolve_scenario(row, &used, &mut resolved)?;
+                }
                 Ok((resolved, used.into_inner()))
             })
             .collect()
     }
 
-    /// Instantiates and keys every node of one scenario, upstream first.
+    /// Instantiates and keys every node of one scenario, upstream first, appending them to `out`.
     fn resolve_scenario(
         &self,
         row: &[ParamValue],
         used: &RefCell<Vec<bool>>,
-    ) -> Result<KeyedInstances, StudyError> {
-        let mut own: KeyedInstances = Vec::with_capacity(self.order.len());
+        out: &mut Vec<(Arc<dyn NodeTask>, NodeKey)>,
+    ) -> Result<(), StudyError> {
+        let first = out.len();
         for (&n, links) in self.order.iter().zip(&self.links) {
+            let own = &out[first..];
             let spec = &self.study.file.nodes[n].value;
             let upstream: Vec<Arc<dyn NodeTask>> =
                 links.iter().map(|&(_, u)| own[u].0.clone()).collect();
@@ -266,28 +271,33 @@ impl<'a, N: NodeSpec> Resolver<'a, N> {
             let upstream_keys: Vec<(&str, NodeKey)> =
                 links.iter().map(|&(role, u)| (role, own[u].1)).collect();
             let key = node_key(task.kind(), task.version(), &task.params(), &upstream_keys);
-            own.push((task, key));
+            out.push((task, key));
         }
-        Ok(own)
+        Ok(())
     }
 }
 
 /// The instances found so far, deduplicated by key in scenario order.
-#[derive(Default)]
 struct Merge {
     nodes: Vec<PlannedNode>,
     by_key: KeyMap<usize>,
     scenario_nodes: Vec<Vec<usize>>,
     /// Which parameters the scenarios merged so far used.
     used: Vec<bool>,
+    /// The instance of each node of the scenario being added, in topological order.
+    instance_at: Vec<usize>,
 }
 
 impl Merge {
-    fn new(scenarios: usize, parameters: usize) -> Self {
+    /// A merge of `scenarios` scenarios of at most `instances` instances.
+    fn new(scenarios: usize, instances: usize, parameters: usize) -> Self {
+        let capacity = instances.min(INITIAL_CAPACITY);
         Self {
+            nodes: Vec::with_capacity(capacity),
+            by_key: KeyMap::with_capacity_and_hasher(capacity, Default::default()),
             scenario_nodes: Vec::with_capacity(scenarios),
             used: vec![false; parameters],
-            ..Self::default()
+            instance_at: Vec::new(),
         }
     }
 
@@ -299,20 +309,26 @@ impl Merge {
         block: Vec<Resolved>,
     ) -> Result<(), StudyError> {
         for chunk in block {
-            let (scenarios, used) = chunk?;
+            let (instances, used) = chunk?;
             self.used.iter_mut().zip(used).for_each(|(u, c)| *u |= c);
-            self.nodes.reserve(scenarios.len() * r.order.len());
-            self.by_key.reserve(scenarios.len() * r.order.len());
-            scenarios.into_iter().for_each(|s| self.add(r, s));
+            let mut instances = instances.into_iter();
+            while instances.len() > 0 {
+                self.add(r, instances.by_ref().take(r.order.len()));
+            }
         }
         Ok(())
     }
 
     /// Adds one resolved scenario: each node becomes a new instance or joins the one with its key.
-    fn add<N>(&mut self, r: &Resolver<'_, N>, scenario: KeyedInstances) {
-        let mut instance_at = Vec::with_capacity(scenario.len());
+    fn add<N>(
+        &mut self,
+        r: &Resolver<'_, N>,
+        scenario: impl Iterator<Item = (Arc<dyn NodeTask>, NodeKey)>,
+    ) {
         let mut instance_of = vec![usize::MAX; r.node_names.len()];
-        for (p, (task, key)) in scenario.into_iter().enumerate() {
+        self.instance_at.clear();
+        for (p, (task, key)) in scenario.enumerate() {
+            let instance_at = &self.instance_at;
             let index = *self.by_key.entry(key).or_insert_with(|| {
                 let upstream = r.links[p]
                     .iter()
@@ -330,7 +346,7 @@ impl Merge {
             if !self.nodes[index].names.contains(name) {
                 self.nodes[index].names.push(name.clone());
             }
-            instance_at.push(index);
+            self.instance_at.push(index);
             instance_of[r.order[p]] = index;
         }
         self.scenario_nodes.push(instance_of);

@@ -25,7 +25,7 @@ pub enum Dimension {
 }
 
 impl Dimension {
-    /// Lower-case name used in messages ("a length").
+    /// Lower-case name used in messages ("a length"), node keys and cache summaries.
     pub fn name(self) -> &'static str {
         match self {
             Dimension::Dimensionless => "dimensionless number",
@@ -37,6 +37,21 @@ impl Dimension {
             Dimension::Angle => "angle",
             Dimension::InverseArea => "inverse area",
         }
+    }
+
+    /// The dimension whose name (as [`Dimension::name`] writes it) has the bytes `name`.
+    pub fn from_name(name: &[u8]) -> Option<Self> {
+        Some(match name {
+            b"dimensionless number" => Dimension::Dimensionless,
+            b"length" => Dimension::Length,
+            b"area" => Dimension::Area,
+            b"pressure" => Dimension::Pressure,
+            b"force" => Dimension::Force,
+            b"surface energy" => Dimension::SurfaceEnergy,
+            b"angle" => Dimension::Angle,
+            b"inverse area" => Dimension::InverseArea,
+            _ => return None,
+        })
     }
 
     /// The SI unit symbol written in column names ("m", "Pa", …); empty when dimensionless.
@@ -446,6 +461,24 @@ impl<D: DimensionMarker> schemars::JsonSchema for Quantity<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_dimension_is_found_by_its_name() {
+        use Dimension::*;
+        for d in [
+            Dimensionless,
+            Length,
+            Area,
+            Pressure,
+            Force,
+            SurfaceEnergy,
+            Angle,
+            InverseArea,
+        ] {
+            assert_eq!(Dimension::from_name(d.name().as_bytes()), Some(d));
+        }
+        assert_eq!(Dimension::from_name(b"volume"), None);
+    }
 
     #[test]
     fn parses_units_to_si() {

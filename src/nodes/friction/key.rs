@@ -33,10 +33,12 @@ impl FrictionTask {
             adhesion_beyond_fits: _,
             full_stick,
         } = options;
-        let mut key = vec![
+        // Room for the fields of every setup.
+        let mut key = Vec::with_capacity(24);
+        key.extend([
             Field::text("method", method_of(setup).name()),
             Field::text("model", model.name()),
-        ];
+        ]);
         if *model == FrictionModel::Asperity(AsperityModel::KogutEtsion) {
             key.push(Field::text(
                 "static_friction_form",

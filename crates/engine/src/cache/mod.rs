@@ -4,28 +4,38 @@
 //! Layout: `<root>/entries/<kind>/<key[..2]>/<key>/` holds `manifest.json`, `manifest.blake3`
 //! (the manifest's own checksum) and the payloads: `<array>.npy.zst` (a NumPy `.npy` file,
 //! zstd-compressed: lossless, and a contact's mostly-zero pressure and plastic-penetration maps
-//! shrink by orders of magnitude; `zstd -d` gives the `.npy`) and `tables.json`; an array equal to
-//! an earlier one of the entry is not written again, its manifest payload names the earlier file.
-//! Entries written before compression hold plain `<array>.npy` and are read as well. A node kind may keep its
-//! arrays out of the cache altogether ([`crate::node::ArrayStorage::Regenerate`]).
+//! shrink by orders of magnitude; `zstd -d` gives the `.npy`), `tables.json` and `summary.bin`
+//! (what a read returns, in one self-checksummed binary file: `cache/summary.rs`); an array equal to an
+//! earlier one of the entry is not written again, its manifest payload names the earlier file.
+//! Entries written before compression hold plain `<array>.npy`, entries written before summaries
+//! no `summary.bin`; both are read as well. A node kind may keep its arrays out of the cache
+//! altogether ([`crate::node::ArrayStorage::Regenerate`]).
 //! An entry is written in `<root>/tmp/` (same filesystem), every file fsynced, then renamed into
 //! place in one step; an entry that already exists counts as success, so concurrent runs need no
-//! lock. A read verifies the manifest checksum and the size and blake3 checksum of every payload
-//! it reads (a read for metrics and tables leaves the arrays unread); an entry that fails is
+//! lock. A read verifies everything it reads: the summary against its own checksum (or the
+//! manifest against `manifest.blake3`), and the size and blake3 checksum of every payload it
+//! reads (a read for metrics and tables leaves the arrays unread); an entry that fails is
 //! reported, discarded and recomputed by the caller — never used.
 
-use std::collections::BTreeMap;
+mod names;
+mod summary;
+
+use std::collections::{BTreeMap, HashMap, HashSet};
+use std::ffi::{OsStr, OsString};
 use std::fs::{self, File};
 use std::io::{ErrorKind, Read, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::artifact::{Artifact, Table};
 use crate::hash::NodeKey;
 use crate::npy;
 use crate::value::Field;
+
+use summary::{Summary, SUMMARY_FILE};
 
 /// What the cache records about one entry.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -77,14 +87,22 @@ pub struct CachedEntry {
     pub artifact: Artifact,
 }
 
-/// What a read of an entry keeps of its manifest besides the metrics (which go to the artifact);
-/// the parameters, versions and times are not parsed.
+/// What a read of an entry keeps of its manifest besides the metrics (which go to the artifact)
+/// and the payload list (which the read itself uses); the parameters, versions and times are not
+/// parsed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EntryManifest {
     /// `(role, key)` of each upstream node.
     pub upstream: Vec<(String, String)>,
-    pub payloads: Vec<Payload>,
     pub compute_seconds: f64,
+}
+
+/// What a read finds of an entry before its arrays: the manifest part, the metrics and tables,
+/// and the payload list (read from a summary only when the arrays are wanted).
+struct EntryRead {
+    manifest: EntryManifest,
+    artifact: Artifact,
+    payloads: Vec<Payload>,
 }
 
 /// The fields of a manifest a read parses.
@@ -146,14 +164,17 @@ impl Cache {
         &self.root
     }
 
-    /// The directory of the entry for `key` of kind `kind`.
+    /// The directory of the entry for `key` of kind `kind`, made in one allocation with room for
+    /// the name of a file in it.
     pub fn entry_dir(&self, kind: &str, key: &NodeKey) -> PathBuf {
         let hex = key.to_hex();
-        self.root
-            .join("entries")
-            .join(kind)
-            .join(&hex[..2])
-            .join(hex)
+        let mut dir = PathBuf::with_capacity(self.root.as_os_str().len() + kind.len() + 128);
+        for part in [self.root.as_os_str(), "entries".as_ref(), kind.as_ref()] {
+            dir.push(part);
+        }
+        dir.push(&hex[..2]);
+        dir.push(hex);
+        dir
     }
 
     /// `true` when an entry directory exists (it may still fail verification).
@@ -161,11 +182,48 @@ impl Cache {
         self.entry_dir(kind, key).join("manifest.json").exists()
     }
 
+    /// For each `(kind, key)`, whether its entry directory exists (it may still fail
+    /// verification). Each prefix directory (`entries/<kind>/<key[..2]>`) is listed once, in
+    /// parallel, rather than every entry queried: a study's worth of entries at once.
+    pub fn present(&self, entries: &[(&str, &NodeKey)]) -> Vec<bool> {
+        let mut groups: HashMap<(&str, u8), Vec<usize>> = HashMap::new();
+        for (i, (kind, key)) in entries.iter().enumerate() {
+            groups.entry((kind, key.0[0])).or_default().push(i);
+        }
+        let found: Vec<Vec<usize>> = groups
+            .into_par_iter()
+            .map(|((kind, prefix), members)| {
+                let dir = self
+                    .root
+                    .join("entries")
+                    .join(kind)
+                    .join(format!("{prefix:02x}"));
+                let names: HashSet<OsString> = fs::read_dir(dir)
+                    .into_iter()
+                    .flatten()
+                    .flatten()
+                    .map(|e| e.file_name())
+                    .collect();
+                members
+                    .into_iter()
+                    .filter(|&i| names.contains(OsStr::new(&entries[i].1.to_hex())))
+                    .collect()
+            })
+            .collect();
+        let mut present = vec![false; entries.len()];
+        for i in found.into_iter().flatten() {
+            present[i] = true;
+        }
+        present
+    }
+
     /// Loads and verifies an entry. `Ok(None)`: not cached. `Err(Corrupt)`: present but failed
-    /// verification — call [`Cache::discard`] and recompute. Everything read is verified: the
-    /// manifest against its checksum, each payload read against its size and checksum. With
-    /// `with_arrays = false` the array payloads are neither read nor decoded (tables always are),
-    /// so a damaged array is found when its arrays are next loaded, or by a full verification.
+    /// verification — call [`Cache::discard`] and recompute. Everything read is verified. An
+    /// entry is read from its summary (`summary.bin`, which carries its own checksum), one file;
+    /// an entry written before summaries (or with a summary of another format version) through
+    /// its manifest (checked against `manifest.blake3`) and `tables.json`. The arrays are read
+    /// only `with_arrays`, each checked against the size and checksum listed for it, so a damaged
+    /// array is found when its arrays are next loaded, or by [`Cache::verify`].
     pub fn load(
         &self,
         kind: &str,
@@ -177,7 +235,73 @@ impl Cache {
             path: dir.clone(),
             reason,
         };
-        let manifest_bytes = match read_file(&dir.join("manifest.json"), MANIFEST_CAPACITY) {
+        let summary = match read_file(&dir.join(SUMMARY_FILE), READ_CAPACITY) {
+            Ok(bytes) => summary::decode(&bytes, key, kind, with_arrays)
+                .map_err(|e| corrupt(format!("{SUMMARY_FILE}: {e}")))?,
+            Err(e) if e.kind() == ErrorKind::NotFound => None,
+            Err(e) => return Err(corrupt(format!("{SUMMARY_FILE}: {e}"))),
+        };
+        let read = match summary {
+            Some(d) => EntryRead {
+                manifest: d.manifest,
+                artifact: d.artifact,
+                payloads: d.payloads,
+            },
+            None => match self.read_manifest(&dir, kind, key)? {
+                Some(read) => read,
+                None => return Ok(None),
+            },
+        };
+        let EntryRead {
+            manifest,
+            mut artifact,
+            payloads,
+        } = read;
+        if with_arrays {
+            artifact.arrays = read_payloads(&dir, &payloads, true, false)
+                .map_err(corrupt)?
+                .arrays;
+        }
+        Ok(Some(CachedEntry { manifest, artifact }))
+    }
+
+    /// Verifies an entry fully: the manifest against its checksum, every payload it lists
+    /// (arrays decoded, tables parsed) and the summary (a summary of another format version is
+    /// checked only as a payload). `Ok(false)`: not cached.
+    pub fn verify(&self, kind: &str, key: &NodeKey) -> Result<bool, CacheError> {
+        let dir = self.entry_dir(kind, key);
+        let corrupt = |reason: String| CacheError::Corrupt {
+            path: dir.clone(),
+            reason,
+        };
+        let Some(read) = self.read_manifest(&dir, kind, key)? else {
+            return Ok(false);
+        };
+        read_payloads(&dir, &read.payloads, true, true).map_err(corrupt)?;
+        match read_file(&dir.join(SUMMARY_FILE), READ_CAPACITY) {
+            Ok(bytes) => summary::decode(&bytes, key, kind, true)
+                .map(drop)
+                .map_err(|e| corrupt(format!("{SUMMARY_FILE}: {e}"))),
+            Err(e) if e.kind() == ErrorKind::NotFound => Ok(()),
+            Err(e) => Err(corrupt(format!("{SUMMARY_FILE}: {e}"))),
+        }?;
+        Ok(true)
+    }
+
+    /// The entry in `dir` read through its manifest (checked against `manifest.blake3`): the
+    /// manifest part, the metrics and the tables (from `tables.json`, checked against the
+    /// manifest); `None` when there is no entry.
+    fn read_manifest(
+        &self,
+        dir: &Path,
+        kind: &str,
+        key: &NodeKey,
+    ) -> Result<Option<EntryRead>, CacheError> {
+        let corrupt = |reason: String| CacheError::Corrupt {
+            path: dir.to_path_buf(),
+            reason,
+        };
+        let manifest_bytes = match read_file(&dir.join("manifest.json"), READ_CAPACITY) {
             Ok(bytes) => bytes,
             Err(e) if e.kind() == ErrorKind::NotFound && !dir.exists() => return Ok(None),
             Err(e) => return Err(corrupt(format!("manifest.json: {e}"))),
@@ -192,14 +316,21 @@ impl Cache {
         if read.key != key.to_hex() || read.kind != kind {
             return Err(corrupt(String::from("manifest names another key or kind")));
         }
-        let manifest = EntryManifest {
-            upstream: read.upstream,
+        let tables = read_payloads(dir, &read.payloads, false, true)
+            .map_err(corrupt)?
+            .tables;
+        Ok(Some(EntryRead {
+            manifest: EntryManifest {
+                upstream: read.upstream,
+                compute_seconds: read.compute_seconds,
+            },
+            artifact: Artifact {
+                metrics: read.metrics,
+                tables,
+                ..Artifact::default()
+            },
             payloads: read.payloads,
-            compute_seconds: read.compute_seconds,
-        };
-        let mut artifact = read_payloads(&dir, &manifest.payloads, with_arrays).map_err(corrupt)?;
-        artifact.metrics = read.metrics;
-        Ok(Some(CachedEntry { manifest, artifact }))
+        }))
     }
 
     /// Publishes an entry atomically. Returns `false` when another writer published the same
@@ -223,7 +354,7 @@ impl Cache {
                 .map_or(0, |d| d.as_nanos())
         ));
         fs::create_dir_all(&tmp).map_err(io_err(&tmp))?;
-        let result = self.write_and_publish(&tmp, &final_dir, &mut manifest, artifact);
+        let result = self.write_and_publish(&tmp, &final_dir, &key, &mut manifest, artifact);
         if result.is_err() || tmp.exists() {
             let _ = fs::remove_dir_all(&tmp);
         }
@@ -234,6 +365,7 @@ impl Cache {
         &self,
         tmp: &Path,
         final_dir: &Path,
+        key: &NodeKey,
         manifest: &mut Manifest,
         artifact: &Artifact,
     ) -> Result<bool, CacheError> {
@@ -261,6 +393,18 @@ impl Cache {
                 .payloads
                 .push(write_synced(tmp, "tables.json", &bytes)?);
         }
+        let summary = summary::encode(&Summary {
+            key,
+            kind: &manifest.kind,
+            upstream: &manifest.upstream,
+            payloads: &manifest.payloads,
+            compute_seconds: manifest.compute_seconds,
+            metrics: &manifest.metrics,
+            tables: &artifact.tables,
+        });
+        manifest
+            .payloads
+            .push(write_synced(tmp, SUMMARY_FILE, &summary)?);
         let manifest_bytes = serde_json::to_vec_pretty(&manifest).map_err(|e| CacheError::Io {
             path: tmp.join("manifest.json"),
             source: std::io::Error::other(e),
@@ -352,15 +496,21 @@ fn hostname() -> String {
         .unwrap_or_else(|| String::from("localhost"))
 }
 
-/// The tables and (`with_arrays`) the arrays of the payloads of a verified manifest, each payload
-/// read checked against the manifest's size and checksum. Errors say what is corrupt.
-fn read_payloads(dir: &Path, payloads: &[Payload], with_arrays: bool) -> Result<Artifact, String> {
+/// The arrays (`arrays`) and the tables (`tables`) of an entry's payloads, each payload read
+/// checked against its listed size and checksum; payloads that are neither are read and checked
+/// whenever `tables` is. Errors say what is corrupt.
+fn read_payloads(
+    dir: &Path,
+    payloads: &[Payload],
+    arrays: bool,
+    tables: bool,
+) -> Result<Artifact, String> {
     let mut artifact = Artifact::default();
     // Arrays decoded so far by file: an array equal to an earlier one names its file.
     let mut decoded: BTreeMap<&str, ndarray::ArrayD<f64>> = BTreeMap::new();
     for payload in payloads {
         let array = payload.array_name();
-        if array.is_some() && !with_arrays {
+        if (array.is_some() && !arrays) || (array.is_none() && !tables) {
             continue;
         }
         if let (Some(name), Some(array)) = (array, decoded.get(&*payload.file)) {
@@ -392,8 +542,8 @@ fn read_payloads(dir: &Path, payloads: &[Payload], with_arrays: bool) -> Result<
     Ok(artifact)
 }
 
-/// Room for a manifest (a few kB) and for its checksum file (64 hex digits) read whole.
-const MANIFEST_CAPACITY: usize = 16 << 10;
+/// Room for a manifest or a summary (a few kB) and for a checksum file (64 hex digits) read whole.
+const READ_CAPACITY: usize = 16 << 10;
 const CHECKSUM_CAPACITY: usize = 80;
 
 /// Reads a whole file into a buffer made for `expected` bytes. Through [`Read::take`], which

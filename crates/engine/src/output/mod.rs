@@ -195,7 +195,10 @@ fn kind_tables(
             continue;
         };
         let key = node.key.to_hex();
-        let mut cells = vec![
+        let params = node.task.params();
+        let mut cells =
+            Vec::with_capacity(5 + node.upstream.len() + params.len() + outcome.metrics.len());
+        cells.extend([
             text("key", key.clone()),
             text("nodes", node.names.join(",")),
             (
@@ -203,11 +206,10 @@ fn kind_tables(
                 Dimension::Dimensionless,
                 Some(Value::Int(i64::from(node.task.version()))),
             ),
-        ];
+        ]);
         for (role, u) in &node.upstream {
             cells.push(text(format!("{role}_key"), plan.nodes[*u].key.to_hex()));
         }
-        let params = node.task.params();
         cells.extend(params.iter().map(field_cell));
         cells.extend(outcome.metrics.iter().map(field_cell));
         cells.push(text("status", outcome.status.label()));
@@ -282,19 +284,19 @@ fn add_long_tables(long: &mut BTreeMap<String, RowTable>, key: &str, outcome: &N
 }
 
 fn append_long(target: &mut RowTable, key: &str, t: &Table) {
-    for r in 0..t.rows() {
-        let mut cells = vec![text("key", key)];
-        for c in &t.columns {
-            let v = match &c.data {
-                ColumnData::Float(v) => v.get(r).map(|x| Value::Float(*x)),
-                ColumnData::Int(v) => v.get(r).map(|x| Value::Int(*x)),
-                ColumnData::Bool(v) => v.get(r).map(|x| Value::Bool(*x)),
-                ColumnData::Text(v) => v.get(r).map(|x| Value::Text(x.clone())),
-            };
-            cells.push((Cow::Borrowed(c.name.as_str()), c.dimension, v));
-        }
-        target.push_row(cells);
-    }
+    let rows = t.rows();
+    let key_cells = vec![Some(Value::Text(key.to_string())); rows];
+    let columns = t.columns.iter().map(|c| {
+        let cells: Vec<Option<Value>> = match &c.data {
+            ColumnData::Float(v) => v.iter().map(|x| Some(Value::Float(*x))).collect(),
+            ColumnData::Int(v) => v.iter().map(|x| Some(Value::Int(*x))).collect(),
+            ColumnData::Bool(v) => v.iter().map(|x| Some(Value::Bool(*x))).collect(),
+            ColumnData::Text(v) => v.iter().map(|x| Some(Value::Text(x.clone()))).collect(),
+        };
+        (Cow::Borrowed(c.name.as_ref()), c.dimension, cells)
+    });
+    let key_column = (Cow::Borrowed("key"), Dimension::Dimensionless, key_cells);
+    target.push_columns(rows, std::iter::once(key_column).chain(columns));
 }
 
 fn write_parquet(

@@ -22,6 +22,11 @@ pub(super) struct RowTable {
     /// The column of each cell name and dimension seen so far (the column's name is the cell's
     /// name with its unit, made once per column rather than per cell).
     index: HashMap<String, Vec<(Dimension, usize)>>,
+    /// The cell name and dimension that made each column: rows (and the long tables of one kind)
+    /// mostly repeat the previous row's cells in the same order, so the column after the last one
+    /// filled is tried first.
+    sources: Vec<(String, Dimension)>,
+    next: usize,
 }
 
 impl RowTable {
@@ -31,19 +36,58 @@ impl RowTable {
         Self {
             columns,
             rows,
-            index: HashMap::new(),
+            ..Self::default()
         }
     }
 
     pub fn push_row<'a>(&mut self, cells: impl IntoIterator<Item = Cell<'a>>) {
+        self.next = 0;
         for (name, dim, value) in cells {
-            let col = self.column(&name, dim);
+            let col = self.column_after_last(&name, dim);
             self.columns[col].2.push(value);
         }
         self.rows += 1;
         for c in &mut self.columns {
             c.2.resize(self.rows, None);
         }
+    }
+
+    /// Appends `rows` rows given column by column, as [`RowTable::push_row`] would row by row: a
+    /// column given twice keeps its first cells, cells beyond `rows` are dropped, missing ones
+    /// are null.
+    pub fn push_columns<'a>(
+        &mut self,
+        rows: usize,
+        columns: impl IntoIterator<Item = (Cow<'a, str>, Dimension, Vec<Option<Value>>)>,
+    ) {
+        if rows == 0 {
+            return;
+        }
+        let start = self.rows;
+        self.next = 0;
+        for (name, dim, mut cells) in columns {
+            let col = self.column_after_last(&name, dim);
+            let column = &mut self.columns[col].2;
+            if column.len() == start {
+                cells.resize(rows, None);
+                column.extend(cells);
+            }
+        }
+        self.rows += rows;
+        for c in &mut self.columns {
+            c.2.resize(self.rows, None);
+        }
+    }
+
+    /// The column of cells called `name` with dimension `dim`, tried first against the column
+    /// after the last one filled; that column is the last one filled then.
+    fn column_after_last(&mut self, name: &str, dim: Dimension) -> usize {
+        let col = match self.sources.get(self.next) {
+            Some((n, d)) if n == name && *d == dim => self.next,
+            _ => self.column(name, dim),
+        };
+        self.next = col + 1;
+        col
     }
 
     /// The column of cells called `name` with dimension `dim`, added when new.
@@ -60,6 +104,7 @@ impl RowTable {
             Some(col) => col,
             None => {
                 self.columns.push((full, dim, vec![None; self.rows]));
+                self.sources.push((name.to_string(), dim));
                 self.columns.len() - 1
             }
         };
