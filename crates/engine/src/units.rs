@@ -39,19 +39,21 @@ impl Dimension {
         }
     }
 
+    /// Every dimension.
+    pub const ALL: [Dimension; 8] = [
+        Dimension::Dimensionless,
+        Dimension::Length,
+        Dimension::Area,
+        Dimension::Pressure,
+        Dimension::Force,
+        Dimension::SurfaceEnergy,
+        Dimension::Angle,
+        Dimension::InverseArea,
+    ];
+
     /// The dimension whose name (as [`Dimension::name`] writes it) has the bytes `name`.
     pub fn from_name(name: &[u8]) -> Option<Self> {
-        Some(match name {
-            b"dimensionless number" => Dimension::Dimensionless,
-            b"length" => Dimension::Length,
-            b"area" => Dimension::Area,
-            b"pressure" => Dimension::Pressure,
-            b"force" => Dimension::Force,
-            b"surface energy" => Dimension::SurfaceEnergy,
-            b"angle" => Dimension::Angle,
-            b"inverse area" => Dimension::InverseArea,
-            _ => return None,
-        })
+        Self::ALL.into_iter().find(|d| d.name().as_bytes() == name)
     }
 
     /// The SI unit symbol written in column names ("m", "Pa", …); empty when dimensionless.
@@ -464,17 +466,7 @@ mod tests {
 
     #[test]
     fn a_dimension_is_found_by_its_name() {
-        use Dimension::*;
-        for d in [
-            Dimensionless,
-            Length,
-            Area,
-            Pressure,
-            Force,
-            SurfaceEnergy,
-            Angle,
-            InverseArea,
-        ] {
+        for d in Dimension::ALL {
             assert_eq!(Dimension::from_name(d.name().as_bytes()), Some(d));
         }
         assert_eq!(Dimension::from_name(b"volume"), None);
