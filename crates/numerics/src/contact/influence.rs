@@ -75,7 +75,7 @@ impl InfluenceOperator {
     ) -> Result<Self, FftFailure> {
         let (fft, kernel) = match boundary {
             Boundary::Periodic => {
-                let fft = RealFft2d::new(nx, ny);
+                let fft = RealFft2d::for_convolution(nx, ny);
                 let nxc = nx / 2 + 1;
                 let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
                 let norm = 1.0 / (nx as f64 * ny as f64);
@@ -94,6 +94,7 @@ impl InfluenceOperator {
                         }
                     }
                 }
+                let kernel = fft.convolution_kernel(kernel)?;
                 (fft, kernel)
             }
             Boundary::NonPeriodic => {
@@ -115,9 +116,10 @@ impl InfluenceOperator {
                         stencil[jy * mx + jx] = pixel_influence(x, y, dx, dy) / composite_modulus;
                     }
                 }
-                let mut fft = RealFft2d::new(mx, my);
+                let mut fft = RealFft2d::for_convolution(mx, my);
                 let norm = 1.0 / (mx as f64 * my as f64);
-                let kernel = fft.forward(&stencil)?.iter().map(|c| c.re * norm).collect();
+                let spectral = fft.forward(&stencil)?.iter().map(|c| c.re * norm).collect();
+                let kernel = fft.convolution_kernel(spectral)?;
                 (fft, kernel)
             }
         };

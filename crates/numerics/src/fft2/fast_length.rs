@@ -17,6 +17,22 @@ pub fn fast_even_length(min: usize) -> usize {
     length
 }
 
+/// The largest radix `rustfft` has a butterfly of its own for.
+const LARGEST_BUTTERFLY: usize = 31;
+
+/// Whether `n` has a prime factor above 31: `rustfft` then transforms that factor by Rader's or
+/// Bluestein's algorithm, several times slower per point than a 7-smooth length of twice the
+/// size (a column of 3512 = 8 · 439 costs about four times as much per point as one of 7056;
+/// `docs/contact-solver-design.md`).
+pub(super) fn has_slow_factor(mut n: usize) -> bool {
+    for p in 2..=LARGEST_BUTTERFLY {
+        while n.is_multiple_of(p) {
+            n /= p;
+        }
+    }
+    n > 1
+}
+
 fn is_7_smooth(mut n: usize) -> bool {
     for p in [2, 3, 5, 7] {
         while n.is_multiple_of(p) {
@@ -50,6 +66,16 @@ mod tests {
             let length = fast_even_length(min);
             assert!(length >= min && length.is_multiple_of(2) && is_7_smooth(length));
             assert!((min..length).all(|l| !l.is_multiple_of(2) || !is_7_smooth(l)));
+        }
+    }
+
+    #[test]
+    fn slow_factors_are_primes_above_31() {
+        for n in [37, 74, 3512, 439, 37 * 37, 2 * 41 * 3] {
+            assert!(has_slow_factor(n), "{n}");
+        }
+        for n in [1, 2, 31, 62, 29 * 31, 1024, 7056, 3584, 11 * 13 * 256] {
+            assert!(!has_slow_factor(n), "{n}");
         }
     }
 }

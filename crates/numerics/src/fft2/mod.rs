@@ -19,13 +19,17 @@ use rustfft::{Fft, FftPlanner};
 
 mod fast_length;
 mod grid;
+mod padded;
 mod rows;
+mod transpose;
 
 pub use fast_length::fast_even_length;
 
 pub(crate) use grid::{forward_real_2d, inverse_real_2d};
+use padded::{PaddedColumns, PaddedPass, PADDED_TILE};
 use rows::{dense_rows, Copy};
 pub use rows::{RowSink, RowSource};
+use transpose::transpose;
 
 /// Columns transformed together: a tile of `TILE` columns of `ny` complex values is transposed,
 /// transformed forward, multiplied and transformed back while it is in cache.
@@ -63,7 +67,7 @@ struct ChunkBuffers {
     /// Scratch of the 1-D transforms.
     fft: Vec<Complex<f64>>,
     /// One tile of `TILE` columns of `ny` values, transformed without being kept
-    /// ([`ColumnPass::Energy`]).
+    /// ([`ColumnPass::Energy`]), or of `PADDED_TILE` padded columns.
     tile: Vec<Complex<f64>>,
     /// One real row of `nx` values (a zero-padded input row or an inverse-transformed row).
     row: Vec<f64>,
@@ -89,6 +93,9 @@ pub struct RealFft2d {
     c2r: Arc<dyn ComplexToReal<f64>>,
     col_forward: Arc<dyn Fft<f64>>,
     col_inverse: Arc<dyn Fft<f64>>,
+    /// The column pass of convolutions as padded linear convolutions, when `ny` is slow to
+    /// transform (see [`RealFft2d::for_convolution`]).
+    padded: Option<PaddedColumns>,
     rows: Vec<Complex<f64>>,
     cols: Vec<Complex<f64>>,
     /// Per-column results of an [`ColumnPass::Energy`] pass, summed in column order.
@@ -126,8 +133,23 @@ enum ColumnPass<'a> {
 }
 
 impl RealFft2d {
-    /// Plans the transforms of an `ny × nx` grid (sizes below 1 are taken as 1).
+    /// Plans the transforms of an `ny × nx` grid (sizes below 1 are taken as 1); convolution
+    /// kernels are spectral kernels, in the layout of [`RealFft2d::forward`].
     pub fn new(nx: usize, ny: usize) -> Self {
+        Self::planned(nx, ny, None)
+    }
+
+    /// Plans the transforms of an `ny × nx` grid for convolutions. Where `ny` has a prime factor
+    /// above 31 (which `rustfft` transforms by Rader's or Bluestein's algorithm), the column pass
+    /// of a convolution is done as a linear convolution zero-padded to a fast length, about twice
+    /// as fast (see `padded.rs`); its kernels then come from
+    /// [`RealFft2d::convolution_kernel`]. Otherwise this is [`RealFft2d::new`]. Forward and
+    /// inverse transforms are the same either way.
+    pub fn for_convolution(nx: usize, ny: usize) -> Self {
+        Self::planned(nx, ny, PaddedColumns::for_columns(ny.max(1)))
+    }
+
+    fn planned(nx: usize, ny: usize, padded: Option<PaddedColumns>) -> Self {
         let nx = nx.max(1);
         let ny = ny.max(1);
         let nxc = nx / 2 + 1;
@@ -141,14 +163,16 @@ impl RealFft2d {
             .get_scratch_len()
             .max(c2r.get_scratch_len())
             .max(col_forward.get_inplace_scratch_len())
-            .max(col_inverse.get_inplace_scratch_len());
+            .max(col_inverse.get_inplace_scratch_len())
+            .max(padded.as_ref().map_or(0, PaddedColumns::scratch_len));
+        let tile_len = (TILE * ny).max(padded.as_ref().map_or(0, |p| PADDED_TILE * p.len()));
         let chunks = (CHUNKS_PER_THREAD * rayon::current_num_threads()).max(1);
         let cols_per_chunk = nxc.div_ceil(chunks).max(1);
         let zero = Complex::new(0.0, 0.0);
         let chunks = (0..chunks)
             .map(|_| ChunkBuffers {
                 fft: vec![zero; scratch_len],
-                tile: vec![zero; TILE * ny],
+                tile: vec![zero; tile_len],
                 row: vec![0.0; nx],
                 spectra: vec![zero; TILE_ROWS * nxc],
             })
@@ -161,6 +185,7 @@ impl RealFft2d {
             c2r,
             col_forward,
             col_inverse,
+            padded,
             rows: vec![zero; nxc * ny],
             cols: vec![zero; nxc * ny],
             column_energy: vec![0.0; nxc],
@@ -175,10 +200,30 @@ impl RealFft2d {
         (self.nx, self.ny)
     }
 
-    /// Number of complex spectrum values `(nx/2 + 1) · ny`; a kernel has this length, in the
-    /// transposed layout `[kx][ky]`.
+    /// Number of complex spectrum values `(nx/2 + 1) · ny`, in the transposed layout `[kx][ky]`;
+    /// a spectral kernel has this length.
     pub fn spectrum_len(&self) -> usize {
         self.nxc * self.ny
+    }
+
+    /// Number of values of a convolution kernel: [`RealFft2d::spectrum_len`], or with padded
+    /// columns `(nx/2 + 1) · (m/2 + 1)` for the padded length `m`.
+    pub fn kernel_len(&self) -> usize {
+        self.padded
+            .as_ref()
+            .map_or(self.spectrum_len(), |p| self.nxc * p.half_len())
+    }
+
+    /// The convolution kernel of the real spectral kernel `spectral` (layout `[kx][ky]`,
+    /// normalisation `1/(nx·ny)` included, even in `ky`): `spectral` itself, or with padded
+    /// columns its padded form (one inverse transform of each column and one padded forward
+    /// transform). A spectral kernel that is not even in `ky` is an error there.
+    pub fn convolution_kernel(&self, spectral: Vec<f64>) -> Result<Vec<f64>, FftFailure> {
+        self.check_len("spectral kernel", spectral.len(), self.spectrum_len())?;
+        match &self.padded {
+            None => Ok(spectral),
+            Some(padded) => padded.kernel(&spectral, self.ny, self.col_inverse.as_ref()),
+        }
     }
 
     /// Forward transform of a full `ny × nx` grid; returns the spectrum in layout `[kx][ky]`.
@@ -299,7 +344,7 @@ impl RealFft2d {
         rows: usize,
     ) -> Result<f64, FftFailure> {
         self.check_block(cols, rows)?;
-        self.check_len("kernel", kernel.len(), self.spectrum_len())?;
+        self.check_len("kernel", kernel.len(), self.kernel_len())?;
         if cols == 0 || rows == 0 {
             return Ok(0.0);
         }
@@ -384,7 +429,7 @@ impl RealFft2d {
     ) -> Result<(), FftFailure> {
         self.check_block(cols, rows)?;
         self.check_len("output", output.len(), cols * rows)?;
-        self.check_len("kernel", kernel.len(), self.spectrum_len())
+        self.check_len("kernel", kernel.len(), self.kernel_len())
     }
 
     fn check_block(&self, cols: usize, rows: usize) -> Result<(), FftFailure> {
@@ -442,6 +487,33 @@ impl RealFft2d {
     /// Column pass over the column buffer; a forward transform reads the first `rows` row
     /// spectra of the row buffer (the rows below are zero).
     fn columns(&mut self, pass: ColumnPass<'_>, rows: usize) {
+        let (kernel, energy_only) = match pass {
+            ColumnPass::Kernel(kernel) => (kernel, false),
+            ColumnPass::Energy(kernel) => (kernel, true),
+            _ => return self.spectral_columns(pass, rows),
+        };
+        let Some(padded) = &self.padded else {
+            return self.spectral_columns(pass, rows);
+        };
+        let job = PaddedPass {
+            spectra: &self.rows,
+            nxc: self.nxc,
+            ny: self.ny,
+            rows,
+            cols_per_chunk: self.cols_per_chunk,
+            kernel,
+            energy_only,
+        };
+        padded.run(
+            job,
+            &mut self.cols,
+            &mut self.column_energy,
+            &mut self.chunks,
+        );
+    }
+
+    /// [`RealFft2d::columns`] through the column DFTs of length `ny`.
+    fn spectral_columns(&mut self, pass: ColumnPass<'_>, rows: usize) {
         let (ny, nxc, cpc) = (self.ny, self.nxc, self.cols_per_chunk);
         let spectra = &self.rows;
         let (fwd, inv) = (&self.col_forward, &self.col_inverse);
@@ -566,34 +638,6 @@ impl RealFft2d {
                 Ok::<(), realfft::FftError>(())
             })?;
         Ok(())
-    }
-}
-
-/// Complex values per 64-byte cache line.
-const LINE: usize = 4;
-
-/// `dst[k · dst_stride + i] = src[i · src_stride + first_col + k]` for `i < rows`, `k < width`:
-/// the columns `first_col..first_col + width` of the first `rows` rows of the row-major `src`
-/// become rows of `dst`. Rows are taken `LINE` at a time so that each destination cache line is
-/// written whole (with power-of-two strides the `width` destination lines share a cache set).
-fn transpose(
-    src: &[Complex<f64>],
-    src_stride: usize,
-    rows: usize,
-    first_col: usize,
-    width: usize,
-    dst: &mut [Complex<f64>],
-    dst_stride: usize,
-) {
-    for first_row in (0..rows).step_by(LINE) {
-        let height = LINE.min(rows - first_row);
-        let block = &src[first_row * src_stride + first_col..];
-        for k in 0..width {
-            let line = &mut dst[k * dst_stride + first_row..][..height];
-            for (i, value) in line.iter_mut().enumerate() {
-                *value = block[i * src_stride + k];
-            }
-        }
     }
 }
 

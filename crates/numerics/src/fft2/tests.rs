@@ -320,3 +320,89 @@ fn forward_matches_direct_dft() {
         assert!((direct - value).norm() < 1e-12);
     }
 }
+
+#[test]
+fn padded_columns_give_the_periodic_convolution() {
+    // Columns of 37 and 2 · 41 points have a prime factor above 31, so `for_convolution` pads
+    // them; the result must be the periodic convolution the spectral column pass computes, for
+    // a full grid and for a block with a zero row, and split into its halves bit for bit.
+    for (cols, rows, nx, ny) in [(12, 37, 12, 37), (5, 30, 9, 82), (9, 82, 9, 82)] {
+        let mut input = signal(cols, rows);
+        input[cols..2 * cols].fill(0.0);
+        let mut spectral_fft = RealFft2d::new(nx, ny);
+        let spectral = spectral_kernel(&mut spectral_fft, &even_stencil(nx, ny));
+        let mut padded_fft = RealFft2d::for_convolution(nx, ny);
+        assert!(padded_fft.padded.is_some(), "{nx}×{ny}");
+        let kernel = padded_fft.convolution_kernel(spectral.clone()).unwrap();
+        assert_eq!(kernel.len(), padded_fft.kernel_len());
+        let mut expected = vec![0.0; cols * rows];
+        spectral_fft
+            .convolve(&input, &spectral, &mut expected, cols, rows)
+            .unwrap();
+        let expected_energy = spectral_fft
+            .start_convolve(&input, &spectral, cols, rows)
+            .unwrap();
+        let mut whole = vec![0.0; cols * rows];
+        padded_fft
+            .convolve(&input, &kernel, &mut whole, cols, rows)
+            .unwrap();
+        let energy = padded_fft
+            .start_convolve(&input, &kernel, cols, rows)
+            .unwrap();
+        let mut split = vec![0.0; cols * rows];
+        padded_fft
+            .finish_convolve(&kernel, &mut split, cols, rows)
+            .unwrap();
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&whole), bits(&split), "{nx}×{ny}");
+        let largest = expected.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        for (a, b) in whole.iter().zip(&expected) {
+            // Round-off of two FFT pairs on O(1) data, relative to the largest value.
+            assert!((a - b).abs() < 1e-13 * largest, "{nx}×{ny}: {a} vs {b}");
+        }
+        let scale: f64 = input.iter().zip(&whole).map(|(a, b)| (a * b).abs()).sum();
+        assert!(
+            (energy - expected_energy).abs() < 1e-13 * scale,
+            "{nx}×{ny}: {energy} vs {expected_energy}"
+        );
+    }
+}
+
+#[test]
+fn padded_columns_need_an_even_kernel() {
+    let fft = RealFft2d::for_convolution(6, 37);
+    let mut kernel = vec![1.0; fft.spectrum_len()];
+    kernel[3] = 2.0;
+    let message = fft.convolution_kernel(kernel).unwrap_err().to_string();
+    assert!(message.contains("not even in ky"), "{message}");
+    // Spectral kernels pass through unchanged where the columns are not padded.
+    let fft = RealFft2d::for_convolution(6, 32);
+    let kernel = signal(4, 32);
+    assert_eq!(fft.convolution_kernel(kernel.clone()).unwrap(), kernel);
+}
+
+#[test]
+fn padded_results_are_bit_identical_for_any_thread_count() {
+    let (cols, rows, nx, ny) = (10, 70, 20, 74);
+    let input = signal(cols, rows);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut fft = RealFft2d::for_convolution(nx, ny);
+            let spectral = spectral_kernel(&mut fft, &even_stencil(nx, ny));
+            let kernel = fft.convolution_kernel(spectral).unwrap();
+            let mut out = vec![0.0; cols * rows];
+            fft.convolve(&input, &kernel, &mut out, cols, rows).unwrap();
+            out.push(fft.start_convolve(&input, &kernel, cols, rows).unwrap());
+            out.extend(kernel);
+            out.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+        })
+    };
+    let one = run(1);
+    for threads in [2, 3] {
+        assert!(one == run(threads), "{threads} threads differ from 1");
+    }
+}

@@ -1,0 +1,31 @@
+//! Transposition of tiles between the row and column layouts of [`super::RealFft2d`].
+
+use realfft::num_complex::Complex;
+
+/// Complex values per 64-byte cache line.
+const LINE: usize = 4;
+
+/// `dst[k · dst_stride + i] = src[i · src_stride + first_col + k]` for `i < rows`, `k < width`:
+/// the columns `first_col..first_col + width` of the first `rows` rows of the row-major `src`
+/// become rows of `dst`. Rows are taken `LINE` at a time so that each destination cache line is
+/// written whole (with power-of-two strides the `width` destination lines share a cache set).
+pub(super) fn transpose(
+    src: &[Complex<f64>],
+    src_stride: usize,
+    rows: usize,
+    first_col: usize,
+    width: usize,
+    dst: &mut [Complex<f64>],
+    dst_stride: usize,
+) {
+    for first_row in (0..rows).step_by(LINE) {
+        let height = LINE.min(rows - first_row);
+        let block = &src[first_row * src_stride + first_col..];
+        for k in 0..width {
+            let line = &mut dst[k * dst_stride + first_row..][..height];
+            for (i, value) in line.iter_mut().enumerate() {
+                *value = block[i * src_stride + k];
+            }
+        }
+    }
+}
