@@ -29,9 +29,8 @@ use super::fast_length::{fast_even_length, has_slow_factor};
 use super::transpose::transpose;
 use super::{ChunkBuffers, FftFailure};
 
-/// Padded columns transformed together, as many as the spectral pass (`TILE`): narrower tiles
-/// that fit the L2 cache were slower, their transposes reading shorter runs of the row spectra
-/// (`docs/contact-solver-design.md`).
+/// Padded columns transformed together, as many as the spectral pass (`TILE`); narrower tiles,
+/// which fit a 512 kB L2 cache, measured slower (`docs/contact-solver-design.md`).
 pub(super) const PADDED_TILE: usize = 16;
 
 /// One padded column pass: what it reads from the [`super::RealFft2d`].
