@@ -1,9 +1,11 @@
 //! [`RealFft2d`] for `ndarray` grids, with the half spectrum in the natural layout `[ky][kx]`.
 
 use ndarray::Array2;
+use rayon::prelude::*;
 use realfft::num_complex::Complex;
 
-use super::{FftFailure, RealFft2d};
+use super::transpose::transpose;
+use super::{FftFailure, RealFft2d, TILE};
 
 /// Forward transform of a real `[ny, nx]` grid to its half spectrum `[ny, nx/2 + 1]`
 /// (row `j` holds `ky = j` for `j ≤ ny/2` and `j − ny` above; column `i` holds `kx = i`).
@@ -16,9 +18,15 @@ pub(crate) fn forward_real_2d(z: &Array2<f64>) -> Result<Array2<Complex<f64>>, F
     let mut fft = RealFft2d::new(nx, ny);
     let spectrum = fft.forward(values)?;
     let nxh = nx / 2 + 1;
-    Ok(Array2::from_shape_fn((ny, nxh), |(j, i)| {
-        spectrum[i * ny + j]
-    }))
+    let mut natural = vec![Complex::new(0.0, 0.0); ny * nxh];
+    natural
+        .par_chunks_mut(nxh * TILE)
+        .enumerate()
+        .for_each(|(t, tile)| {
+            let height = tile.len() / nxh;
+            transpose(spectrum, ny, nxh, t * TILE, height, tile, nxh);
+        });
+    Array2::from_shape_vec((ny, nxh), natural).map_err(|e| FftFailure::new(e.to_string()))
 }
 
 /// Inverse of a `[ny, nx/2 + 1]` half spectrum to a real `[ny, nx]` grid, unnormalised (divide
@@ -36,9 +44,12 @@ pub(crate) fn inverse_real_2d(
             nx / 2 + 1
         )));
     }
-    let transposed: Vec<Complex<f64>> = half.t().iter().copied().collect();
+    let standard = half.as_standard_layout();
+    let values = standard
+        .as_slice()
+        .ok_or_else(|| FftFailure::new("half spectrum is not contiguous"))?;
     let mut fft = RealFft2d::new(nx, ny);
     let mut out = vec![0.0; nx * ny];
-    fft.inverse(&transposed, &mut out)?;
+    fft.inverse_natural(values, &mut out)?;
     Array2::from_shape_vec((ny, nx), out).map_err(|e| FftFailure::new(e.to_string()))
 }

@@ -84,7 +84,8 @@ struct ChunkBuffers {
 /// gathered, transformed (and multiplied and transformed back) in cache; tiles of row spectra
 /// are gathered and transformed back into the output. Rows that are all zero (the padding of a
 /// [`RealFft2d::convolve`] block, or rows without load) are not transformed: their spectrum is
-/// zero. A transform allocates nothing.
+/// zero. A transform allocates nothing, but for the row buffer, which the first forward transform
+/// allocates (an inverse transform alone never needs it).
 pub struct RealFft2d {
     nx: usize,
     ny: usize,
@@ -186,7 +187,7 @@ impl RealFft2d {
             col_forward,
             col_inverse,
             padded,
-            rows: vec![zero; nxc * ny],
+            rows: Vec::new(),
             cols: vec![zero; nxc * ny],
             column_energy: vec![0.0; nxc],
             row_values: vec![0.0; ny],
@@ -245,6 +246,26 @@ impl RealFft2d {
         self.check_len("spectrum", spectrum.len(), self.spectrum_len())?;
         self.check_len("output", output.len(), self.nx * self.ny)?;
         self.cols.copy_from_slice(spectrum);
+        self.columns(ColumnPass::Inverse, self.ny);
+        self.rows_inverse(output, self.nx, self.ny, None::<&Copy>)
+    }
+
+    /// [`RealFft2d::inverse`] of a spectrum in the natural layout `[ky][kx]` (`ny` rows of
+    /// `nx/2 + 1` values), transposed into the column buffer in tiles.
+    pub(crate) fn inverse_natural(
+        &mut self,
+        spectrum: &[Complex<f64>],
+        output: &mut [f64],
+    ) -> Result<(), FftFailure> {
+        self.check_len("spectrum", spectrum.len(), self.spectrum_len())?;
+        self.check_len("output", output.len(), self.nx * self.ny)?;
+        let (ny, nxc) = (self.ny, self.nxc);
+        self.cols
+            .par_chunks_mut(ny * TILE)
+            .enumerate()
+            .for_each(|(t, tile)| {
+                transpose(spectrum, nxc, ny, t * TILE, tile.len() / ny, tile, ny)
+            });
         self.columns(ColumnPass::Inverse, self.ny);
         self.rows_inverse(output, self.nx, self.ny, None::<&Copy>)
     }
@@ -462,6 +483,9 @@ impl RealFft2d {
         rows: usize,
     ) -> Result<(), FftFailure> {
         let nxc = self.nxc;
+        if self.rows.is_empty() {
+            self.rows = vec![Complex::new(0.0, 0.0); nxc * self.ny];
+        }
         let rpc = rows.div_ceil(self.chunks.len()).max(1);
         let r2c = &self.r2c;
         let len = r2c.get_scratch_len();
