@@ -22,8 +22,7 @@ const LARGEST_BUTTERFLY: usize = 31;
 
 /// Whether `n` has a prime factor above 31: `rustfft` then transforms that factor by Rader's or
 /// Bluestein's algorithm, several times slower per point than a 7-smooth length of twice the
-/// size (a column of 3512 = 8 · 439 costs about four times as much per point as one of 7056;
-/// `docs/contact-solver-design.md`).
+/// size (`docs/contact-solver-design.md`).
 pub(super) fn has_slow_factor(mut n: usize) -> bool {
     for p in 2..=LARGEST_BUTTERFLY {
         while n.is_multiple_of(p) {

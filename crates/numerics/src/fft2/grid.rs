@@ -1,11 +1,10 @@
 //! [`RealFft2d`] for `ndarray` grids, with the half spectrum in the natural layout `[ky][kx]`.
 
 use ndarray::Array2;
-use rayon::prelude::*;
 use realfft::num_complex::Complex;
 
-use super::transpose::transpose;
-use super::{FftFailure, RealFft2d, TILE};
+use super::transpose::transpose_all;
+use super::{FftFailure, RealFft2d};
 
 /// Forward transform of a real `[ny, nx]` grid to its half spectrum `[ny, nx/2 + 1]`
 /// (row `j` holds `ky = j` for `j ≤ ny/2` and `j − ny` above; column `i` holds `kx = i`).
@@ -19,13 +18,7 @@ pub(crate) fn forward_real_2d(z: &Array2<f64>) -> Result<Array2<Complex<f64>>, F
     let spectrum = fft.forward(values)?;
     let nxh = nx / 2 + 1;
     let mut natural = vec![Complex::new(0.0, 0.0); ny * nxh];
-    natural
-        .par_chunks_mut(nxh * TILE)
-        .enumerate()
-        .for_each(|(t, tile)| {
-            let height = tile.len() / nxh;
-            transpose(spectrum, ny, nxh, t * TILE, height, tile, nxh);
-        });
+    transpose_all(spectrum, nxh, ny, &mut natural);
     Array2::from_shape_vec((ny, nxh), natural).map_err(|e| FftFailure::new(e.to_string()))
 }
 

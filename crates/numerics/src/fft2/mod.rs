@@ -29,7 +29,7 @@ pub(crate) use grid::{forward_real_2d, inverse_real_2d};
 use padded::{PaddedColumns, PaddedPass, PADDED_TILE};
 use rows::{dense_rows, Copy};
 pub use rows::{RowSink, RowSource};
-use transpose::transpose;
+use transpose::{transpose, transpose_all};
 
 /// Columns transformed together: a tile of `TILE` columns of `ny` complex values is transposed,
 /// transformed forward, multiplied and transformed back while it is in cache.
@@ -243,11 +243,9 @@ impl RealFft2d {
         spectrum: &[Complex<f64>],
         output: &mut [f64],
     ) -> Result<(), FftFailure> {
-        self.check_len("spectrum", spectrum.len(), self.spectrum_len())?;
-        self.check_len("output", output.len(), self.nx * self.ny)?;
+        self.check_inverse(spectrum, output)?;
         self.cols.copy_from_slice(spectrum);
-        self.columns(ColumnPass::Inverse, self.ny);
-        self.rows_inverse(output, self.nx, self.ny, None::<&Copy>)
+        self.inverse_of_cols(output)
     }
 
     /// [`RealFft2d::inverse`] of a spectrum in the natural layout `[ky][kx]` (`ny` rows of
@@ -257,15 +255,18 @@ impl RealFft2d {
         spectrum: &[Complex<f64>],
         output: &mut [f64],
     ) -> Result<(), FftFailure> {
+        self.check_inverse(spectrum, output)?;
+        transpose_all(spectrum, self.ny, self.nxc, &mut self.cols);
+        self.inverse_of_cols(output)
+    }
+
+    fn check_inverse(&self, spectrum: &[Complex<f64>], output: &[f64]) -> Result<(), FftFailure> {
         self.check_len("spectrum", spectrum.len(), self.spectrum_len())?;
-        self.check_len("output", output.len(), self.nx * self.ny)?;
-        let (ny, nxc) = (self.ny, self.nxc);
-        self.cols
-            .par_chunks_mut(ny * TILE)
-            .enumerate()
-            .for_each(|(t, tile)| {
-                transpose(spectrum, nxc, ny, t * TILE, tile.len() / ny, tile, ny)
-            });
+        self.check_len("output", output.len(), self.nx * self.ny)
+    }
+
+    /// The inverse transform of the spectrum in the column buffer into `output`.
+    fn inverse_of_cols(&mut self, output: &mut [f64]) -> Result<(), FftFailure> {
         self.columns(ColumnPass::Inverse, self.ny);
         self.rows_inverse(output, self.nx, self.ny, None::<&Copy>)
     }

@@ -1,6 +1,9 @@
 //! Transposition of tiles between the row and column layouts of [`super::RealFft2d`].
 
+use rayon::prelude::*;
 use realfft::num_complex::Complex;
+
+use super::TILE;
 
 /// Complex values per 64-byte cache line.
 const LINE: usize = 4;
@@ -28,4 +31,17 @@ pub(super) fn transpose(
             }
         }
     }
+}
+
+/// The whole row-major `rows × cols` matrix `src` transposed into `dst` (`cols × rows`), in
+/// parallel tiles of `TILE` destination rows.
+pub(super) fn transpose_all(
+    src: &[Complex<f64>],
+    rows: usize,
+    cols: usize,
+    dst: &mut [Complex<f64>],
+) {
+    dst.par_chunks_mut(rows * TILE)
+        .enumerate()
+        .for_each(|(t, tile)| transpose(src, cols, rows, t * TILE, tile.len() / rows, tile, rows));
 }
