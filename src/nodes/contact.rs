@@ -29,7 +29,7 @@ pub(crate) const KIND: &str = "contact";
 pub(crate) const TABLE: &str = "contacts";
 
 /// Implementation version of the `contact` kind; bump whenever its numerics change.
-pub const CONTACT_KIND_VERSION: u32 = 22;
+pub const CONTACT_KIND_VERSION: u32 = 23;
 
 /// `contact: {...}`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -477,6 +477,7 @@ fn final_step_metrics(last: &LoadStep, composite_modulus: f64, (dx, dy): (f64, f
         Field::float(DY, dy, Dimension::Length),
         Field::int("iterations", last.iterations as i64),
         Field::int("coarse_iterations", last.coarse_iterations as i64),
+        Field::int("free_set_iterations", last.free_set_iterations as i64),
         Field::float("residual", last.residuals.max(), Dimension::Dimensionless),
     ]
 }
@@ -522,6 +523,14 @@ fn load_curve_table(curve: &LoadCurve) -> Table {
             .steps
             .iter()
             .map(|s| s.coarse_iterations as i64)
+            .collect(),
+    );
+    t.push_int(
+        "free_set_iterations",
+        curve
+            .steps
+            .iter()
+            .map(|s| s.free_set_iterations as i64)
             .collect(),
     );
     t.push_float(

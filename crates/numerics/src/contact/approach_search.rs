@@ -51,6 +51,7 @@ struct ApproachSearch<'a> {
     /// CG iterations and FFTs summed over the inner solves.
     iterations: usize,
     fft_transforms: usize,
+    free_set_iterations: usize,
     /// Inner solves so far.
     outer: usize,
 }
@@ -86,6 +87,7 @@ impl<'a> ApproachSearch<'a> {
             tolerance: settings.tolerance * nominal_pressure,
             iterations: 0,
             fft_transforms: 0,
+            free_set_iterations: 0,
             outer: 0,
         }
     }
@@ -107,6 +109,7 @@ impl<'a> ApproachSearch<'a> {
         let out = constrained_cg::solve(ws, op, Control::Approach { approach }, &budget)?;
         self.iterations += out.iterations;
         self.fft_transforms += out.fft_transforms;
+        self.free_set_iterations += out.free_set_iterations;
         Ok(match out.termination {
             Termination::Converged => Some((out, out.mean_pressure - self.nominal_pressure)),
             _ => None,
@@ -198,6 +201,7 @@ impl<'a> ApproachSearch<'a> {
             (out.mean_pressure - self.nominal_pressure).abs() / self.nominal_pressure;
         out.iterations = self.iterations;
         out.fft_transforms = self.fft_transforms;
+        out.free_set_iterations = self.free_set_iterations;
         out
     }
 
@@ -210,6 +214,7 @@ impl<'a> ApproachSearch<'a> {
             termination,
             iterations: self.iterations,
             fft_transforms: self.fft_transforms,
+            free_set_iterations: self.free_set_iterations,
             residuals,
             approach: last.map_or(self.start_approach, |o| o.approach),
             mean_pressure,

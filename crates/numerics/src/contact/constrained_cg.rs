@@ -57,6 +57,7 @@
 //! update, one dense pass over the points out of contact runs over explicit contact lists (see
 //! [`super::workspace`]).
 
+use super::free_set::{self, FreeSetTask};
 use super::influence::InfluenceOperator;
 use super::options::{Residuals, Termination};
 use super::workspace::{ContactStats, FreeStats, Workspace};
@@ -136,6 +137,8 @@ pub(crate) struct CgOutcome {
     pub iterations: usize,
     /// Real 2-D FFTs (forward or inverse; a full convolution is two) of this solve.
     pub fft_transforms: usize,
+    /// CG iterations on the free set alone (`free_set.rs`).
+    pub free_set_iterations: usize,
     pub residuals: Residuals,
     pub approach: f64,
     pub mean_pressure: f64,
@@ -156,6 +159,7 @@ pub(crate) fn solve(
         match cg.decide(&m) {
             Decision::Stop(termination) => return cg.finish(termination, &m),
             Decision::Confirm => cg.confirm(&m),
+            Decision::Step if cg.free_set_applies(&m) => cg.free_set_tail(&m)?,
             Decision::Step => cg.next_iter(&m)?,
         }
     }
@@ -194,6 +198,12 @@ struct ConstrainedCg<'a> {
     n: f64,
     fft_transforms: usize,
     iterations: usize,
+    free_set_iterations: usize,
+    /// The last step changed no point's state and kept the load (see `free_set.rs`).
+    last_linear: bool,
+    /// The largest residual when the free set was last iterated alone: it is iterated alone
+    /// again only once the residual has halved since (no alternation with the confirmation).
+    free_set_mark: f64,
     /// `u` was recomputed from `p` at this iterate (not only updated incrementally).
     u_fresh: bool,
     displacement: Displacement,
@@ -241,6 +251,9 @@ impl<'a> ConstrainedCg<'a> {
             n,
             fft_transforms: 0,
             iterations: 0,
+            free_set_iterations: 0,
+            last_linear: false,
+            free_set_mark: f64::INFINITY,
             u_fresh: false,
             displacement: Displacement::Stale,
             p_sum,
@@ -390,6 +403,7 @@ impl<'a> ConstrainedCg<'a> {
             termination,
             iterations: self.iterations,
             fft_transforms,
+            free_set_iterations: self.free_set_iterations,
             residuals: m.residuals,
             approach: self.offset + m.delta,
             mean_pressure: self.p_sum / self.n,
@@ -416,6 +430,7 @@ impl<'a> ConstrainedCg<'a> {
         self.delta_prev = m.delta;
         let linear = update.corrected == 0.0 && !step.breakdown;
         let exact = self.restore_load(m, linear, update.free);
+        self.last_linear = exact;
         if exact {
             self.displacement = if step.w_ready {
                 Displacement::Pending(step.tau)
@@ -426,6 +441,41 @@ impl<'a> ConstrainedCg<'a> {
                 Displacement::Current
             };
         }
+        Ok(())
+    }
+
+    /// The free set is iterated alone (`free_set.rs`) after a step that changed no point's
+    /// state, when only the contact residual is left above the tolerance, the free set is small
+    /// enough, and the residual has halved since the last time.
+    fn free_set_applies(&self, m: &Measurement) -> bool {
+        let r = m.residuals;
+        let tolerance = self.settings.tolerance;
+        r.force <= tolerance
+            && r.max() < 0.5 * self.free_set_mark
+            && free_set::applies(m.free_count, self.n)
+    }
+
+    /// Iterates the free set alone, then leaves `u` to be recomputed by the next measurement;
+    /// takes a CG step on the grid instead if the free set could not take one.
+    fn free_set_tail(&mut self, m: &Measurement) -> Result<(), FftFailure> {
+        self.free_set_mark = m.residuals.max();
+        let task = FreeSetTask::new(
+            self.load_control(),
+            self.offset,
+            self.settings.flow_pressure,
+            self.settings.tolerance,
+            self.settings.gap_scale,
+        );
+        let outcome = free_set::iterate(self.ws, self.op, task, m.delta);
+        if outcome.iterations == 0 {
+            return self.next_iter(m);
+        }
+        self.free_set_iterations += outcome.iterations;
+        self.p_sum = self.ws.free_stats().total();
+        self.delta_prev = outcome.delta;
+        self.u_fresh = false;
+        self.last_linear = false;
+        self.reset = true;
         Ok(())
     }
 

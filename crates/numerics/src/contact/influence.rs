@@ -2,6 +2,8 @@
 
 use std::f64::consts::PI;
 
+use rayon::prelude::*;
+
 use crate::fft2::{fast_even_length, FftFailure, RealFft2d, RowSink, RowSource};
 
 /// Lateral boundary condition of the contact domain.
@@ -59,7 +61,13 @@ pub(crate) struct InfluenceOperator {
     kernel: Vec<f64>,
     nx: usize,
     ny: usize,
-    self_influence: f64,
+    boundary: Boundary,
+    /// The influence coefficient `K(x, y)` of every offset magnitude `(|x|, |y|)` in pixels
+    /// (`K` is even in `x` and in `y`), rows of `coefficient_stride` values: the displacement
+    /// under a unit pressure on pixel `(0, 0)` for offsets `0..nx` × `0..ny`, on a periodic grid
+    /// only up to half the period (the shorter way round).
+    coefficients: Vec<f64>,
+    coefficient_stride: usize,
 }
 
 impl InfluenceOperator {
@@ -128,13 +136,25 @@ impl InfluenceOperator {
             kernel,
             nx,
             ny,
-            self_influence: 0.0,
+            boundary,
+            coefficients: Vec::new(),
+            coefficient_stride: 0,
         };
         let mut impulse = vec![0.0; nx * ny];
         let mut response = vec![0.0; nx * ny];
         impulse[0] = 1.0;
         operator.apply(&impulse, &mut response)?;
-        operator.self_influence = response[0];
+        let (stride, rows) = match boundary {
+            Boundary::Periodic => (nx / 2 + 1, ny / 2 + 1),
+            Boundary::NonPeriodic => (nx, ny),
+        };
+        operator.coefficients = response
+            .chunks(nx)
+            .take(rows)
+            .flat_map(|row| &row[..stride])
+            .copied()
+            .collect();
+        operator.coefficient_stride = stride;
         Ok(operator)
     }
 
@@ -194,7 +214,39 @@ impl InfluenceOperator {
 
     /// Displacement of a pixel under a unit pressure on itself, `K₀₀` in m/Pa (> 0).
     pub(crate) fn self_influence(&self) -> f64 {
-        self.self_influence
+        self.coefficients[0]
+    }
+
+    /// The operator restricted to the grid points `points` (flat indices `iy · nx + ix`): the
+    /// `m × m` matrix `K_ab = K(r_a − r_b)` row-major in `matrix` (`m = points.len()`), read
+    /// from the coefficients at the offset's magnitude (on a periodic grid the shorter way
+    /// round: `K` is even, so both ways hold the same coefficient up to round-off, and taking
+    /// one makes the matrix exactly symmetric). It equals the FFT operator's coefficients up
+    /// to round-off.
+    pub(crate) fn restricted_matrix(&self, points: &[usize], matrix: &mut Vec<f64>) {
+        let (nx, ny) = (self.nx, self.ny);
+        let periodic = self.boundary == Boundary::Periodic;
+        let offset = move |a: usize, b: usize, n: usize| {
+            if periodic {
+                let d = a.abs_diff(b);
+                d.min(n - d)
+            } else {
+                a.abs_diff(b)
+            }
+        };
+        let m = points.len();
+        let coords: Vec<(usize, usize)> = points.iter().map(|&i| (i % nx, i / nx)).collect();
+        matrix.clear();
+        matrix.resize(m * m, 0.0);
+        let (coefficients, stride) = (&self.coefficients, self.coefficient_stride);
+        matrix
+            .par_chunks_mut(m.max(1))
+            .zip(coords.par_iter())
+            .for_each(|(row, &(xa, ya))| {
+                for (k, &(xb, yb)) in row.iter_mut().zip(&coords) {
+                    *k = coefficients[offset(ya, yb, ny) * stride + offset(xa, xb, nx)];
+                }
+            });
     }
 }
 
@@ -271,5 +323,41 @@ mod tests {
             assert!((ui - direct).abs() < 1e-12 * direct.abs().max(1.0));
         }
         assert!((op.self_influence() - pixel_influence(0.0, 0.0, dx, dy) / 2.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn restricted_matrix_applies_the_operator_on_its_points() {
+        // Pressure on a scattered set of points (including both grid edges, so that negative
+        // offsets wrap on the periodic grid): the restricted matrix times the pressures equals
+        // the FFT operator's displacement there, to FFT round-off.
+        let (nx, ny) = (12, 9);
+        let points = [0, 5, 11, 13, 40, 59, 71, 96, 100, 107];
+        for boundary in [Boundary::Periodic, Boundary::NonPeriodic] {
+            let mut op = InfluenceOperator::new(nx, ny, 1e-6, 2e-6, 1e11, boundary).unwrap();
+            let mut p = vec![0.0; nx * ny];
+            for (k, &i) in points.iter().enumerate() {
+                p[i] = 1e6 * (1.0 + k as f64);
+            }
+            let mut u = vec![0.0; nx * ny];
+            op.apply(&p, &mut u).unwrap();
+            let mut matrix = Vec::new();
+            op.restricted_matrix(&points, &mut matrix);
+            let scale = u.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
+            for (row, &a) in matrix.chunks(points.len()).zip(&points) {
+                let restricted: f64 = row.iter().zip(&points).map(|(k, &b)| k * p[b]).sum();
+                assert!(
+                    (restricted - u[a]).abs() < 1e-12 * scale,
+                    "{boundary:?}, point {a}: {restricted} vs {}",
+                    u[a]
+                );
+            }
+            // Exactly symmetric, as K is.
+            let m = points.len();
+            for a in 0..m {
+                for b in 0..m {
+                    assert_eq!(matrix[a * m + b], matrix[b * m + a]);
+                }
+            }
+        }
     }
 }

@@ -10,6 +10,7 @@
 mod approach_search;
 mod constrained_cg;
 mod error;
+mod free_set;
 mod gap;
 mod influence;
 mod load_balance;

@@ -261,6 +261,7 @@ impl ContactSolver {
                 let mut search =
                     approach_search::solve(ws, op, pressure, start.approach, &settings)?;
                 search.fft_transforms += start.fft_transforms;
+                search.free_set_iterations += start.free_set_iterations;
                 (search, SolvePath::ApproachSearch)
             }
             SolveStrategy::Auto => {
@@ -279,6 +280,8 @@ impl ContactSolver {
                         approach_search::solve(ws, op, pressure, start.approach, &budget)?;
                     second.iterations += first.iterations;
                     second.fft_transforms += first.fft_transforms + start.fft_transforms;
+                    second.free_set_iterations +=
+                        first.free_set_iterations + start.free_set_iterations;
                     (second, SolvePath::ApproachSearch)
                 }
             }
@@ -396,6 +399,7 @@ impl ContactSolver {
             approach: outcome.approach,
             iterations: outcome.iterations,
             coarse_iterations: 0,
+            free_set_iterations: outcome.free_set_iterations,
             fft_transforms: outcome.fft_transforms,
             residuals: outcome.residuals,
             path,

@@ -383,3 +383,36 @@ fn saturated_contacts_keep_the_rigid_plastic_start() {
         single
     );
 }
+
+#[test]
+fn saturated_contacts_finish_on_the_free_set() {
+    // 512² rough contact, most of it at p_lim, at a load light enough for its free set to be
+    // iterated alone (`free_set.rs`): the step converges on the FFT displacement as every step
+    // does, and agrees with a solve 1000 times tighter.
+    let surface = rough_surface(512, 1e-6, 1e-6, 5, 400);
+    let gap = CompositeGap::against_flat(&surface).unwrap();
+    let material = ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, 1e9).unwrap();
+    let solve = |tolerance: f64| {
+        let problem = ContactProblem::new(gap.clone(), material, Boundary::Periodic);
+        ContactSolver::new(problem, options(tolerance, FieldRequest::NONE))
+            .unwrap()
+            .solve(2e6)
+            .unwrap()
+    };
+    let (step, tight) = (solve(1e-6), solve(1e-9));
+    assert!(step.plastic_area_share > 0.5, "{}", step.plastic_area_share);
+    assert!(
+        step.free_set_iterations > 0,
+        "the free set was not iterated alone"
+    );
+    assert!(step.residuals.max() <= 1e-6, "{:?}", step.residuals);
+    assert!(tight.residuals.max() <= 1e-9, "{:?}", tight.residuals);
+    // A/A₀ counts points: at most one point in a thousand of the contact may differ.
+    let relative = (step.area_fraction - tight.area_fraction).abs() / tight.area_fraction;
+    assert!(relative < 1e-3, "A/A₀ differs by {relative}");
+    let scale = surface
+        .heights()
+        .iter()
+        .fold(0.0f64, |a, &z| a.max(z.abs()));
+    assert!((step.approach - tight.approach).abs() < 1e-6 * scale);
+}
