@@ -51,7 +51,9 @@
 //! Structure: [`solve`] drives a small state machine, argmin style — [`ConstrainedCg::init`],
 //! then per iteration [`ConstrainedCg::measure`] (the gap statistics, δ and the residuals of the
 //! iterate), [`ConstrainedCg::decide`] (converged, confirm, stop, or step) and
-//! [`ConstrainedCg::next_iter`] (the step, the pressure update, the load restoration).
+//! [`ConstrainedCg::next_iter`] (the step, the pressure update, the load restoration), or, where
+//! few points are still moving, [`ConstrainedCg::free_set_tail`] (those points iterated alone
+//! with the operator restricted to them, `free_set.rs`, between two recomputations of `u`).
 //!
 //! Everything but the transforms (whose inputs are read from the lists) and, after a pending
 //! update, one dense pass over the points out of contact runs over explicit contact lists (see
@@ -137,7 +139,7 @@ pub(crate) struct CgOutcome {
     pub iterations: usize,
     /// Real 2-D FFTs (forward or inverse; a full convolution is two) of this solve.
     pub fft_transforms: usize,
-    /// CG iterations on the free set alone (`free_set.rs`).
+    /// CG iterations of the moving points alone (`free_set.rs`).
     pub free_set_iterations: usize,
     pub residuals: Residuals,
     pub approach: f64,
@@ -199,8 +201,6 @@ struct ConstrainedCg<'a> {
     fft_transforms: usize,
     iterations: usize,
     free_set_iterations: usize,
-    /// The last step changed no point's state and kept the load (see `free_set.rs`).
-    last_linear: bool,
     /// The largest residual when the free set was last iterated alone: it is iterated alone
     /// again only once the residual has halved since (no alternation with the confirmation).
     free_set_mark: f64,
@@ -252,7 +252,6 @@ impl<'a> ConstrainedCg<'a> {
             fft_transforms: 0,
             iterations: 0,
             free_set_iterations: 0,
-            last_linear: false,
             free_set_mark: f64::INFINITY,
             u_fresh: false,
             displacement: Displacement::Stale,
@@ -430,7 +429,6 @@ impl<'a> ConstrainedCg<'a> {
         self.delta_prev = m.delta;
         let linear = update.corrected == 0.0 && !step.breakdown;
         let exact = self.restore_load(m, linear, update.free);
-        self.last_linear = exact;
         if exact {
             self.displacement = if step.w_ready {
                 Displacement::Pending(step.tau)
@@ -444,9 +442,9 @@ impl<'a> ConstrainedCg<'a> {
         Ok(())
     }
 
-    /// The free set is iterated alone (`free_set.rs`) after a step that changed no point's
-    /// state, when only the contact residual is left above the tolerance, the free set is small
-    /// enough, and the residual has halved since the last time.
+    /// The moving points are iterated alone (`free_set.rs`) when the load is met, their set is
+    /// small enough (checked again, with the points that are not free, by `free_set::iterate`)
+    /// and the residual has halved since the last time.
     fn free_set_applies(&self, m: &Measurement) -> bool {
         let r = m.residuals;
         let tolerance = self.settings.tolerance;
@@ -455,8 +453,8 @@ impl<'a> ConstrainedCg<'a> {
             && free_set::applies(m.free_count, self.n)
     }
 
-    /// Iterates the free set alone, then leaves `u` to be recomputed by the next measurement;
-    /// takes a CG step on the grid instead if the free set could not take one.
+    /// Iterates the moving points alone, then leaves `u` to be recomputed by the next
+    /// measurement; takes a CG step on the grid instead if they took none.
     fn free_set_tail(&mut self, m: &Measurement) -> Result<(), FftFailure> {
         self.free_set_mark = m.residuals.max();
         let task = FreeSetTask::new(
@@ -466,7 +464,7 @@ impl<'a> ConstrainedCg<'a> {
             self.settings.tolerance,
             self.settings.gap_scale,
         );
-        let outcome = free_set::iterate(self.ws, self.op, task, m.delta);
+        let outcome = free_set::iterate(self.ws, self.op, task, m.delta, m.free_count);
         if outcome.iterations == 0 {
             return self.next_iter(m);
         }
@@ -474,7 +472,6 @@ impl<'a> ConstrainedCg<'a> {
         self.p_sum = self.ws.free_stats().total();
         self.delta_prev = outcome.delta;
         self.u_fresh = false;
-        self.last_linear = false;
         self.reset = true;
         Ok(())
     }

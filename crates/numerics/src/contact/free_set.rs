@@ -1,42 +1,53 @@
-//! The linear tail of a load step, iterated on the free set alone.
+//! The moving points of a load step, iterated alone with the operator restricted to them.
 //!
-//! Once a step of the constrained CG (`constrained_cg.rs`) has changed no point's state — no
-//! projection, no re-entry, no load restoration — and every residual but the contact residual
-//! is within the tolerance, what is left of the step is a linear system on the free set
-//! `F = {0 < p < p_lim}`: `g_F = g₀_F + u_F − offset − δ = 0` with `Σ_F p` fixed under load
-//! control (`δ` its multiplier) or `δ = 0` under approach control. The pressures off `F` stay
-//! as they are, so their displacement on `F` is a constant of the system, and the CG of
-//! Polonsky & Keer (1999, Wear 231) continues on it with the restricted operator
-//! `K_FF` (`InfluenceOperator::restricted_matrix`, `|F| × |F|`) in place of the FFT pair:
-//! `t = r + β t_old`, `β = Σ r² / Σ r_old²`, `τ = Σ r t / (tᵀ K_FF t − Σ K_FF t Σ t / |F|)`
-//! (the last term under load control), `p_F ← p_F − τ t`, `u_F ← u_F − τ K_FF t`, with
-//! `r = g_F` and `δ = mean_F(g₀ + u − offset)` under load control.
+//! On a rough contact near saturation (ground steel at stress ratios near 1) almost all the
+//! contact is at `p_lim` and the free set `F = {0 < p < p_lim}` is a few thousand points of a grid
+//! of millions, yet every step of the constrained CG (`constrained_cg.rs`) costs transforms of the
+//! whole grid. The points whose pressure the next steps move are the moving set
+//! `M = F ∪ {p = 0, g < 0} ∪ {p = p_lim, g > 0}` (`Workspace::moving_points`). With every other
+//! pressure held, their displacement on `M` is a constant of the problem, so the QP restricted to
+//! `M` — `min ½ p_Mᵀ K_MM p_M + p_Mᵀ (g₀ + u_rest − offset)_M` over `0 ≤ p ≤ p_lim`, with `Σ_M p`
+//! fixed under load control — is solved with the dense matrix `K_MM` (`restricted_matrix.rs`),
+//! whose product costs `|M|²` multiplications instead of an FFT pair.
 //!
-//! It pays where the free set is small: on rough contacts near saturation (ground steel at
-//! stress ratios near 1) `|F|` is a few thousand points of a grid of millions, and a product with
-//! `K_FF` costs `|F|²` multiplications against two transforms of the whole grid. It is used only
-//! while `|F|² ≤` [`MAX_MATRIX_SHARE`] `· N`.
+//! Iteration (the CG of Polonsky & Keer 1999, Wear 231, on a face of the box, restarted whenever
+//! a point reaches a bound — an active-set CG): on the points of `M` not held at a bound,
+//! `r = g₀ + u − offset − δ` with `δ` their mean under load control (0 otherwise),
+//! `t = r + β t_old` (`β = Σ r² / Σ r_old²`, 0 at a restart), `w = K_MM t`,
+//! `τ = Σ r t / (tᵀ w − Σ w Σ t / n)` (the last term under load control), and the step
+//! `p ← p − τ' t`, `u_M ← u_M − τ' w` with `τ'` the smaller of `τ` and the step at which the
+//! first point reaches 0 or `p_lim`; that point is then held there and the conjugation restarts.
+//! `Σ t = 0` under load control, so the load is kept. The points of `M` out of `F` start free:
+//! their gap has the sign that moves them in.
 //!
-//! The iteration stops at a contact residual of [`TARGET_SHARE`] of the tolerance, before a step
-//! that would take a point of `F` to a bound (the constrained CG handles that step), when the
-//! residual has stopped falling (its round-off floor), or after [`MAX_ITERATIONS`]. The caller then
-//! recomputes `u = K p` with an FFT pair and judges convergence on it, as on every step: the
-//! iteration only moves the pressures of `F`, it never decides that a step has converged.
-
-use rayon::prelude::*;
+//! It stops at a contact residual of [`TARGET_SHARE`] of the tolerance, when fewer than two points
+//! are left free, when the residual has stopped falling, or after [`MAX_ITERATIONS`]. The
+//! constrained CG then recomputes `u = K p` with an FFT pair and judges convergence on it, as on
+//! every step: this iteration moves pressures, it never decides that a step has converged, and
+//! points outside `M` that the new pressures open or close are caught by that recomputation.
+//!
+//! It is used while the matrix is small (`|M|² ≤` [`MAX_MATRIX_SHARE`] `· N`) and the step is
+//! near its final contact (at most [`MAX_CHANGING_SHARE`] of `M` not free). Measurements in
+//! `docs/contact-solver-design.md`.
 
 use super::influence::InfluenceOperator;
 use super::workspace::Workspace;
 
-/// The restricted matrix holds at most this many values per grid point (`|F|² ≤ 2 N`: at
-/// 3512² up to 4967 free points, a 197 MB matrix, as much as two grid arrays).
-pub(super) const MAX_MATRIX_SHARE: f64 = 0.125;
+/// The restricted matrix holds at most this many values per grid point (`|M|² ≤ 2 N`: at
+/// 3512² up to 4967 moving points, a 197 MB matrix, as much as two grid arrays).
+pub(super) const MAX_MATRIX_SHARE: f64 = 2.0;
+
+/// The moving points are iterated alone only when at most this share of them is not free (points
+/// out of contact with a negative gap, saturated points with an open gap): while many points
+/// still enter or leave, the iteration soon stops at a bound, and its matrix, whose new rows are
+/// the costly part, would be built for a few steps only.
+const MAX_CHANGING_SHARE: f64 = 0.05;
 
 /// The iteration aims at a contact residual of this share of the tolerance, so that the
-/// displacement recomputed by FFT (equal to `K_FF`'s up to round-off) confirms it.
+/// displacement recomputed by FFT (equal to `K_MM`'s up to round-off) confirms it.
 const TARGET_SHARE: f64 = 0.5;
 
-/// Iteration cap (each iteration costs one product with `K_FF`).
+/// Iteration cap (each iteration costs one product with `K_MM`).
 const MAX_ITERATIONS: usize = 50;
 
 /// Iterations without a 0.9-fold fall of the residual after which the iteration stops.
@@ -77,35 +88,38 @@ impl FreeSetTask {
 /// The result of [`iterate`].
 #[derive(Debug, Clone, Copy)]
 pub(super) struct FreeSetOutcome {
-    /// CG iterations taken (products with `K_FF`); 0 leaves the pressures unchanged.
+    /// CG iterations taken (products with `K_MM`); 0 leaves the pressures unchanged.
     pub iterations: usize,
     /// `δ` of the last iterate (0 under approach control).
     pub delta: f64,
 }
 
-/// Whether a free set of `free_count` points on a grid of `points` points is iterated alone.
-pub(super) fn applies(free_count: f64, points: f64) -> bool {
-    free_count >= 2.0 && free_count * free_count <= MAX_MATRIX_SHARE * points
+/// Whether `moving` points of a grid of `points` points are few enough to be iterated alone.
+pub(super) fn applies(moving: f64, points: f64) -> bool {
+    moving >= 2.0 && moving * moving <= MAX_MATRIX_SHARE * points
 }
 
-/// Iterates the free set of `ws` from its pressures and displacement (`u` exact on `F`) and
-/// writes the new free pressures into `ws.p`; `ws.u` is left as it was (stale on the whole grid
-/// when any iteration was taken).
+/// Iterates the moving points of `ws` (`u` exact, `δ` = `delta` of the last measurement, where
+/// `free_count` points are free) and writes their new pressures into `ws.p`; `ws.u` is left as
+/// it was (stale on the whole grid when any iteration was taken).
 pub(super) fn iterate(
     ws: &mut Workspace,
     op: &InfluenceOperator,
     task: FreeSetTask,
     delta: f64,
+    free_count: f64,
 ) -> FreeSetOutcome {
     let points = ws.moving_points(task.offset, delta);
-    if !applies(points.len() as f64, ws.len() as f64) {
+    let moving = points.len() as f64;
+    if !applies(moving, ws.len() as f64) || moving > (1.0 + MAX_CHANGING_SHARE) * free_count {
         return FreeSetOutcome {
             iterations: 0,
             delta,
         };
     }
-    let mut matrix = Vec::new();
-    op.restricted_matrix(&points, &mut matrix);
+    let mut matrix = std::mem::take(&mut ws.restricted);
+    matrix.update(op, points);
+    let points = matrix.points();
     let mut p: Vec<f64> = points.iter().map(|&i| ws.p[i]).collect();
     let mut v: Vec<f64> = points
         .iter()
@@ -150,7 +164,7 @@ pub(super) fn iterate(
         t.iter_mut()
             .zip(&r)
             .for_each(|(ti, &ri)| *ti = ri + beta * *ti);
-        multiply(&matrix, &t, &mut w);
+        matrix.multiply(&t, &mut w);
         let tw: f64 = t.iter().zip(&w).map(|(a, b)| a * b).sum();
         let rt: f64 = r.iter().zip(&t).map(|(a, b)| a * b).sum();
         let load_term = if task.load_control {
@@ -180,8 +194,9 @@ pub(super) fn iterate(
         iterations += 1;
     };
     if iterations > 0 {
-        ws.set_pressures(&points, &p);
+        ws.set_pressures(points, &p);
     }
+    ws.restricted = matrix;
     FreeSetOutcome { iterations, delta }
 }
 
@@ -202,13 +217,4 @@ fn feasible_step(p: &[f64], t: &[f64], tau: f64, flow_pressure: f64) -> (f64, Op
         }
     }
     step
-}
-
-/// `w = A t` for the row-major square matrix `A`, rows in parallel (each row's sum in a fixed
-/// order, so the result does not depend on the thread count).
-fn multiply(matrix: &[f64], t: &[f64], w: &mut [f64]) {
-    let m = t.len();
-    w.par_iter_mut()
-        .zip(matrix.par_chunks(m))
-        .for_each(|(wi, row)| *wi = row.iter().zip(t).map(|(a, b)| a * b).sum());
 }

@@ -2,8 +2,6 @@
 
 use std::f64::consts::PI;
 
-use rayon::prelude::*;
-
 use crate::fft2::{fast_even_length, FftFailure, RealFft2d, RowSink, RowSource};
 
 /// Lateral boundary condition of the contact domain.
@@ -217,36 +215,27 @@ impl InfluenceOperator {
         self.coefficients[0]
     }
 
-    /// The operator restricted to the grid points `points` (flat indices `iy · nx + ix`): the
-    /// `m × m` matrix `K_ab = K(r_a − r_b)` row-major in `matrix` (`m = points.len()`), read
-    /// from the coefficients at the offset's magnitude (on a periodic grid the shorter way
-    /// round: `K` is even, so both ways hold the same coefficient up to round-off, and taking
-    /// one makes the matrix exactly symmetric). It equals the FFT operator's coefficients up
-    /// to round-off.
-    pub(crate) fn restricted_matrix(&self, points: &[usize], matrix: &mut Vec<f64>) {
-        let (nx, ny) = (self.nx, self.ny);
-        let periodic = self.boundary == Boundary::Periodic;
-        let offset = move |a: usize, b: usize, n: usize| {
-            if periodic {
-                let d = a.abs_diff(b);
-                d.min(n - d)
-            } else {
-                a.abs_diff(b)
+    /// `K(r_a − r_b)` in m/Pa for the grid points `a = (ix, iy)` and `b`, read from the
+    /// coefficients at the offset's magnitude (on a periodic grid the shorter way round: `K` is
+    /// even, so both ways hold the same coefficient up to round-off, and taking one makes
+    /// `K(r_a − r_b)` and `K(r_b − r_a)` the same number). It equals the FFT operator's
+    /// coefficient up to round-off.
+    #[inline]
+    pub(crate) fn coefficient_between(&self, a: (usize, usize), b: (usize, usize)) -> f64 {
+        let offset = |p: usize, q: usize, n: usize| {
+            let d = p.abs_diff(q);
+            match self.boundary {
+                Boundary::Periodic => d.min(n - d),
+                Boundary::NonPeriodic => d,
             }
         };
-        let m = points.len();
-        let coords: Vec<(usize, usize)> = points.iter().map(|&i| (i % nx, i / nx)).collect();
-        matrix.clear();
-        matrix.resize(m * m, 0.0);
-        let (coefficients, stride) = (&self.coefficients, self.coefficient_stride);
-        matrix
-            .par_chunks_mut(m.max(1))
-            .zip(coords.par_iter())
-            .for_each(|(row, &(xa, ya))| {
-                for (k, &(xb, yb)) in row.iter_mut().zip(&coords) {
-                    *k = coefficients[offset(ya, yb, ny) * stride + offset(xa, xb, nx)];
-                }
-            });
+        let (x, y) = (offset(a.0, b.0, self.nx), offset(a.1, b.1, self.ny));
+        self.coefficients[y * self.coefficient_stride + x]
+    }
+
+    /// Grid points per row.
+    pub(crate) fn nx(&self) -> usize {
+        self.nx
     }
 }
 
@@ -326,10 +315,10 @@ mod tests {
     }
 
     #[test]
-    fn restricted_matrix_applies_the_operator_on_its_points() {
+    fn coefficients_apply_the_operator_between_points() {
         // Pressure on a scattered set of points (including both grid edges, so that negative
-        // offsets wrap on the periodic grid): the restricted matrix times the pressures equals
-        // the FFT operator's displacement there, to FFT round-off.
+        // offsets wrap on the periodic grid): the coefficients between the points times the
+        // pressures give the FFT operator's displacement there, to FFT round-off.
         let (nx, ny) = (12, 9);
         let points = [0, 5, 11, 13, 40, 59, 71, 96, 100, 107];
         for boundary in [Boundary::Periodic, Boundary::NonPeriodic] {
@@ -340,8 +329,11 @@ mod tests {
             }
             let mut u = vec![0.0; nx * ny];
             op.apply(&p, &mut u).unwrap();
-            let mut matrix = Vec::new();
-            op.restricted_matrix(&points, &mut matrix);
+            let coords: Vec<(usize, usize)> = points.iter().map(|&i| (i % nx, i / nx)).collect();
+            let op = &op;
+            let matrix: Vec<f64> = (coords.iter())
+                .flat_map(|&a| coords.iter().map(move |&b| op.coefficient_between(a, b)))
+                .collect();
             let scale = u.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
             for (row, &a) in matrix.chunks(points.len()).zip(&points) {
                 let restricted: f64 = row.iter().zip(&points).map(|(k, &b)| k * p[b]).sum();

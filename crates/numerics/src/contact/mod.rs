@@ -18,6 +18,7 @@ mod load_curve;
 mod material;
 mod multilevel;
 mod options;
+mod restricted_matrix;
 mod selection;
 mod solver;
 mod workspace;

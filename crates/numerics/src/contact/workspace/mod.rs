@@ -18,6 +18,7 @@
 
 use rayon::prelude::*;
 
+use super::restricted_matrix::RestrictedMatrix;
 use super::selection::RankBuffers;
 
 mod dense;
@@ -261,6 +262,8 @@ pub(crate) struct Workspace {
     blocks: Vec<Block>,
     /// Buffers of the ranking of gaps (rigid-plastic start, load restoration).
     pub(super) ranks: RankBuffers,
+    /// The operator restricted to the points last iterated alone (`free_set.rs`).
+    pub(in crate::contact) restricted: RestrictedMatrix,
     /// Points per grid row.
     nx: usize,
     /// Per grid row, `min_{p = 0} (g₀ + u − offset)` as the last inverse transform left it.
@@ -288,6 +291,7 @@ impl Workspace {
             w: vec![0.0; n],
             blocks: vec![Block::new(); blocks],
             ranks: RankBuffers::default(),
+            restricted: RestrictedMatrix::default(),
             nx,
             row_min: vec![f64::INFINITY; n.div_ceil(nx)],
             row_min_current: false,
