@@ -133,13 +133,7 @@ pub(super) fn iterate(
     let (mut best, mut last_progress) = (f64::INFINITY, 0);
     let delta = loop {
         let delta = if task.load_control {
-            let sum: f64 = v
-                .iter()
-                .zip(&free)
-                .filter(|(_, &f)| f)
-                .map(|(x, _)| x)
-                .sum();
-            sum / free_count as f64
+            free_sum(&v, &free) / free_count as f64
         } else {
             0.0
         };
@@ -165,20 +159,7 @@ pub(super) fn iterate(
             .zip(&r)
             .for_each(|(ti, &ri)| *ti = ri + beta * *ti);
         matrix.multiply(&t, &mut w);
-        let tw: f64 = t.iter().zip(&w).map(|(a, b)| a * b).sum();
-        let rt: f64 = r.iter().zip(&t).map(|(a, b)| a * b).sum();
-        let load_term = if task.load_control {
-            let free_w: f64 = w
-                .iter()
-                .zip(&free)
-                .filter(|(_, &f)| f)
-                .map(|(x, _)| x)
-                .sum();
-            free_w * t.iter().sum::<f64>() / free_count as f64
-        } else {
-            0.0
-        };
-        let tau = rt / (tw - load_term);
+        let tau = step_length(task.load_control, &r, &t, &w, &free);
         if !(tau.is_finite() && tau > 0.0) {
             break delta;
         }
@@ -198,6 +179,30 @@ pub(super) fn iterate(
     }
     ws.restricted = matrix;
     FreeSetOutcome { iterations, delta }
+}
+
+/// `Σ values` over the points not held at a bound.
+fn free_sum(values: &[f64], free: &[bool]) -> f64 {
+    values
+        .iter()
+        .zip(free)
+        .filter(|(_, &f)| f)
+        .map(|(x, _)| x)
+        .sum()
+}
+
+/// The CG step `τ = Σ r t / (tᵀ w − Σ_free w Σ t / n_free)` along `t` with `w = K t` (the last
+/// term under load control; `t` vanishes at the points held at a bound).
+fn step_length(load_control: bool, r: &[f64], t: &[f64], w: &[f64], free: &[bool]) -> f64 {
+    let tw: f64 = t.iter().zip(w).map(|(a, b)| a * b).sum();
+    let rt: f64 = r.iter().zip(t).map(|(a, b)| a * b).sum();
+    let load_term = if load_control {
+        let free_count = free.iter().filter(|&&f| f).count();
+        free_sum(w, free) * t.iter().sum::<f64>() / free_count as f64
+    } else {
+        0.0
+    };
+    rt / (tw - load_term)
 }
 
 /// The step along `−t` from `p`: `tau`, or the shorter step at which the first free point
