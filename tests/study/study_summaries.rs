@@ -170,4 +170,5 @@ fn a_metric_the_node_does_not_have_is_an_error_with_a_suggestion() {
     assert!(e.contains("summary 'per_sq'"), "{e}");
     assert!(e.contains("no numeric metric 'sdqq'"), "{e}");
     assert!(e.contains("did you mean 'sdq'"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

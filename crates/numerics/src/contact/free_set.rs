@@ -100,18 +100,18 @@ pub(super) fn applies(moving: f64, points: f64) -> bool {
 }
 
 /// Iterates the moving points of `ws` (`u` exact, `δ` = `delta` of the last measurement, where
-/// `free_count` points are free) and writes their new pressures into `ws.p`; `ws.u` is left as
+/// `free_in_step` points are free) and writes their new pressures into `ws.p`; `ws.u` is left as
 /// it was (stale on the whole grid when any iteration was taken).
 pub(super) fn iterate(
     ws: &mut Workspace,
     op: &InfluenceOperator,
     task: FreeSetTask,
     delta: f64,
-    free_count: f64,
+    free_in_step: f64,
 ) -> FreeSetOutcome {
     let points = ws.moving_points(task.offset, delta);
     let moving = points.len() as f64;
-    if !applies(moving, ws.len() as f64) || moving > (1.0 + MAX_CHANGING_SHARE) * free_count {
+    if !applies(moving, ws.len() as f64) || moving > (1.0 + MAX_CHANGING_SHARE) * free_in_step {
         return FreeSetOutcome {
             iterations: 0,
             delta,
@@ -159,7 +159,12 @@ pub(super) fn iterate(
             .zip(&r)
             .for_each(|(ti, &ri)| *ti = ri + beta * *ti);
         matrix.multiply(&t, &mut w);
-        let tau = step_length(task.load_control, &r, &t, &w, &free);
+        let free_w = if task.load_control {
+            free_sum(&w, &free)
+        } else {
+            0.0
+        };
+        let tau = step_length(&r, &t, &w, free_w, free_count);
         if !(tau.is_finite() && tau > 0.0) {
             break delta;
         }
@@ -191,17 +196,13 @@ fn free_sum(values: &[f64], free: &[bool]) -> f64 {
         .sum()
 }
 
-/// The CG step `τ = Σ r t / (tᵀ w − Σ_free w Σ t / n_free)` along `t` with `w = K t` (the last
-/// term under load control; `t` vanishes at the points held at a bound).
-fn step_length(load_control: bool, r: &[f64], t: &[f64], w: &[f64], free: &[bool]) -> f64 {
+/// The CG step `τ = Σ r t / (tᵀ w − free_w Σ t / free_count)` along `t` with `w = K t`, where
+/// `free_w = Σ_free w` under load control and 0 otherwise (`t` vanishes at the points held at a
+/// bound).
+fn step_length(r: &[f64], t: &[f64], w: &[f64], free_w: f64, free_count: usize) -> f64 {
     let tw: f64 = t.iter().zip(w).map(|(a, b)| a * b).sum();
     let rt: f64 = r.iter().zip(t).map(|(a, b)| a * b).sum();
-    let load_term = if load_control {
-        let free_count = free.iter().filter(|&&f| f).count();
-        free_sum(w, free) * t.iter().sum::<f64>() / free_count as f64
-    } else {
-        0.0
-    };
+    let load_term = free_w * t.iter().sum::<f64>() / free_count as f64;
     rt / (tw - load_term)
 }
 

@@ -48,9 +48,9 @@ pub struct LoadStep {
     /// CG iterations of the multilevel start on the coarser grids (each with a quarter of the
     /// points of the next finer one), summed over them; 0 after a warm start.
     pub coarse_iterations: usize,
-    /// CG iterations of this step on its free set alone (each a product with the operator
-    /// restricted to the free set instead of an FFT pair; see `free_set.rs`), not counted in
-    /// `iterations`.
+    /// CG iterations of this step on its moving points alone (free points, points entering or
+    /// leaving saturation; each a product with the operator restricted to them instead of an FFT
+    /// pair; see `free_set.rs`), not counted in `iterations`.
     pub free_set_iterations: usize,
     /// Real 2-D FFTs (forward or inverse; a full convolution is two) of this step on its own
     /// grid, including the exact recomputations of the displacement and the start.

@@ -2,8 +2,8 @@
 //!
 //! `K_ab = K(r_a − r_b)` for the points `a, b` of a set (`InfluenceOperator::coefficient_between`),
 //! a dense `m × m` matrix. Each coefficient is a read at an offset-dependent place of a table of
-//! the grid's size, so building the matrix from scratch costs one cache miss per entry (about
-//! 40 ns on the 2-core test machine, `docs/contact-solver-design.md`). Consecutive sets of one
+//! the grid's size, so building the matrix from scratch costs about one cache miss per entry
+//! (`docs/contact-solver-design.md`). Consecutive sets of one
 //! solve share most of their points, so the matrix of the last set is kept and its entries
 //! between points of both sets are copied; only the rows and columns of new points are read
 //! from the table. The values do not depend on what was kept: each entry is the same

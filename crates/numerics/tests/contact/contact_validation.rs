@@ -349,14 +349,21 @@ fn multilevel_start_converges_to_the_same_contact_in_fewer_fine_iterations() {
     }
 }
 
+/// A 512² rough surface against a flat, steel on steel capped at 1 GPa: most of its contact
+/// area is at p_lim at the loads of the tests below.
+fn saturated_rough_contact() -> (HeightMap, CompositeGap, ContactMaterial) {
+    let surface = rough_surface(512, 1e-6, 1e-6, 5, 400);
+    let gap = CompositeGap::against_flat(&surface).unwrap();
+    let material = ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, 1e9).unwrap();
+    (surface, gap, material)
+}
+
 #[test]
 fn saturated_contacts_keep_the_rigid_plastic_start() {
     // 512² rough contact with most of the contact area at p_lim: the coarse grid is solved, its
     // contact found mostly saturated, and the fine grid starts rigid-plastic, so the step is
     // bit-identical to one solved without the multilevel start.
-    let surface = rough_surface(512, 1e-6, 1e-6, 5, 400);
-    let gap = CompositeGap::against_flat(&surface).unwrap();
-    let material = ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, 1e9).unwrap();
+    let (_, gap, material) = saturated_rough_contact();
     let solve = |multilevel: bool| {
         let options = SolverOptions {
             multilevel,
@@ -389,9 +396,7 @@ fn saturated_contacts_finish_on_the_free_set() {
     // 512² rough contact, most of it at p_lim, at a load light enough for its free set to be
     // iterated alone (`free_set.rs`): the step converges on the FFT displacement as every step
     // does, and agrees with a solve 1000 times tighter.
-    let surface = rough_surface(512, 1e-6, 1e-6, 5, 400);
-    let gap = CompositeGap::against_flat(&surface).unwrap();
-    let material = ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, 1e9).unwrap();
+    let (surface, gap, material) = saturated_rough_contact();
     let solve = |tolerance: f64| {
         let problem = ContactProblem::new(gap.clone(), material, Boundary::Periodic);
         ContactSolver::new(problem, options(tolerance, FieldRequest::NONE))

@@ -29,7 +29,6 @@ impl Workspace {
     /// `p[points[k]] ← values[k]` (in `[0, p_lim]`); the contact lists are rebuilt (`u` is left
     /// stale).
     pub(in crate::contact) fn set_pressures(&mut self, points: &[usize], values: &[f64]) {
-        self.row_min_current = false;
         for (&i, &v) in points.iter().zip(values) {
             debug_assert!((0.0..=self.plim).contains(&v));
             self.p[i] = v;
