@@ -138,6 +138,16 @@ fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CacheError + '_ {
 /// zstd level of array payloads: the fastest, since dense float fields gain little from more.
 const ZSTD_LEVEL: i32 = 1;
 
+/// `bytes` as one zstd frame at [`ZSTD_LEVEL`] (the bytes of `zstd::stream::encode_all`), written
+/// into a buffer allocated once at the frame's worst-case size instead of one grown by copying.
+fn compress(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
+    let mut frame = Vec::with_capacity(zstd::zstd_safe::compress_bound(bytes.len()));
+    let mut encoder = zstd::stream::Encoder::new(&mut frame, ZSTD_LEVEL)?;
+    encoder.write_all(bytes)?;
+    encoder.finish()?;
+    Ok(frame)
+}
+
 /// How old a temporary directory of another host must be before it is considered abandoned.
 const FOREIGN_TMP_MAX_AGE: Duration = Duration::from_secs(24 * 3600);
 
@@ -372,8 +382,7 @@ impl Cache {
         manifest.payloads.clear();
         for (name, array) in &artifact.arrays {
             let file = format!("{name}.npy.zst");
-            let compressed = zstd::stream::encode_all(npy::encode(array).as_slice(), ZSTD_LEVEL)
-                .map_err(io_err(&tmp.join(&file)))?;
+            let compressed = compress(&npy::encode(array)).map_err(io_err(&tmp.join(&file)))?;
             let checksum = blake3::hash(&compressed).to_hex().to_string();
             let payload = match manifest.payloads.iter().find(|p| p.blake3 == checksum) {
                 Some(same) => Payload {
