@@ -9,6 +9,8 @@
 //! report pages ([`report`]); the `asperity` binary is the command line. See `ARCHITECTURE.md`
 //! for the code map and invariants.
 
+#![deny(unsafe_code)]
+
 pub use asperity_engine as engine;
 pub use asperity_engine::units;
 pub use asperity_numerics::{contact, fft2, friction, materials, surface};

@@ -1,11 +1,18 @@
 //! The `asperity` command line: run, plan and validate studies, print the study schema.
 //! The only place that prints to the terminal.
 
+#![deny(unsafe_code)]
+
 mod cli;
+#[allow(unsafe_code)]
+mod huge_pages;
 
 use std::process::ExitCode;
 
 use clap::Parser;
+
+#[global_allocator]
+static ALLOCATOR: huge_pages::HugePageAllocator = huge_pages::HugePageAllocator;
 
 fn main() -> ExitCode {
     let args = cli::Cli::parse();

@@ -5,6 +5,8 @@
 //! [`node::NodeTask`]. It never prints; progress goes through [`execute::Progress`]. Quantities
 //! with units at the study boundary: [`units`].
 
+#![deny(unsafe_code)]
+
 pub mod artifact;
 pub mod cache;
 pub mod cache_admin;

@@ -9,6 +9,8 @@
 //!
 //! See `ARCHITECTURE.md` at the repository root for the code map and invariants.
 
+#![deny(unsafe_code)]
+
 pub mod contact;
 pub mod fft2;
 pub mod friction;
