@@ -1,6 +1,7 @@
 //! The `contact` node kind: elastic–perfectly-plastic half-space contact of one or two upstream
-//! surfaces (`contact::ContactSolver`), load-stepped to the last nominal pressure. Table
-//! `contacts` (the final step) and `contacts_load_curve` (one row per step); with
+//! surfaces (`contact::ContactSolver`), load-stepped to the last nominal pressure (only the last
+//! one is solved when the study does not write the `contacts` table). Table `contacts` (the final
+//! step) and `contacts_load_curve` (one row per step); with
 //! `fields: true` the final step's pressure, gap, deformation and plastic-penetration maps and the
 //! composite height z₁ + z₂ the contact was solved on are stored as arrays in the cache (the
 //! per-summit `friction` method reads them).
@@ -198,7 +199,12 @@ impl ContactSpec {
         Ok(explicit.or(material_flow).unwrap_or(f64::INFINITY))
     }
 
-    /// The nominal pressures (Pa): at least one, ascending, > 0 and below the flow pressure.
+    /// The load steps to solve (Pa): the listed nominal pressures, at least one, ascending, > 0
+    /// and below the flow pressure. When the study does not write the `contacts` table (whose
+    /// `contacts_load_curve` shows every step), only the last one is kept: the others would
+    /// only warm-start it, and a cold solve of the last step costs about what one warm step
+    /// does. The instance is then the one of a study that lists the last pressure alone, key
+    /// included.
     fn pressures(
         &self,
         ctx: &ResolveContext<'_>,
@@ -227,6 +233,9 @@ impl ContactSpec {
             }
             pressures.push(v);
         }
+        if !ctx.writes_table(TABLE) {
+            pressures.drain(..pressures.len() - 1);
+        }
         Ok(pressures)
     }
 }
@@ -252,6 +261,8 @@ pub struct ContactTask {
     upper: Option<(f64, f64)>,
     /// p_lim (Pa); +∞: purely elastic.
     flow_pressure: f64,
+    /// The load steps solved (Pa): every listed one, or only the last when no written table
+    /// shows the others (`ContactSpec::pressures`).
     pressures: Vec<f64>,
     periodic: bool,
     tolerance: f64,

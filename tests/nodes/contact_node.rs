@@ -120,3 +120,118 @@ fn contact_against_a_rigid_flat_without_fields() {
     assert!(entry.artifact.arrays.is_empty(), "no fields unless asked");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A junction-shear friction node on the contact `pair` of `study`, and the tables to write.
+fn with_friction(study: &str, outputs: &str) -> String {
+    format!(
+        "{study}  mu:
+    friction:
+      model: junction_shear
+      contact: pair
+      lower_material: {{youngs_modulus: 210 GPa, poisson_ratio: 0.3, hardness: 4 GPa}}
+      upper_material: {{youngs_modulus: 210 GPa, poisson_ratio: 0.3, hardness: 4 GPa}}
+{outputs}"
+    )
+}
+
+/// The `nominal_pressures_Pa` parameter and the key of every contact instance of `plan`.
+fn contact_instances(plan: &Plan) -> Vec<(Value, String)> {
+    plan.nodes
+        .iter()
+        .filter(|n| n.task.kind() == "contact")
+        .map(|n| {
+            let pressures = n
+                .task
+                .params()
+                .into_iter()
+                .find(|f| f.name == "nominal_pressures_Pa");
+            (pressures.unwrap().value, n.key.to_string())
+        })
+        .collect()
+}
+
+fn plan_of(text: &str) -> Plan {
+    let study =
+        Study::<TribologyNode>::from_source(std::path::Path::new("contact.yaml"), text.to_string())
+            .unwrap();
+    Plan::build(&study).unwrap()
+}
+
+#[test]
+fn warm_start_steps_are_not_solved_when_no_table_shows_them() {
+    let upper =
+        "      upper: upper\n      upper_material: {youngs_modulus: 210 GPa, poisson_ratio: 0.3}\n";
+    let stepped = study(upper, true);
+    let last_only = stepped.replace("[5 MPa, 10 MPa, 20 MPa]", "[20 MPa]");
+    assert_ne!(stepped, last_only);
+    // Written: every step is solved and shown.
+    let shown = plan_of(&with_friction(&stepped, ""));
+    // Not written: only the last step is solved, and the instance is the one of a study that
+    // lists it alone (same parameters, same key), whichever tables that study writes.
+    let hidden = plan_of(&with_friction(&stepped, "outputs: [scenarios, friction]\n"));
+    let alone = plan_of(&with_friction(&last_only, ""));
+    let summaries = with_friction(
+        &stepped,
+        "outputs: [scenarios, friction]\nsummaries:\n  all:\n    metrics: [pair.area_fraction]\n",
+    );
+    let summarised = plan_of(&summaries);
+    let (shown, hidden, alone) = (
+        contact_instances(&shown),
+        contact_instances(&hidden),
+        contact_instances(&alone),
+    );
+    assert_eq!(hidden, alone);
+    assert_eq!(shown.len(), 2);
+    for ((full, full_key), (last, last_key)) in shown.iter().zip(&hidden) {
+        let (Value::Text(full), Value::Text(last)) = (full, last) else {
+            panic!("pressures are a comma-separated text: {full:?} {last:?}")
+        };
+        let full: Vec<&str> = full.split(',').collect();
+        assert_eq!(full.len(), 3);
+        assert_eq!(last, full[2]);
+        assert_ne!(full_key, last_key);
+    }
+    // A summary of a contact metric writes the contacts table: every step is solved again.
+    assert_eq!(contact_instances(&summarised), shown);
+
+    // The last step solved alone agrees with the stepped one to the solver's tolerance.
+    let dir = std::env::temp_dir().join(format!("asperity-contact-last-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let (plan_a, report_a) = run(&with_friction(&stepped, ""), &dir.join("a"));
+    let (plan_b, report_b) = run(
+        &with_friction(&stepped, "outputs: [scenarios, friction]\n"),
+        &dir.join("b"),
+    );
+    assert!(report_a.all_ok() && report_b.all_ok());
+    let finals = |plan: &Plan, report: &RunReport| -> Vec<(usize, f64, f64)> {
+        plan.nodes
+            .iter()
+            .zip(&report.outcomes)
+            .filter(|(n, _)| n.task.kind() == "contact")
+            .map(|(_, o)| {
+                let o = o.as_ref().unwrap();
+                let metric = |name: &str| match o.metrics.iter().find(|f| f.name == name) {
+                    Some(f) => match f.value {
+                        Value::Float(v) => v,
+                        _ => panic!("{name} is not a float"),
+                    },
+                    None => panic!("no metric {name}"),
+                };
+                let steps = o.tables["load_curve"].columns[0].data.len();
+                (steps, metric("area_fraction"), metric("mean_separation"))
+            })
+            .collect()
+    };
+    for ((steps_a, area_a, gap_a), (steps_b, area_b, gap_b)) in finals(&plan_a, &report_a)
+        .into_iter()
+        .zip(finals(&plan_b, &report_b))
+    {
+        assert_eq!((steps_a, steps_b), (3, 1));
+        // 64² points: one point entering or leaving the contact moves A/A₀ by 1/4096.
+        assert!((area_a - area_b).abs() <= 2.0 / 4096.0, "{area_a} {area_b}");
+        // Every gap residual is below 1e-6 of the rms height, and the mean separation is a few
+        // rms heights.
+        assert!((gap_a - gap_b).abs() <= 1e-6 * gap_a, "{gap_a} {gap_b}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -260,6 +260,7 @@ impl<'a, N: NodeSpec> Resolver<'a, N> {
                 study_dir: self.study.dir(),
                 used,
                 file_hashes: &self.file_hashes,
+                tables: &self.study.outputs,
             };
             let task = spec.instantiate(&ctx).map_err(|e| {
                 self.study.error(

@@ -1,6 +1,7 @@
 //! What a node spec sees while it is instantiated for one scenario: the scenario's parameter
-//! values, the upstream tasks and the study's folder, and the resolution of `Param` fields
-//! (whole `${name}` references, `${name}` inside strings, literals) into typed, checked values.
+//! values, the upstream tasks, the study's folder and the tables it writes, and the resolution
+//! of `Param` fields (whole `${name}` references, `${name}` inside strings, literals) into typed,
+//! checked values.
 
 use std::borrow::Cow;
 use std::cell::RefCell;
@@ -44,6 +45,7 @@ pub struct ResolveContext<'a> {
     pub(crate) study_dir: &'a Path,
     pub(crate) used: &'a RefCell<Vec<bool>>,
     pub(crate) file_hashes: &'a FileHashes,
+    pub(crate) tables: &'a [String],
 }
 
 impl ResolveContext<'_> {
@@ -166,6 +168,13 @@ impl ResolveContext<'_> {
     /// The `i`-th upstream task (in the order of the spec's `upstream`).
     pub fn upstream(&self, i: usize) -> Option<&Arc<dyn NodeTask>> {
         self.upstream.get(i)
+    }
+
+    /// Whether the study writes `table` (its `outputs`, with the tables its summaries read), so a
+    /// node can leave out what only that table would show. What a node computes must then be
+    /// said by its parameters: whatever it leaves out is left out of its key too.
+    pub fn writes_table(&self, table: &str) -> bool {
+        self.tables.iter().any(|t| t == table)
     }
 
     /// The folder of the study file: relative paths in a study are relative to it.
