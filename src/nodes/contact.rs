@@ -201,10 +201,10 @@ impl ContactSpec {
 
     /// The load steps to solve (Pa): the listed nominal pressures, at least one, ascending, > 0
     /// and below the flow pressure. When the study does not write the `contacts` table (whose
-    /// `contacts_load_curve` shows every step), only the last one is kept: the others would
-    /// only warm-start it, and a cold solve of the last step costs about what one warm step
-    /// does. The instance is then the one of a study that lists the last pressure alone, key
-    /// included.
+    /// `contacts_load_curve` shows every step), only the last one is kept and solved from the
+    /// multilevel start: the others would only warm-start it (what that saves, and where it
+    /// does not: `docs/study-format.md`). The instance is then the one of a study that lists
+    /// the last pressure alone, key included.
     fn pressures(
         &self,
         ctx: &ResolveContext<'_>,

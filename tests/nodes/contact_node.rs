@@ -7,10 +7,15 @@ use asperity::engine::study::Study;
 use asperity::engine::value::Value;
 use asperity::nodes::TribologyNode;
 
+use crate::nodes_common::{float, outcomes};
+
+fn study_of(text: &str) -> Study<TribologyNode> {
+    Study::<TribologyNode>::from_source(std::path::Path::new("contact.yaml"), text.to_string())
+        .unwrap()
+}
+
 fn run(text: &str, cache: &std::path::Path) -> (Plan, RunReport) {
-    let study =
-        Study::<TribologyNode>::from_source(std::path::Path::new("contact.yaml"), text.to_string())
-            .unwrap();
+    let study = study_of(text);
     let plan = Plan::build(&study).unwrap();
     let options = ExecuteOptions {
         tables: study.outputs.clone(),
@@ -151,10 +156,7 @@ fn contact_instances(plan: &Plan) -> Vec<(Value, String)> {
 }
 
 fn plan_of(text: &str) -> Plan {
-    let study =
-        Study::<TribologyNode>::from_source(std::path::Path::new("contact.yaml"), text.to_string())
-            .unwrap();
-    Plan::build(&study).unwrap()
+    Plan::build(&study_of(text)).unwrap()
 }
 
 #[test]
@@ -204,21 +206,15 @@ fn warm_start_steps_are_not_solved_when_no_table_shows_them() {
     );
     assert!(report_a.all_ok() && report_b.all_ok());
     let finals = |plan: &Plan, report: &RunReport| -> Vec<(usize, f64, f64)> {
-        plan.nodes
-            .iter()
-            .zip(&report.outcomes)
-            .filter(|(n, _)| n.task.kind() == "contact")
-            .map(|(_, o)| {
-                let o = o.as_ref().unwrap();
-                let metric = |name: &str| match o.metrics.iter().find(|f| f.name == name) {
-                    Some(f) => match f.value {
-                        Value::Float(v) => v,
-                        _ => panic!("{name} is not a float"),
-                    },
-                    None => panic!("no metric {name}"),
-                };
+        outcomes(plan, report, "contact")
+            .into_iter()
+            .map(|o| {
                 let steps = o.tables["load_curve"].columns[0].data.len();
-                (steps, metric("area_fraction"), metric("mean_separation"))
+                (
+                    steps,
+                    float(o, "area_fraction"),
+                    float(o, "mean_separation"),
+                )
             })
             .collect()
     };
