@@ -21,6 +21,21 @@
 //! cannot carry it, the rest goes to the points out of contact of smallest gap (see
 //! `Workspace::rebalance_with`).
 //!
+//! Preconditioning (elastic contacts only, [`CgSettings::precondition`]): the direction is built
+//! from `z = M r` instead of the residual `r = g − δ` on `F`, where `M` is the convolution whose
+//! spectrum is the reciprocal of the elastic kernel's, `M̂(q) = 1/K̂(q)` (0 at `q = 0`): the
+//! inverse of the elastic operator on the whole grid, applied to `r` extended by zero and read
+//! back on `F` (the FFT-based approximate inverse of Zhao, Vollebregt & Oosterlee 2014, Numer.
+//! Linear Algebra Appl. 21, used here as the preconditioner of the constrained CG). Under load
+//! control `z` is shifted to zero mean on `F`, so that `Σ_F t` stays 0 as it does for `r`;
+//! `β = ρ/ρ_old` with `ρ = Σ_F r z`, and `τ` as above. `K` damps the short wavelengths of a
+//! pressure error by `1/|q|`, so the plain iteration removes them slowly and leaves spurious
+//! small pressures at the spot edges; `M` weighs all wavelengths alike. It costs one more FFT pair
+//! per iteration and saves more than that on rough elastic contacts (`docs/contact-solver-design.md`).
+//! Along a preconditioned direction `τ` is dimensionless, so a point entering the contact takes
+//! `−τ g / K₀₀`. With a flow pressure it is not used: there the start puts most of the load at
+//! `p_lim`, and re-entries from saturation with that step stalled the iteration.
+//!
 //! When the CG step is undefined (`Σ_F g t ≤ 0` or `tᵀKt ≤ 0`, or under load control a free set
 //! of at most one point, on which `t = g − δ` vanishes: the first step from the rigid-plastic
 //! start, taken without transforming that zero direction), the step is taken along the projected
@@ -130,6 +145,8 @@ pub(crate) struct CgSettings {
     pub gap_scale: f64,
     /// Step `1/K₀₀` in Pa/m when neither the CG step nor the projected-gradient step is defined.
     pub default_step: f64,
+    /// The conjugate directions are built from the preconditioned residual `M r` (module docs).
+    pub precondition: bool,
 }
 
 /// Result of one solve.
@@ -412,14 +429,32 @@ impl<'a> ConstrainedCg<'a> {
     /// One step: direction and length, the projected pressure update, the load restoration,
     /// and how `u` follows.
     fn next_iter(&mut self, m: &Measurement) -> Result<(), FftFailure> {
+        let load_control = self.load_control();
+        let precondition = self.settings.precondition && load_control && m.free_count > 1.0;
+        let (rho, z_mean) = if precondition {
+            self.ws.precondition(self.op, self.offset, m.delta)?;
+            self.fft_transforms += 2;
+            let [z_sum, rz, r_sum] = self.ws.preconditioned_sums(self.offset, m.delta);
+            let z_mean = z_sum / m.free_count;
+            (rz - z_mean * r_sum, Some(z_mean))
+        } else {
+            (m.free_g2, None)
+        };
         let beta = if self.reset || self.g_old <= 0.0 {
             0.0
         } else {
-            m.free_g2 / self.g_old
+            rho / self.g_old
         };
-        self.g_old = m.free_g2;
-        let step = self.step_length(m, beta)?;
-        let update = self.ws.update(step.tau, self.offset, m.delta);
+        self.g_old = rho;
+        let step = self.step_length(m, beta, z_mean)?;
+        // Along a preconditioned direction `τ` is dimensionless (`≈ 1` where `M ≈ K⁻¹`); a point
+        // entering the contact takes the pressure that closes its own gap, `−τ g / K₀₀`.
+        let tau_entry = if z_mean.is_some() && !step.breakdown {
+            step.tau * self.settings.default_step
+        } else {
+            step.tau
+        };
+        let update = self.ws.update(step.tau, tau_entry, self.offset, m.delta);
         self.iterations += 1;
         self.u_fresh = false;
         self.reset = step.breakdown || update.entered > RESTART_FRACTION * update.free.free_count;
@@ -478,7 +513,12 @@ impl<'a> ConstrainedCg<'a> {
 
     /// The CG step `τ` along the conjugate direction, or the projected-gradient step when the CG
     /// step is undefined (module docs).
-    fn step_length(&mut self, m: &Measurement, beta: f64) -> Result<Step, FftFailure> {
+    fn step_length(
+        &mut self,
+        m: &Measurement,
+        beta: f64,
+        z_mean: Option<f64>,
+    ) -> Result<Step, FftFailure> {
         let load_control = self.load_control();
         let mut w_ready = false;
         let cg_step = if load_control && m.free_count <= 1.0 {
@@ -486,7 +526,13 @@ impl<'a> ConstrainedCg<'a> {
             // point (the rigid-plastic start) `t = g − δ` vanishes: no direction to transform.
             None
         } else {
-            let [gt, t_sum, t_abs] = self.ws.direction(beta, self.offset, m.delta);
+            let [gt, t_sum, t_abs] = match z_mean {
+                Some(z_mean) => {
+                    self.ws
+                        .preconditioned_direction(beta, z_mean, self.offset, m.delta)
+                }
+                None => self.ws.direction(beta, self.offset, m.delta),
+            };
             // `tᵀ K t = Σ_F t (K t)`: `t` vanishes off the free set.
             let mut rt = self.ws.start_direction_transform(self.op)?;
             self.fft_transforms += 1;

@@ -116,6 +116,9 @@ pub struct ContactSolver {
     workspace: Workspace,
     rms: f64,
     last_nominal: Option<f64>,
+    /// The pressures in the workspace were prolongated from a coarser grid's solution (the
+    /// multilevel start), not carried over from a converged step of this grid.
+    prolongated: bool,
 }
 
 impl ContactSolver {
@@ -157,6 +160,7 @@ impl ContactSolver {
             workspace,
             rms,
             last_nominal: None,
+            prolongated: false,
         })
     }
 
@@ -221,6 +225,15 @@ impl ContactSolver {
                 flow_pressure: plim,
             });
         }
+        let n = self.workspace.p.len() as f64;
+        let (coarse_iterations, prolongated) = match self.last_nominal {
+            Some(_) => {
+                self.workspace.rebalance(pressure * n);
+                (0, self.prolongated)
+            }
+            None => self.cold_start(pressure),
+        };
+        self.prolongated = false;
         let e_star = self.problem.material().composite_modulus();
         let gap = self.problem.gap();
         let pixel_displacement = pressure * (gap.dx() * gap.dy()).sqrt() / e_star;
@@ -231,14 +244,9 @@ impl ContactSolver {
             flow_pressure: plim,
             gap_scale: self.rms.max(pixel_displacement),
             default_step: 1.0 / self.operator.self_influence(),
-        };
-        let n = self.workspace.p.len() as f64;
-        let coarse_iterations = match self.last_nominal {
-            Some(_) => {
-                self.workspace.rebalance(pressure * n);
-                0
-            }
-            None => self.cold_start(pressure),
+            // Measured to pay from a coarse grid's solution only (`precondition` in
+            // `constrained_cg.rs`).
+            precondition: self.options.preconditioned && plim == f64::INFINITY && prolongated,
         };
         self.last_nominal = None;
         let ws = &mut self.workspace;
@@ -303,13 +311,15 @@ impl ContactSolver {
 
     /// The start of a step without a warm start: the multilevel start where it applies
     /// (`SolverOptions::multilevel`, see [`Self::multilevel_start`]), else the rigid-plastic
-    /// start. Returns the CG iterations on the coarse grids (also when they were discarded).
-    fn cold_start(&mut self, pressure: f64) -> usize {
+    /// start. Returns the CG iterations on the coarse grids (also when they were discarded) and
+    /// whether the multilevel start was taken.
+    fn cold_start(&mut self, pressure: f64) -> (usize, bool) {
         let (start, coarse_iterations) = if self.options.multilevel {
             self.multilevel_start(pressure)
         } else {
             (None, 0)
         };
+        let prolongated = start.is_some();
         match start {
             Some(coarse) => {
                 let nx = self.problem.gap().nx();
@@ -319,7 +329,7 @@ impl ContactSolver {
             }
             None => self.workspace.start_rigid_plastic(pressure),
         }
-        coarse_iterations
+        (coarse_iterations, prolongated)
     }
 
     /// The pressures of the next coarser grid for the multilevel start (`multilevel.rs`): the
@@ -343,6 +353,7 @@ impl ContactSolver {
             if let Some(coarser) = &start {
                 multilevel::prolongate(coarser, &mut solver.workspace.p, nx);
                 solver.last_nominal = Some(pressure);
+                solver.prolongated = true;
             }
             let Ok(step) = solver.solve_on_worker(0, pressure) else {
                 return (None, iterations);

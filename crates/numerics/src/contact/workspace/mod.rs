@@ -386,6 +386,62 @@ impl Workspace {
         })
     }
 
+    /// `[Σ_F z, Σ_F r z, Σ_F r]` for `z = w` (the preconditioned residual) and
+    /// `r = g₀ + u − offset − δ`.
+    pub(super) fn preconditioned_sums(&mut self, offset: f64, delta: f64) -> [f64; 3] {
+        let plim = self.plim;
+        let (g0, u, p, w) = (&self.g0, &self.u, &self.p, &self.w);
+        each_block(&mut self.blocks, |base, block| {
+            let mut sums = [0.0; 4];
+            for i in contact_points(base, &block.contact) {
+                if p[i] < plim {
+                    let r = g0[i] + u[i] - offset - delta;
+                    sums[0] += w[i];
+                    sums[1] += r * w[i];
+                    sums[2] += r;
+                }
+            }
+            block.sums = sums;
+        });
+        self.blocks.iter().fold([0.0; 3], |mut s, b| {
+            s.iter_mut().zip(b.sums).for_each(|(o, v)| *o += v);
+            s
+        })
+    }
+
+    /// [`Self::direction`] along the preconditioned residual: `t = (z − z̄) + β t` on the free set.
+    pub(super) fn preconditioned_direction(
+        &mut self,
+        beta: f64,
+        z_mean: f64,
+        offset: f64,
+        delta: f64,
+    ) -> [f64; 3] {
+        let plim = self.plim;
+        let (g0, u, p, w) = (&self.g0, &self.u, &self.p, &self.w);
+        each_direction_block(&mut self.t, p, &mut self.blocks, |base, t, block| {
+            let mut sums = [0.0; 4];
+            for &l in &block.contact {
+                let (i, l) = (base + l as usize, l as usize);
+                t[l] = if p[i] < plim {
+                    let r = g0[i] + u[i] - offset - delta;
+                    let ti = (w[i] - z_mean) + beta * t[l];
+                    sums[0] += r * ti;
+                    sums[1] += ti;
+                    sums[2] += ti.abs();
+                    ti
+                } else {
+                    0.0
+                };
+            }
+            block.sums = sums;
+        });
+        self.blocks.iter().fold([0.0; 3], |mut s, b| {
+            s.iter_mut().zip(b.sums).for_each(|(o, v)| *o += v);
+            s
+        })
+    }
+
     /// The projected-gradient direction of a step the CG cannot take (see
     /// `constrained_cg::solve`): `t ← v − δ` on the free set, at saturated points with an open
     /// gap and at the recorded out-of-contact points with a negative gap, 0 elsewhere on the
@@ -427,7 +483,13 @@ impl Workspace {
     /// saturated points with an open gap and at the recorded out-of-contact points with a
     /// negative gap; projection on `[0, p_lim]`. Points that drop to 0 leave the contact list,
     /// re-entered points join it. `u` is not changed.
-    pub(super) fn update(&mut self, tau: f64, offset: f64, delta: f64) -> UpdateOutcome {
+    pub(super) fn update(
+        &mut self,
+        tau: f64,
+        tau_entry: f64,
+        offset: f64,
+        delta: f64,
+    ) -> UpdateOutcome {
         let plim = self.plim;
         self.row_min_current = false;
         let (g0, u) = (&self.g0, &self.u);
@@ -465,7 +527,7 @@ impl Workspace {
                             break;
                         }
                         entered += 1.0;
-                        settled.set(e as usize, -tau * gap, 0.0, plim);
+                        settled.set(e as usize, -tau_entry * gap, 0.0, plim);
                         next_entering.next();
                     }
                     let (l, i) = (l as usize, base + l as usize);
@@ -477,7 +539,7 @@ impl Workspace {
                         let gap = g0[i] + u[i] - offset - delta;
                         if gap > 0.0 {
                             entered += 1.0;
-                            (old - tau * gap, old)
+                            (old - tau_entry * gap, old)
                         } else {
                             (old, old)
                         }
@@ -486,7 +548,7 @@ impl Workspace {
                 }
                 for &(e, gap) in next_entering {
                     entered += 1.0;
-                    settled.set(e as usize, -tau * gap, 0.0, plim);
+                    settled.set(e as usize, -tau_entry * gap, 0.0, plim);
                 }
                 let (free, corrected) = (settled.free, settled.corrected);
                 std::mem::swap(contact, merged);
