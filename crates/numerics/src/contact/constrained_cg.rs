@@ -21,20 +21,24 @@
 //! cannot carry it, the rest goes to the points out of contact of smallest gap (see
 //! `Workspace::rebalance_with`).
 //!
-//! Preconditioning (elastic contacts only, [`CgSettings::precondition`]): the direction is built
+//! Preconditioning (elastic contacts whose start is a coarser grid's solution, the multilevel
+//! start; [`CgSettings::precondition`]): the direction is built
 //! from `z = M r` instead of the residual `r = g − δ` on `F`, where `M` is the convolution whose
 //! spectrum is the reciprocal of the elastic kernel's, `M̂(q) = 1/K̂(q)` (0 at `q = 0`): the
 //! inverse of the elastic operator on the whole grid, applied to `r` extended by zero and read
 //! back on `F` (the FFT-based approximate inverse of Zhao, Vollebregt & Oosterlee 2014, Numer.
-//! Linear Algebra Appl. 21, used here as the preconditioner of the constrained CG). Under load
-//! control `z` is shifted to zero mean on `F`, so that `Σ_F t` stays 0 as it does for `r`;
+//! Linear Algebra Appl. 21, used here as the preconditioner of the constrained CG). Only
+//! load-controlled solves are preconditioned; `z` is shifted to zero mean on `F`, so that `Σ_F t`
+//! stays 0 as it does for `r`;
 //! `β = ρ/ρ_old` with `ρ = Σ_F r z`, and `τ` as above. `K` damps the short wavelengths of a
 //! pressure error by `1/|q|`, so the plain iteration removes them slowly and leaves spurious
 //! small pressures at the spot edges; `M` weighs all wavelengths alike. It costs one more FFT pair
 //! per iteration and saves more than that on rough elastic contacts (`docs/contact-solver-design.md`).
 //! Along a preconditioned direction `τ` is dimensionless, so a point entering the contact takes
-//! `−τ g / K₀₀`. With a flow pressure it is not used: there the start puts most of the load at
-//! `p_lim`, and re-entries from saturation with that step stalled the iteration.
+//! `−τ g / K₀₀`. From the rigid-plastic start, whose free set is far from the solution's, the
+//! preconditioned steps change the free set more and save fewer iterations than the extra pair
+//! costs. With a flow pressure it is not used: re-entries from saturation with that step stalled
+//! the iteration.
 //!
 //! When the CG step is undefined (`Σ_F g t ≤ 0` or `tᵀKt ≤ 0`, or under load control a free set
 //! of at most one point, on which `t = g − δ` vanishes: the first step from the rigid-plastic

@@ -83,67 +83,7 @@ fn contact_rows<'a>(blocks: &'a [Block], values: &'a [f64]) -> impl RowSource + 
     }
 }
 
-/// Rows of the free-set residual `r = g₀ + u − level` (0 at saturated points and off the
-/// contact set), filled from the contact lists.
-fn residual_rows<'a>(
-    blocks: &'a [Block],
-    g0: &'a [f64],
-    u: &'a [f64],
-    p: &'a [f64],
-    plim: f64,
-    level: f64,
-) -> impl RowSource + 'a {
-    move |r: usize, row: &mut [f64]| {
-        let nx = row.len();
-        let (start, end) = (r * nx, (r + 1) * nx);
-        row.fill(0.0);
-        let mut nonzero = false;
-        for (b, block) in blocks
-            .iter()
-            .enumerate()
-            .take(end.div_ceil(BLOCK))
-            .skip(start / BLOCK)
-        {
-            let base = b * BLOCK;
-            let first = block
-                .contact
-                .partition_point(|&l| base + (l as usize) < start);
-            for i in contact_points(base, &block.contact[first..]).take_while(|&i| i < end) {
-                if p[i] < plim {
-                    let v = g0[i] + u[i] - level;
-                    row[i - start] = v;
-                    nonzero |= v != 0.0;
-                }
-            }
-        }
-        nonzero
-    }
-}
-
 impl Workspace {
-    /// `w ← M r` for the free-set residual `r = g₀ + u − offset − δ` (one FFT pair).
-    pub(in crate::contact) fn precondition(
-        &mut self,
-        op: &mut InfluenceOperator,
-        offset: f64,
-        delta: f64,
-    ) -> Result<(), FftFailure> {
-        let fill = residual_rows(
-            &self.blocks,
-            &self.g0,
-            &self.u,
-            &self.p,
-            self.plim,
-            offset + delta,
-        );
-        let sink = |_: usize, mr: &[f64], out: &mut [f64]| {
-            out.copy_from_slice(mr);
-            0.0
-        };
-        op.precondition_rows_into(&fill, &mut self.w, &sink)?;
-        Ok(())
-    }
-
     /// `u ← K p` (one FFT pair; `p` is read from the contact lists, which must be current), with
     /// the row minima of the out-of-contact gap `g₀ + u − offset`.
     pub(in crate::contact) fn displace(

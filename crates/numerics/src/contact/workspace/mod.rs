@@ -23,6 +23,7 @@ use super::selection::RankBuffers;
 
 mod dense;
 mod moving;
+mod preconditioned;
 
 /// Points per block (independent of the thread count).
 pub(crate) const BLOCK: usize = 1 << 13;
@@ -258,7 +259,7 @@ pub(crate) struct Workspace {
     /// Conjugate direction: zero at saturated points and, whenever it is convolved, off the
     /// contact set.
     pub(super) t: Vec<f64>,
-    /// `w = K t`.
+    /// `w = K t` (and `M r` while a preconditioned direction is built, `preconditioned.rs`).
     pub(super) w: Vec<f64>,
     blocks: Vec<Block>,
     /// Buffers of the ranking of gaps (rigid-plastic start, load restoration).
@@ -370,62 +371,6 @@ impl Workspace {
                 t[l] = if p[i] < plim {
                     let r = g0[i] + u[i] - offset - delta;
                     let ti = r + beta * t[l];
-                    sums[0] += r * ti;
-                    sums[1] += ti;
-                    sums[2] += ti.abs();
-                    ti
-                } else {
-                    0.0
-                };
-            }
-            block.sums = sums;
-        });
-        self.blocks.iter().fold([0.0; 3], |mut s, b| {
-            s.iter_mut().zip(b.sums).for_each(|(o, v)| *o += v);
-            s
-        })
-    }
-
-    /// `[Σ_F z, Σ_F r z, Σ_F r]` for `z = w` (the preconditioned residual) and
-    /// `r = g₀ + u − offset − δ`.
-    pub(super) fn preconditioned_sums(&mut self, offset: f64, delta: f64) -> [f64; 3] {
-        let plim = self.plim;
-        let (g0, u, p, w) = (&self.g0, &self.u, &self.p, &self.w);
-        each_block(&mut self.blocks, |base, block| {
-            let mut sums = [0.0; 4];
-            for i in contact_points(base, &block.contact) {
-                if p[i] < plim {
-                    let r = g0[i] + u[i] - offset - delta;
-                    sums[0] += w[i];
-                    sums[1] += r * w[i];
-                    sums[2] += r;
-                }
-            }
-            block.sums = sums;
-        });
-        self.blocks.iter().fold([0.0; 3], |mut s, b| {
-            s.iter_mut().zip(b.sums).for_each(|(o, v)| *o += v);
-            s
-        })
-    }
-
-    /// [`Self::direction`] along the preconditioned residual: `t = (z − z̄) + β t` on the free set.
-    pub(super) fn preconditioned_direction(
-        &mut self,
-        beta: f64,
-        z_mean: f64,
-        offset: f64,
-        delta: f64,
-    ) -> [f64; 3] {
-        let plim = self.plim;
-        let (g0, u, p, w) = (&self.g0, &self.u, &self.p, &self.w);
-        each_direction_block(&mut self.t, p, &mut self.blocks, |base, t, block| {
-            let mut sums = [0.0; 4];
-            for &l in &block.contact {
-                let (i, l) = (base + l as usize, l as usize);
-                t[l] = if p[i] < plim {
-                    let r = g0[i] + u[i] - offset - delta;
-                    let ti = (w[i] - z_mean) + beta * t[l];
                     sums[0] += r * ti;
                     sums[1] += ti;
                     sums[2] += ti.abs();
