@@ -311,28 +311,45 @@ fn results_do_not_depend_on_the_thread_count() {
     assert_eq!(solve(1), solve(3));
 }
 
-#[test]
-fn multilevel_start_converges_to_the_same_contact_in_fewer_fine_iterations() {
-    // 512² elastic rough contact (coarse grids 256² and 128²) against a flat at A/A₀ of a few
-    // per cent, periodic and non-periodic. Both starts converge to ε = 1e-7, so A/A₀ may differ
-    // by the points whose gap is within ε·h of closing, and the approach by ~ε·h; the fine
-    // iterations must fall (elastic cold starts are where the multilevel start pays).
-    let n = 512;
-    let surface = rough_surface(n, 1e-6, 1e-6, 11, 400);
+/// A 512² rough surface against a flat, steel on steel, elastic (no flow pressure): A/A₀ of a
+/// few per cent at 50 MPa.
+fn elastic_rough_contact() -> (CompositeGap, ContactMaterial) {
+    let surface = rough_surface(512, 1e-6, 1e-6, 11, 400);
     let gap = CompositeGap::against_flat(&surface).unwrap();
     let material =
         ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, f64::INFINITY).unwrap();
+    (gap, material)
+}
+
+/// The cold 50 MPa step of [`elastic_rough_contact`] with `options`.
+fn elastic_step(boundary: Boundary, options: SolverOptions) -> LoadStep {
+    let (gap, material) = elastic_rough_contact();
+    ContactSolver::new(ContactProblem::new(gap, material, boundary), options)
+        .unwrap()
+        .solve(50e6)
+        .unwrap()
+}
+
+/// Two solves of one problem to ε = 1e-7 found the same contact: A/A₀ may differ by the points
+/// whose gap is within ε·h of closing, the approach by ~ε·h.
+fn assert_same_contact(a: &LoadStep, b: &LoadStep, boundary: Boundary) {
+    let relative = (a.area_fraction - b.area_fraction).abs() / b.area_fraction;
+    assert!(relative < 1e-3, "{boundary:?}: A/A₀ differs by {relative}");
+    assert!((a.approach - b.approach).abs() < 1e-12);
+}
+
+#[test]
+fn multilevel_start_converges_to_the_same_contact_in_fewer_fine_iterations() {
+    // 512² elastic rough contact (coarse grid 256²) against a flat at A/A₀ of a few per cent,
+    // periodic and non-periodic, both starts converged to ε = 1e-7; the fine iterations must
+    // fall (elastic cold starts are where the multilevel start pays).
     for boundary in [Boundary::Periodic, Boundary::NonPeriodic] {
         let solve = |multilevel: bool| {
             let options = SolverOptions {
                 multilevel,
                 ..options(1e-7, FieldRequest::NONE)
             };
-            let problem = ContactProblem::new(gap.clone(), material, boundary);
-            ContactSolver::new(problem, options)
-                .unwrap()
-                .solve(50e6)
-                .unwrap()
+            elastic_step(boundary, options)
         };
         let (single, multi) = (solve(false), solve(true));
         assert_eq!(single.coarse_iterations, 0);
@@ -343,36 +360,24 @@ fn multilevel_start_converges_to_the_same_contact_in_fewer_fine_iterations() {
             multi.iterations,
             single.iterations
         );
-        let relative = (multi.area_fraction - single.area_fraction).abs() / single.area_fraction;
-        assert!(relative < 1e-3, "{boundary:?}: A/A₀ differs by {relative}");
-        assert!((multi.approach - single.approach).abs() < 1e-12);
+        assert_same_contact(&multi, &single, boundary);
     }
 }
 
 #[test]
 fn preconditioned_iteration_converges_to_the_same_elastic_contact_in_fewer_transforms() {
     // 512² elastic rough contact against a flat, periodic and non-periodic, from the multilevel
-    // start (one coarse grid, 256²), where the fine iteration is preconditioned. Both converge
-    // to ε = 1e-7: A/A₀ may differ by the points whose gap is within ε·h of closing, the
-    // approach by ~ε·h. A preconditioned iteration costs one more FFT pair; the iterations must
-    // fall by more than that costs. The coarsest grid starts rigid-plastic and is never
+    // start (one coarse grid, 256²), where the fine iteration is preconditioned; both converged
+    // to ε = 1e-7. A preconditioned iteration costs one more FFT pair; the iterations must fall
+    // by more than that costs. The coarsest grid starts rigid-plastic and is never
     // preconditioned, so its iterations are the same.
-    let n = 512;
-    let surface = rough_surface(n, 1e-6, 1e-6, 11, 400);
-    let gap = CompositeGap::against_flat(&surface).unwrap();
-    let material =
-        ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, f64::INFINITY).unwrap();
     for boundary in [Boundary::Periodic, Boundary::NonPeriodic] {
         let solve = |preconditioned: bool| {
             let options = SolverOptions {
                 preconditioned,
                 ..options(1e-7, FieldRequest::NONE)
             };
-            let problem = ContactProblem::new(gap.clone(), material, boundary);
-            ContactSolver::new(problem, options)
-                .unwrap()
-                .solve(50e6)
-                .unwrap()
+            elastic_step(boundary, options)
         };
         let (plain, preconditioned) = (solve(false), solve(true));
         assert!(plain.coarse_iterations > 0, "{boundary:?}: no coarse level");
@@ -385,10 +390,7 @@ fn preconditioned_iteration_converges_to_the_same_elastic_contact_in_fewer_trans
             plain.fft_transforms,
             plain.iterations
         );
-        let relative =
-            (preconditioned.area_fraction - plain.area_fraction).abs() / plain.area_fraction;
-        assert!(relative < 1e-3, "{boundary:?}: A/A₀ differs by {relative}");
-        assert!((preconditioned.approach - plain.approach).abs() < 1e-12);
+        assert_same_contact(&preconditioned, &plain, boundary);
         assert!(preconditioned.residuals.max() <= 1e-7);
     }
 }

@@ -50,10 +50,27 @@ fn out_of_contact_min(u: &[f64], g0_out: &[f64], offset: f64) -> f64 {
 
 /// The rows of `values`, which vanish off the contact set, filled from the contact lists: the
 /// FFT of a pressure or a direction reads its few contact points instead of the dense array.
-/// Row `r` of `nx = row.len()` points holds the points `r·nx .. (r + 1)·nx` (a row may span two
-/// blocks); a row whose values are all zero reports `false`, as the dense rows do, so the
-/// transform is bit-identical to that of the dense array.
+/// The transform is bit-identical to that of the dense array.
 fn contact_rows<'a>(blocks: &'a [Block], values: &'a [f64]) -> impl RowSource + 'a {
+    let rows = list_rows(blocks, |i| values[i]);
+    move |r: usize, row: &mut [f64]| {
+        let nonzero = rows(r, row);
+        debug_assert_eq!(
+            row,
+            &values[r * row.len()..][..row.len()],
+            "row {r} has values off the contact lists"
+        );
+        nonzero
+    }
+}
+
+/// Rows holding `value(i)` at the contact points `i` and 0 elsewhere: row `r` of
+/// `nx = row.len()` points holds the points `r·nx .. (r + 1)·nx` (a row may span two blocks); a
+/// row whose values are all zero reports `false`, as the dense rows do.
+pub(super) fn list_rows<'a>(
+    blocks: &'a [Block],
+    value: impl Fn(usize) -> f64 + Sync + 'a,
+) -> impl RowSource + 'a {
     move |r: usize, row: &mut [f64]| {
         let nx = row.len();
         let (start, end) = (r * nx, (r + 1) * nx);
@@ -70,15 +87,11 @@ fn contact_rows<'a>(blocks: &'a [Block], values: &'a [f64]) -> impl RowSource + 
                 .contact
                 .partition_point(|&l| base + (l as usize) < start);
             for i in contact_points(base, &block.contact[first..]).take_while(|&i| i < end) {
-                row[i - start] = values[i];
-                nonzero |= values[i] != 0.0;
+                let v = value(i);
+                row[i - start] = v;
+                nonzero |= v != 0.0;
             }
         }
-        debug_assert_eq!(
-            row,
-            &values[start..end],
-            "row {r} has values off the contact lists"
-        );
         nonzero
     }
 }

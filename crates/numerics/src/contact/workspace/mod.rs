@@ -232,6 +232,14 @@ fn each_direction_block(
         });
 }
 
+/// The first three partial sums of every block, combined in block order.
+fn three_sums(blocks: &[Block]) -> [f64; 3] {
+    blocks.iter().fold([0.0; 3], |mut s, b| {
+        s.iter_mut().zip(b.sums).for_each(|(o, v)| *o += v);
+        s
+    })
+}
+
 /// Global indices of a block's contact points.
 fn contact_points(base: usize, contact: &[u32]) -> impl Iterator<Item = usize> + '_ {
     contact.iter().map(move |&l| base + l as usize)
@@ -362,6 +370,19 @@ impl Workspace {
     /// `t ← (v − δ) + β t` on the free set, 0 at saturated points and off the contact set;
     /// returns `[Σ_F (v − δ) t, Σ_F t, Σ_F |t|]` of the new direction.
     pub(super) fn direction(&mut self, beta: f64, offset: f64, delta: f64) -> [f64; 3] {
+        self.conjugate(beta, offset, delta, |_, r| r)
+    }
+
+    /// `t ← d + β t` on the free set with `d = descent(i, r)` for the residual
+    /// `r = g₀ + u − offset − δ` at point `i`, 0 at saturated points and off the contact set;
+    /// returns `[Σ_F r t, Σ_F t, Σ_F |t|]` of the new direction.
+    fn conjugate(
+        &mut self,
+        beta: f64,
+        offset: f64,
+        delta: f64,
+        descent: impl Fn(usize, f64) -> f64 + Sync + Send,
+    ) -> [f64; 3] {
         let plim = self.plim;
         let (g0, u, p) = (&self.g0, &self.u, &self.p);
         each_direction_block(&mut self.t, p, &mut self.blocks, |base, t, block| {
@@ -370,7 +391,7 @@ impl Workspace {
                 let (i, l) = (base + l as usize, l as usize);
                 t[l] = if p[i] < plim {
                     let r = g0[i] + u[i] - offset - delta;
-                    let ti = r + beta * t[l];
+                    let ti = descent(i, r) + beta * t[l];
                     sums[0] += r * ti;
                     sums[1] += ti;
                     sums[2] += ti.abs();
@@ -381,10 +402,7 @@ impl Workspace {
             }
             block.sums = sums;
         });
-        self.blocks.iter().fold([0.0; 3], |mut s, b| {
-            s.iter_mut().zip(b.sums).for_each(|(o, v)| *o += v);
-            s
-        })
+        three_sums(&self.blocks)
     }
 
     /// The projected-gradient direction of a step the CG cannot take (see
