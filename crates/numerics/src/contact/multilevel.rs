@@ -40,21 +40,6 @@ pub(super) const MAX_COARSE_PLASTIC_SHARE: f64 = 0.5;
 /// only places the start; a tighter coarse tolerance did not reduce the fine iterations.
 pub(super) const COARSE_TOLERANCE: f64 = 1e-3;
 
-/// [`COARSE_TOLERANCE`] of elastic contacts, whose finer grids are preconditioned
-/// (`constrained_cg.rs`): from a coarse solution ten times looser they take as many fine
-/// iterations, or one fewer, and the coarse grids a quarter fewer (`docs/contact-solver-design.md`).
-pub(super) const PRECONDITIONED_COARSE_TOLERANCE: f64 = 1e-2;
-
-/// The tolerance of the coarse solves: [`PRECONDITIONED_COARSE_TOLERANCE`] where the finer grids
-/// are preconditioned, else [`COARSE_TOLERANCE`].
-pub(super) fn coarse_tolerance(preconditioned: bool) -> f64 {
-    if preconditioned {
-        PRECONDITIONED_COARSE_TOLERANCE
-    } else {
-        COARSE_TOLERANCE
-    }
-}
-
 /// The problem on the grid coarsened by two in each direction, or `None` when a side is odd or
 /// the coarse grid would have fewer than [`MIN_COARSE_POINTS`] points along a side.
 pub(super) fn coarsened(problem: &ContactProblem) -> Option<ContactProblem> {

@@ -246,7 +246,7 @@ impl ContactSolver {
             default_step: 1.0 / self.operator.self_influence(),
             // Measured to pay from a coarse grid's solution only (`precondition` in
             // `constrained_cg.rs`).
-            precondition: self.preconditioned() && prolongated,
+            precondition: self.options.preconditioned && plim == f64::INFINITY && prolongated,
         };
         self.last_nominal = None;
         let ws = &mut self.workspace;
@@ -332,23 +332,13 @@ impl ContactSolver {
         (coarse_iterations, prolongated)
     }
 
-    /// Steps started from a coarser grid's solution are preconditioned: `SolverOptions` asks for
-    /// it and the contact is elastic.
-    fn preconditioned(&self) -> bool {
-        self.options.preconditioned && self.problem.material().flow_pressure() == f64::INFINITY
-    }
-
     /// The pressures of the next coarser grid for the multilevel start (`multilevel.rs`): the
     /// coarsest grid solved from its rigid-plastic start, each finer one from the prolongated
     /// pressures of the one below. `None` (with the iterations spent) when the grid cannot be
     /// coarsened, when a coarse solve fails, or when the coarsest contact is mostly saturated.
     fn multilevel_start(&self, pressure: f64) -> (Option<Vec<f64>>, usize) {
-        let preconditioned = self.preconditioned();
         let options = SolverOptions {
-            tolerance: self
-                .options
-                .tolerance
-                .max(multilevel::coarse_tolerance(preconditioned)),
+            tolerance: self.options.tolerance.max(multilevel::COARSE_TOLERANCE),
             fields: FieldRequest::NONE,
             multilevel: false,
             ..self.options
