@@ -74,9 +74,11 @@ pub struct SolverOptions {
     /// on coarser grids where the grid allows it (default `true`; see `multilevel.rs`);
     /// otherwise from the rigid-plastic start.
     pub multilevel: bool,
-    /// Build the conjugate directions of an elastic contact (no flow pressure) from the residual
-    /// preconditioned by the inverse of the elastic operator on the whole grid (default `true`;
-    /// see `constrained_cg.rs`). Contacts with a flow pressure are never preconditioned.
+    /// Build the conjugate directions of an elastic contact (no flow pressure) started from a
+    /// coarser grid's solution (the multilevel start) from the residual preconditioned by the
+    /// inverse of the elastic operator on the whole grid (default `true`; see
+    /// `constrained_cg.rs`). Other starts and contacts with a flow pressure are never
+    /// preconditioned.
     pub preconditioned: bool,
     /// Fields returned with every load step.
     pub fields: FieldRequest,
