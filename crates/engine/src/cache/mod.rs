@@ -311,9 +311,14 @@ impl Cache {
             path: dir.to_path_buf(),
             reason,
         };
+        // Whether the entry existed is asked before its manifest is read: entries are published
+        // whole, by one rename, so a manifest missing from an entry that was already there is
+        // damage, while one missing from an entry that was not is just not cached. (Asked after
+        // the read, an entry another process published in between would be taken for damaged.)
+        let existed = dir.exists();
         let manifest_bytes = match read_file(&dir.join("manifest.json"), READ_CAPACITY) {
             Ok(bytes) => bytes,
-            Err(e) if e.kind() == ErrorKind::NotFound && !dir.exists() => return Ok(None),
+            Err(e) if e.kind() == ErrorKind::NotFound && !existed => return Ok(None),
             Err(e) => return Err(corrupt(format!("manifest.json: {e}"))),
         };
         let recorded = read_file(&dir.join("manifest.blake3"), CHECKSUM_CAPACITY)
