@@ -202,6 +202,9 @@ fn corrupted_payload_is_detected_discarded_and_recomputed() {
     let m = std::fs::read(&manifest).unwrap();
     std::fs::write(&manifest, &m[..m.len() / 2]).unwrap();
     assert!(cache.load("surface", &node.key, false).is_err());
+    // An entry that lost its manifest is damaged, not missing.
+    std::fs::remove_file(&manifest).unwrap();
+    assert!(cache.load("surface", &node.key, false).is_err());
     let third = run(&dir, &text, &cache_dir, "out3");
     assert_eq!(third.report.discarded, 1);
     let _ = std::fs::remove_dir_all(&dir);
