@@ -116,9 +116,6 @@ pub struct ContactSolver {
     workspace: Workspace,
     rms: f64,
     last_nominal: Option<f64>,
-    /// The pressures in the workspace were prolongated from a coarser grid's solution (the
-    /// multilevel start), not carried over from a converged step of this grid.
-    prolongated: bool,
 }
 
 impl ContactSolver {
@@ -160,7 +157,6 @@ impl ContactSolver {
             workspace,
             rms,
             last_nominal: None,
-            prolongated: false,
         })
     }
 
@@ -210,10 +206,17 @@ impl ContactSolver {
     /// of the solve time; 512²: 12–50 %). Called from a worker (the study engine), it runs in
     /// place.
     fn solve_indexed(&mut self, step: usize, pressure: f64) -> Result<LoadStep, ContactError> {
-        rayon::scope(|_| self.solve_on_worker(step, pressure))
+        rayon::scope(|_| self.solve_on_worker(step, pressure, false))
     }
 
-    fn solve_on_worker(&mut self, step: usize, pressure: f64) -> Result<LoadStep, ContactError> {
+    /// One step; `prolongated`: the workspace holds pressures prolongated from a coarser grid's
+    /// solution (the multilevel start of that grid), which start the step as a warm start would.
+    fn solve_on_worker(
+        &mut self,
+        step: usize,
+        pressure: f64,
+        prolongated: bool,
+    ) -> Result<LoadStep, ContactError> {
         let plim = self.problem.material().flow_pressure();
         if !(pressure.is_finite() && pressure > 0.0) {
             return Err(ContactError::BadNominalPressure { step, pressure });
@@ -226,14 +229,13 @@ impl ContactSolver {
             });
         }
         let n = self.workspace.p.len() as f64;
-        let (coarse_iterations, prolongated) = match self.last_nominal {
-            Some(_) => {
+        let (coarse_iterations, prolongated) = match (self.last_nominal, prolongated) {
+            (None, false) => self.cold_start(pressure),
+            _ => {
                 self.workspace.rebalance(pressure * n);
-                (0, self.prolongated)
+                (0, prolongated)
             }
-            None => self.cold_start(pressure),
         };
-        self.prolongated = false;
         let e_star = self.problem.material().composite_modulus();
         let gap = self.problem.gap();
         let pixel_displacement = pressure * (gap.dx() * gap.dy()).sqrt() / e_star;
@@ -352,10 +354,8 @@ impl ContactSolver {
             };
             if let Some(coarser) = &start {
                 multilevel::prolongate(coarser, &mut solver.workspace.p, nx);
-                solver.last_nominal = Some(pressure);
-                solver.prolongated = true;
             }
-            let Ok(step) = solver.solve_on_worker(0, pressure) else {
+            let Ok(step) = solver.solve_on_worker(0, pressure, start.is_some()) else {
                 return (None, iterations);
             };
             iterations += step.iterations;
