@@ -30,7 +30,7 @@ pub(crate) const KIND: &str = "contact";
 pub(crate) const TABLE: &str = "contacts";
 
 /// Implementation version of the `contact` kind; bump whenever its numerics change.
-pub const CONTACT_KIND_VERSION: u32 = 24;
+pub const CONTACT_KIND_VERSION: u32 = 25;
 
 /// `contact: {...}`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]

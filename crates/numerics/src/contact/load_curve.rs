@@ -46,7 +46,8 @@ pub struct LoadStep {
     /// CG iterations of this step on its own grid.
     pub iterations: usize,
     /// CG iterations of the multilevel start on the coarser grids (each with a quarter of the
-    /// points of the next finer one), summed over them; 0 after a warm start.
+    /// points of the next finer one), summed over them; 0 after a warm start (which elastic
+    /// contacts on grids that can be coarsened do not take: `SolverOptions::multilevel`).
     pub coarse_iterations: usize,
     /// CG iterations of this step on its moving points alone (free points, points entering or
     /// leaving saturation; each a product with the operator restricted to them instead of an FFT

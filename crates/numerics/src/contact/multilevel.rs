@@ -40,12 +40,21 @@ pub(super) const MAX_COARSE_PLASTIC_SHARE: f64 = 0.5;
 /// only places the start; a tighter coarse tolerance did not reduce the fine iterations.
 pub(super) const COARSE_TOLERANCE: f64 = 1e-3;
 
-/// The problem on the grid coarsened by two in each direction, or `None` when a side is odd or
-/// the coarse grid would have fewer than [`MIN_COARSE_POINTS`] points along a side.
+/// Whether an `nx × ny` grid can be coarsened: both sides even, and the coarse grid keeps at
+/// least [`MIN_COARSE_POINTS`] points along each side.
+pub(super) fn coarsenable(nx: usize, ny: usize) -> bool {
+    nx.is_multiple_of(2)
+        && ny.is_multiple_of(2)
+        && nx / 2 >= MIN_COARSE_POINTS
+        && ny / 2 >= MIN_COARSE_POINTS
+}
+
+/// The problem on the grid coarsened by two in each direction, or `None` when the grid is not
+/// [`coarsenable`].
 pub(super) fn coarsened(problem: &ContactProblem) -> Option<ContactProblem> {
     let gap = problem.gap();
     let (nx, ny) = (gap.nx(), gap.ny());
-    if nx % 2 != 0 || ny % 2 != 0 || nx / 2 < MIN_COARSE_POINTS || ny / 2 < MIN_COARSE_POINTS {
+    if !coarsenable(nx, ny) {
         return None;
     }
     let fine = gap.gap();

@@ -72,7 +72,8 @@ pub struct SolverOptions {
     pub strategy: SolveStrategy,
     /// Start a step without a warm start (the first step, or after `reset`) from the solution
     /// on coarser grids where the grid allows it (default `true`; see `multilevel.rs`);
-    /// otherwise from the rigid-plastic start.
+    /// otherwise from the rigid-plastic start. On an elastic contact (no flow pressure) whose
+    /// grid allows it, every step starts so, instead of from the last converged step.
     pub multilevel: bool,
     /// Build the conjugate directions of an elastic contact (no flow pressure) started from a
     /// coarser grid's solution (the multilevel start) from the residual preconditioned by the

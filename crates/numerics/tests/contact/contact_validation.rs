@@ -396,6 +396,33 @@ fn preconditioned_iteration_converges_to_the_same_elastic_contact_in_fewer_trans
 }
 
 #[test]
+fn elastic_load_steps_each_start_from_the_coarse_grids_capped_ones_warm() {
+    // An elastic contact takes the multilevel start at every step of a load curve: its 50 MPa
+    // step after 25 MPa is the cold 50 MPa step, bit for bit. A capped contact keeps the warm
+    // start: no coarse iterations after its first step.
+    let options = options(1e-7, FieldRequest::NONE);
+    for boundary in [Boundary::Periodic, Boundary::NonPeriodic] {
+        let (gap, material) = elastic_rough_contact();
+        let mut solver =
+            ContactSolver::new(ContactProblem::new(gap, material, boundary), options).unwrap();
+        let curve = solver.solve_load_steps(&[25e6, 50e6]).unwrap();
+        assert!(curve.steps[1].coarse_iterations > 0, "{boundary:?}");
+        assert_eq!(
+            curve.steps[1],
+            elastic_step(boundary, options),
+            "{boundary:?}"
+        );
+    }
+    let (_, gap, material) = saturated_rough_contact();
+    let problem = ContactProblem::new(gap, material, Boundary::Periodic);
+    let curve = ContactSolver::new(problem, options)
+        .unwrap()
+        .solve_load_steps(&[5e6, 10e6])
+        .unwrap();
+    assert_eq!(curve.steps[1].coarse_iterations, 0);
+}
+
+#[test]
 fn contacts_with_a_flow_pressure_are_not_preconditioned() {
     // The option only applies to elastic contacts: a capped step is bit-identical either way.
     let (_, gap, material) = saturated_rough_contact();
