@@ -57,7 +57,8 @@ pub(crate) fn pixel_influence(x: f64, y: f64, dx: f64, dy: f64) -> f64 {
 pub(crate) struct InfluenceOperator {
     fft: RealFft2d,
     kernel: Vec<f64>,
-    inverse_kernel: Vec<f64>,
+    /// The kernel of the preconditioner `M` ([`Self::precondition_rows_into`]), if it was built.
+    inverse_kernel: Option<Vec<f64>>,
     nx: usize,
     ny: usize,
     boundary: Boundary,
@@ -80,7 +81,9 @@ fn reciprocal_kernel(kernel: &[f64], norm: f64) -> Vec<f64> {
 
 impl InfluenceOperator {
     /// Builds the kernel for a grid `nx × ny` of pixel size `dx × dy` (m) and composite modulus
-    /// `E*` (Pa).
+    /// `E*` (Pa); with `preconditioner`, also the kernel of [`Self::precondition_rows_into`]
+    /// (one more kernel array, and with padded columns one more padded transform of it, which
+    /// only elastic contacts use).
     pub(crate) fn new(
         nx: usize,
         ny: usize,
@@ -88,6 +91,7 @@ impl InfluenceOperator {
         dy: f64,
         composite_modulus: f64,
         boundary: Boundary,
+        preconditioner: bool,
     ) -> Result<Self, FftFailure> {
         let (fft, kernel, inverse_kernel) = match boundary {
             Boundary::Periodic => {
@@ -110,9 +114,10 @@ impl InfluenceOperator {
                         }
                     }
                 }
-                let inverse = reciprocal_kernel(&kernel, norm);
+                let inverse = preconditioner
+                    .then(|| fft.convolution_kernel(reciprocal_kernel(&kernel, norm)))
+                    .transpose()?;
                 let kernel = fft.convolution_kernel(kernel)?;
-                let inverse = fft.convolution_kernel(inverse)?;
                 (fft, kernel, inverse)
             }
             Boundary::NonPeriodic => {
@@ -138,9 +143,10 @@ impl InfluenceOperator {
                 let norm = 1.0 / (mx as f64 * my as f64);
                 let spectral: Vec<f64> =
                     fft.forward(&stencil)?.iter().map(|c| c.re * norm).collect();
-                let inverse = reciprocal_kernel(&spectral, norm);
+                let inverse = preconditioner
+                    .then(|| fft.convolution_kernel(reciprocal_kernel(&spectral, norm)))
+                    .transpose()?;
                 let kernel = fft.convolution_kernel(spectral)?;
-                let inverse = fft.convolution_kernel(inverse)?;
                 (fft, kernel, inverse)
             }
         };
@@ -183,15 +189,19 @@ impl InfluenceOperator {
     }
 
     /// `out = M r`, `M` the convolution with the reciprocal of the kernel's spectrum (zero where it
-    /// vanishes), rows of `r` from `fill`, output rows through `sink`.
+    /// vanishes), rows of `r` from `fill`, output rows through `sink`. An operator built without
+    /// its preconditioner fails.
     pub(crate) fn precondition_rows_into<F: RowSource, S: RowSink>(
         &mut self,
         fill: &F,
         out: &mut [f64],
         sink: &S,
     ) -> Result<&[f64], FftFailure> {
+        let inverse = self.inverse_kernel.as_deref().ok_or_else(|| {
+            FftFailure::new("the influence operator was built without its preconditioner")
+        })?;
         self.fft
-            .convolve_rows_into(fill, &self.inverse_kernel, out, self.nx, self.ny, sink)
+            .convolve_rows_into(fill, inverse, out, self.nx, self.ny, sink)
     }
 
     /// [`Self::apply`] to the pressure whose rows `fill` supplies, the displacement rows going
@@ -301,7 +311,8 @@ mod tests {
         // u = 2 p* / (E* q) cos(q x) for p = p* cos(q x) (Westergaard); exact on the grid.
         let (nx, ny, dx) = (32, 4, 1e-6);
         let e_star = 1e11;
-        let mut op = InfluenceOperator::new(nx, ny, dx, dx, e_star, Boundary::Periodic).unwrap();
+        let mut op =
+            InfluenceOperator::new(nx, ny, dx, dx, e_star, Boundary::Periodic, false).unwrap();
         let q = 2.0 * PI * 3.0 / (nx as f64 * dx);
         let p: Vec<f64> = (0..nx * ny)
             .map(|i| 1e6 * (q * (i % nx) as f64 * dx).cos())
@@ -319,7 +330,7 @@ mod tests {
         // `M K p = p` for a zero-mean pressure on a periodic grid: `M̂ = 1/K̂` away from q = 0.
         let (nx, ny) = (32, 24);
         let mut op =
-            InfluenceOperator::new(nx, ny, 1e-6, 2e-6, 1.2e11, Boundary::Periodic).unwrap();
+            InfluenceOperator::new(nx, ny, 1e-6, 2e-6, 1.2e11, Boundary::Periodic, true).unwrap();
         let p: Vec<f64> = (0..nx * ny)
             .map(|i| {
                 let (x, y) = ((i % nx) as f64 / nx as f64, (i / nx) as f64 / ny as f64);
@@ -355,7 +366,8 @@ mod tests {
 
     fn non_periodic_operator_matches_direct_sum_on(nx: usize, ny: usize) {
         let (dx, dy) = (1.0, 1.5);
-        let mut op = InfluenceOperator::new(nx, ny, dx, dy, 2.0, Boundary::NonPeriodic).unwrap();
+        let mut op =
+            InfluenceOperator::new(nx, ny, dx, dy, 2.0, Boundary::NonPeriodic, false).unwrap();
         let p: Vec<f64> = (0..nx * ny).map(|i| ((i * 37) % 11) as f64).collect();
         let mut u = vec![0.0; nx * ny];
         op.apply(&p, &mut u).unwrap();
@@ -381,7 +393,7 @@ mod tests {
         let (nx, ny) = (12, 9);
         let points = [0, 5, 11, 13, 40, 59, 71, 96, 100, 107];
         for boundary in [Boundary::Periodic, Boundary::NonPeriodic] {
-            let mut op = InfluenceOperator::new(nx, ny, 1e-6, 2e-6, 1e11, boundary).unwrap();
+            let mut op = InfluenceOperator::new(nx, ny, 1e-6, 2e-6, 1e11, boundary, false).unwrap();
             let mut p = vec![0.0; nx * ny];
             for (k, &i) in points.iter().enumerate() {
                 p[i] = 1e6 * (1.0 + k as f64);

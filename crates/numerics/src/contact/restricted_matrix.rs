@@ -88,7 +88,8 @@ mod tests {
     fn kept_entries_equal_fresh_ones() {
         // Sets that overlap, grow, shrink and are disjoint: the matrix built from the last one
         // is the matrix built from scratch, bit for bit.
-        let op = InfluenceOperator::new(16, 10, 1e-6, 1e-6, 1e11, Boundary::Periodic).unwrap();
+        let op =
+            InfluenceOperator::new(16, 10, 1e-6, 1e-6, 1e11, Boundary::Periodic, false).unwrap();
         let sets: [&[usize]; 5] = [
             &[3, 17, 40, 41, 99, 150],
             &[3, 18, 40, 41, 120, 150, 159],

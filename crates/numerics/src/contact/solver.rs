@@ -57,6 +57,13 @@ impl FieldSums {
     }
 }
 
+/// Whether the CG of a contact may precondition its directions (`SolverOptions::preconditioned`):
+/// only elastic contacts, without a flow pressure, ever are, so only their operator carries the
+/// preconditioner's kernel.
+fn preconditions(options: &SolverOptions, material: &ContactMaterial) -> bool {
+    options.preconditioned && material.flow_pressure() == f64::INFINITY
+}
+
 /// A normal contact problem: initial gap, material pair and lateral boundary condition.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactProblem {
@@ -143,6 +150,7 @@ impl ContactSolver {
             gap.dy(),
             problem.material().composite_modulus(),
             problem.boundary(),
+            preconditions(&options, problem.material()),
         )?;
         let workspace = Workspace::new(
             gap.gap().iter().copied().collect(),
@@ -248,7 +256,7 @@ impl ContactSolver {
             default_step: 1.0 / self.operator.self_influence(),
             // Measured to pay from a coarse grid's solution only (`precondition` in
             // `constrained_cg.rs`).
-            precondition: self.options.preconditioned && plim == f64::INFINITY && prolongated,
+            precondition: preconditions(&self.options, self.problem.material()) && prolongated,
         };
         self.last_nominal = None;
         let ws = &mut self.workspace;
