@@ -179,8 +179,9 @@ impl ContactSolver {
     }
 
     /// Solves the nominal pressures `nominal_pressures` (Pa, strictly ascending, each below
-    /// `p_lim`) in order, each warm-started from the previous one. A step that does not converge
-    /// ends the curve with [`ContactError::NotConverged`].
+    /// `p_lim`) in order, each warm-started from the previous one (on elastic contacts, each from
+    /// the multilevel start where the grid allows it). A step that does not converge ends the
+    /// curve with [`ContactError::NotConverged`].
     pub fn solve_load_steps(
         &mut self,
         nominal_pressures: &[f64],
@@ -203,7 +204,8 @@ impl ContactSolver {
         Ok(LoadCurve { steps })
     }
 
-    /// Solves one nominal pressure in Pa, warm-started from the last converged step.
+    /// Solves one nominal pressure in Pa, warm-started from the last converged step (on elastic
+    /// contacts, from the multilevel start where the grid allows it).
     pub fn solve(&mut self, nominal_pressure: f64) -> Result<LoadStep, ContactError> {
         self.solve_indexed(0, nominal_pressure)
     }
