@@ -148,6 +148,11 @@ impl ContactMaterial {
         self.flow_pressure
     }
 
+    /// Whether the contact is purely elastic: no flow pressure caps its pressure.
+    pub fn is_elastic(&self) -> bool {
+        self.flow_pressure() == f64::INFINITY
+    }
+
     /// Share `c₁ / (c₁ + c₂)` of the composite elastic deformation carried by the first body.
     pub fn first_body_share(&self) -> f64 {
         self.compliance_first / (self.compliance_first + self.compliance_second)

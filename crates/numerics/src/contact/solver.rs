@@ -61,7 +61,7 @@ impl FieldSums {
 /// only elastic contacts, without a flow pressure, ever are, so only their operator carries the
 /// preconditioner's kernel.
 fn preconditions(options: &SolverOptions, material: &ContactMaterial) -> bool {
-    options.preconditioned && material.flow_pressure() == f64::INFINITY
+    options.preconditioned && material.is_elastic()
 }
 
 /// A normal contact problem: initial gap, material pair and lateral boundary condition.
@@ -322,15 +322,14 @@ impl ContactSolver {
     }
 
     /// Whether every step starts cold, from the multilevel start, instead of from the last
-    /// converged step: on elastic contacts (no flow pressure) whose grid can be coarsened. From a
-    /// warm start the load has to move between distant contact spots on the fine grid, without
-    /// the preconditioner (which pays only from a coarse grid's solution), and a higher load step
-    /// took more fine iterations than a cold solve of the same load took fine and coarse ones
-    /// together. Capped contacts keep the warm start, which is no worse there.
-    /// Measurements in `docs/contact-solver-design.md`.
+    /// converged step: on elastic contacts (no flow pressure) whose grid can be coarsened. A warm
+    /// start leaves the load to move between distant contact spots on the fine grid, without the
+    /// preconditioner (which applies only from a coarse grid's solution); the coarse grids move
+    /// it at a fraction of the cost. Capped contacts keep the warm start, where the multilevel
+    /// start gains nothing (`docs/contact-solver-design.md`).
     fn restarts_every_step(&self) -> bool {
         self.options.multilevel
-            && self.problem.material().flow_pressure() == f64::INFINITY
+            && self.problem.material().is_elastic()
             && multilevel::coarsenable(self.problem.gap().nx(), self.problem.gap().ny())
     }
 
