@@ -11,6 +11,7 @@
 use super::constrained_cg::{self, CgOutcome, CgSettings, Control};
 use super::influence::InfluenceOperator;
 use super::options::Termination;
+use super::work::Work;
 use super::workspace::Workspace;
 use crate::fft2::FftFailure;
 
@@ -48,10 +49,8 @@ struct ApproachSearch<'a> {
     inner_tolerance: f64,
     /// `|P(δ) − p̄|` (Pa) accepted.
     tolerance: f64,
-    /// CG iterations and FFTs summed over the inner solves.
-    iterations: usize,
-    fft_transforms: usize,
-    free_set_iterations: usize,
+    /// The work of the inner solves so far.
+    work: Work,
     /// Inner solves so far.
     outer: usize,
 }
@@ -85,9 +84,7 @@ impl<'a> ApproachSearch<'a> {
             settings,
             inner_tolerance,
             tolerance: settings.tolerance * nominal_pressure,
-            iterations: 0,
-            fft_transforms: 0,
-            free_set_iterations: 0,
+            work: Work::default(),
             outer: 0,
         }
     }
@@ -102,14 +99,15 @@ impl<'a> ApproachSearch<'a> {
     ) -> Result<Option<(CgOutcome, f64)>, FftFailure> {
         self.outer += 1;
         let budget = CgSettings {
-            max_iterations: self.settings.max_iterations.saturating_sub(self.iterations),
+            max_iterations: self
+                .settings
+                .max_iterations
+                .saturating_sub(self.work.iterations),
             tolerance: self.inner_tolerance,
             ..*self.settings
         };
         let out = constrained_cg::solve(ws, op, Control::Approach { approach }, &budget)?;
-        self.iterations += out.iterations;
-        self.fft_transforms += out.fft_transforms;
-        self.free_set_iterations += out.free_set_iterations;
+        self.work += out.work;
         Ok(match out.termination {
             Termination::Converged => Some((out, out.mean_pressure - self.nominal_pressure)),
             _ => None,
@@ -199,9 +197,7 @@ impl<'a> ApproachSearch<'a> {
     fn finish(&self, mut out: CgOutcome) -> CgOutcome {
         out.residuals.force =
             (out.mean_pressure - self.nominal_pressure).abs() / self.nominal_pressure;
-        out.iterations = self.iterations;
-        out.fft_transforms = self.fft_transforms;
-        out.free_set_iterations = self.free_set_iterations;
+        out.work = self.work;
         out
     }
 
@@ -212,9 +208,7 @@ impl<'a> ApproachSearch<'a> {
         residuals.force = (mean_pressure - self.nominal_pressure).abs() / self.nominal_pressure;
         CgOutcome {
             termination,
-            iterations: self.iterations,
-            fft_transforms: self.fft_transforms,
-            free_set_iterations: self.free_set_iterations,
+            work: self.work,
             residuals,
             approach: last.map_or(self.start_approach, |o| o.approach),
             mean_pressure,

@@ -81,6 +81,7 @@
 use super::free_set::{self, FreeSetTask};
 use super::influence::InfluenceOperator;
 use super::options::{Residuals, Termination};
+use super::work::Work;
 use super::workspace::{ContactStats, FreeStats, Workspace};
 use crate::fft2::FftFailure;
 
@@ -157,11 +158,7 @@ pub(crate) struct CgSettings {
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct CgOutcome {
     pub termination: Termination,
-    pub iterations: usize,
-    /// Real 2-D FFTs (forward or inverse; a full convolution is two) of this solve.
-    pub fft_transforms: usize,
-    /// CG iterations of the moving points alone (`free_set.rs`).
-    pub free_set_iterations: usize,
+    pub work: Work,
     pub residuals: Residuals,
     pub approach: f64,
     pub mean_pressure: f64,
@@ -219,7 +216,8 @@ struct ConstrainedCg<'a> {
     offset: f64,
     /// Grid points.
     n: f64,
-    fft_transforms: usize,
+    /// The operator's transform count when this solve started.
+    start_transforms: usize,
     iterations: usize,
     free_set_iterations: usize,
     /// The largest residual when the free set was last iterated alone: it is iterated alone
@@ -263,6 +261,7 @@ impl<'a> ConstrainedCg<'a> {
         ws.rebuild_contact();
         let p_sum = ws.free_stats().total();
         let n = ws.len() as f64;
+        let start_transforms = op.transforms();
         Self {
             ws,
             op,
@@ -270,7 +269,7 @@ impl<'a> ConstrainedCg<'a> {
             settings,
             offset,
             n,
-            fft_transforms: 0,
+            start_transforms,
             iterations: 0,
             free_set_iterations: 0,
             free_set_mark: f64::INFINITY,
@@ -298,7 +297,6 @@ impl<'a> ConstrainedCg<'a> {
         let pending_step = match std::mem::replace(&mut self.displacement, Displacement::Stale) {
             Displacement::Stale => {
                 self.ws.displace(self.op, self.offset)?;
-                self.fft_transforms += 2;
                 self.u_fresh = true;
                 None
             }
@@ -383,7 +381,7 @@ impl<'a> ConstrainedCg<'a> {
         let r = m.residuals.max();
         let settings = self.settings;
         if !r.is_finite() {
-            Decision::Stop(Termination::Stalled)
+            Decision::Stop(Termination::NonFinite)
         } else if r <= settings.tolerance && self.u_fresh {
             Decision::Stop(Termination::Converged)
         } else if r <= settings.tolerance {
@@ -413,17 +411,17 @@ impl<'a> ConstrainedCg<'a> {
 
     /// The outcome, with `u = K p` recomputed exactly and the gap written.
     fn finish(self, termination: Termination, m: &Measurement) -> Result<CgOutcome, FftFailure> {
-        let mut fft_transforms = self.fft_transforms;
         if !self.u_fresh {
             self.ws.displace(self.op, self.offset)?;
-            fft_transforms += 2;
         }
         self.ws.write_gap(self.offset + m.delta);
         Ok(CgOutcome {
             termination,
-            iterations: self.iterations,
-            fft_transforms,
-            free_set_iterations: self.free_set_iterations,
+            work: Work {
+                iterations: self.iterations,
+                free_set_iterations: self.free_set_iterations,
+                fft_transforms: self.op.transforms() - self.start_transforms,
+            },
             residuals: m.residuals,
             approach: self.offset + m.delta,
             mean_pressure: self.p_sum / self.n,
@@ -437,7 +435,6 @@ impl<'a> ConstrainedCg<'a> {
         let precondition = self.settings.precondition && load_control && m.free_count > 1.0;
         let (rho, z_mean) = if precondition {
             self.ws.precondition(self.op, self.offset, m.delta)?;
-            self.fft_transforms += 2;
             let [z_sum, rz, r_sum] = self.ws.preconditioned_sums(self.offset, m.delta);
             let z_mean = z_sum / m.free_count;
             (rz - z_mean * r_sum, Some(z_mean))
@@ -474,7 +471,6 @@ impl<'a> ConstrainedCg<'a> {
             } else {
                 self.ws
                     .advance_displacement(self.op, step.tau, self.offset)?;
-                self.fft_transforms += 1;
                 Displacement::Current
             };
         }
@@ -539,14 +535,12 @@ impl<'a> ConstrainedCg<'a> {
             };
             // `tᵀ K t = Σ_F t (K t)`: `t` vanishes off the free set.
             let mut rt = self.ws.start_direction_transform(self.op)?;
-            self.fft_transforms += 1;
             if load_control
                 && m.free_count > 0.0
                 && t_sum.abs() > MEAN_FREE_DIRECTION * t_abs
                 && !self.heavily_corrected
             {
                 self.op.finish_apply(&mut self.ws.w)?;
-                self.fft_transforms += 1;
                 w_ready = true;
                 rt -= self.ws.free_w_sum() * t_sum / m.free_count;
             }
@@ -558,7 +552,6 @@ impl<'a> ConstrainedCg<'a> {
                 // The projected-gradient step replaces `t`; `reset` restarts the conjugation.
                 let e2 = self.ws.entry_direction(self.offset, m.delta);
                 let ek = self.op.start_apply(&self.ws.t)?;
-                self.fft_transforms += 1;
                 if ek > 0.0 && e2 > 0.0 && (e2 / ek).is_finite() {
                     e2 / ek
                 } else {

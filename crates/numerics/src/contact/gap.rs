@@ -53,6 +53,8 @@ pub enum GapError {
     TooSmall { nx: usize, ny: usize },
     #[error("pixel spacing must be finite and > 0 m, got dx = {dx} m, dy = {dy} m")]
     BadSpacing { dx: f64, dy: f64 },
+    #[error("the composite gap spans {span:e} m, whose rms overflows a 64-bit float: heights this large are no surface topography (check the height unit of the surfaces)")]
+    Overflow { span: f64 },
 }
 
 /// Initial gap `g₀(x, y) ≥ 0` in metres between two rough bodies before loading, with
@@ -132,9 +134,15 @@ impl CompositeGap {
         let top = height.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let mut gap = height;
         gap.mapv_inplace(|z| top - z);
-        // A sum of two finite heights can still overflow to infinity.
+        // A sum of two finite heights can still overflow to infinity, and so can the squares of
+        // finite gaps in their rms, on which every residual of the solver is scaled.
         first_non_finite(gap.view(), GapSource::GapArray)?;
-        Ok(Self { gap, dx, dy })
+        let gap = Self { gap, dx, dy };
+        if !gap.rms().is_finite() {
+            let span = gap.gap.iter().copied().fold(0.0f64, f64::max);
+            return Err(GapError::Overflow { span });
+        }
+        Ok(gap)
     }
 
     /// Initial gap in metres, `[[iy, ix]]`.

@@ -68,6 +68,8 @@ pub(crate) struct InfluenceOperator {
     /// only up to half the period (the shorter way round).
     coefficients: Vec<f64>,
     coefficient_stride: usize,
+    /// Real 2-D FFTs run so far (forward or inverse; a full convolution is two).
+    transforms: usize,
 }
 
 /// `norm² / k` where `k > 0` (a spectral kernel with normalisation `norm` included), else 0.
@@ -159,6 +161,7 @@ impl InfluenceOperator {
             boundary,
             coefficients: Vec::new(),
             coefficient_stride: 0,
+            transforms: 0,
         };
         let mut impulse = vec![0.0; nx * ny];
         let mut response = vec![0.0; nx * ny];
@@ -185,7 +188,9 @@ impl InfluenceOperator {
         displacement: &mut [f64],
     ) -> Result<(), FftFailure> {
         self.fft
-            .convolve(pressure, &self.kernel, displacement, self.nx, self.ny)
+            .convolve(pressure, &self.kernel, displacement, self.nx, self.ny)?;
+        self.transforms += 2;
+        Ok(())
     }
 
     /// `out = M r`, `M` the convolution with the reciprocal of the kernel's spectrum (zero where it
@@ -200,6 +205,7 @@ impl InfluenceOperator {
         let inverse = self.inverse_kernel.as_deref().ok_or_else(|| {
             FftFailure::new("the influence operator was built without its preconditioner")
         })?;
+        self.transforms += 2;
         self.fft
             .convolve_rows_into(fill, inverse, out, self.nx, self.ny, sink)
     }
@@ -212,6 +218,7 @@ impl InfluenceOperator {
         displacement: &mut [f64],
         sink: &S,
     ) -> Result<&[f64], FftFailure> {
+        self.transforms += 2;
         self.fft
             .convolve_rows_into(fill, &self.kernel, displacement, self.nx, self.ny, sink)
     }
@@ -220,12 +227,14 @@ impl InfluenceOperator {
     /// [`Self::finish_apply`]) and returns the quadratic form `pressureᵀ K pressure` in Pa·m
     /// (Parseval; one forward FFT).
     pub(crate) fn start_apply(&mut self, pressure: &[f64]) -> Result<f64, FftFailure> {
+        self.transforms += 1;
         self.fft
             .start_convolve(pressure, &self.kernel, self.nx, self.ny)
     }
 
     /// [`Self::start_apply`] to the pressure whose rows `fill` supplies.
     pub(crate) fn start_apply_rows<F: RowSource>(&mut self, fill: &F) -> Result<f64, FftFailure> {
+        self.transforms += 1;
         self.fft
             .start_convolve_rows(fill, &self.kernel, self.nx, self.ny)
     }
@@ -233,6 +242,7 @@ impl InfluenceOperator {
     /// Second half of `displacement = K pressure` for the pressure of the last
     /// [`Self::start_apply`] (one inverse FFT; bit-identical to [`Self::apply`]).
     pub(crate) fn finish_apply(&mut self, displacement: &mut [f64]) -> Result<(), FftFailure> {
+        self.transforms += 1;
         self.fft
             .finish_convolve(&self.kernel, displacement, self.nx, self.ny)
     }
@@ -244,8 +254,16 @@ impl InfluenceOperator {
         displacement: &mut [f64],
         sink: &S,
     ) -> Result<&[f64], FftFailure> {
+        self.transforms += 1;
         self.fft
             .finish_convolve_into(&self.kernel, displacement, self.nx, self.ny, sink)
+    }
+
+    /// Real 2-D FFTs (forward or inverse; a full convolution is two) this operator has run,
+    /// its construction included: the solver counts its work as differences of this counter,
+    /// so no caller counts transforms by hand.
+    pub(crate) fn transforms(&self) -> usize {
+        self.transforms
     }
 
     /// Displacement of a pixel under a unit pressure on itself, `K₀₀` in m/Pa (> 0).

@@ -3,6 +3,7 @@
 use ndarray::Array2;
 
 use super::options::{Residuals, SolvePath};
+use super::work::Work;
 
 /// Fields of one load step, each `[[iy, ix]]` on the contact grid; `None` unless requested
 /// through [`super::FieldRequest`].
@@ -68,4 +69,26 @@ pub struct LoadStep {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct LoadCurve {
     pub steps: Vec<LoadStep>,
+}
+
+impl LoadStep {
+    /// The work of this step on its own grid (the coarse grids' iterations are
+    /// `coarse_iterations`).
+    pub fn work(&self) -> Work {
+        Work {
+            iterations: self.iterations,
+            free_set_iterations: self.free_set_iterations,
+            fft_transforms: self.fft_transforms,
+        }
+    }
+}
+
+impl LoadCurve {
+    /// The work of every step on its own grid, added up.
+    pub fn work(&self) -> Work {
+        self.steps
+            .iter()
+            .map(LoadStep::work)
+            .fold(Work::default(), |a, b| a + b)
+    }
 }

@@ -21,6 +21,7 @@ mod options;
 mod restricted_matrix;
 mod selection;
 mod solver;
+mod work;
 mod workspace;
 
 pub use crate::fft2::{FftFailure, RealFft2d};
@@ -31,3 +32,4 @@ pub use load_curve::{ContactFields, LoadCurve, LoadStep};
 pub use material::{BodyElasticity, ContactMaterial, MaterialError};
 pub use options::{FieldRequest, Residuals, SolvePath, SolveStrategy, SolverOptions, Termination};
 pub use solver::{ContactProblem, ContactSolver};
+pub use work::Work;

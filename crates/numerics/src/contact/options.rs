@@ -110,6 +110,9 @@ pub enum Termination {
     Stalled,
     /// The approach search could not bracket or reach the target load.
     ApproachSearchFailed,
+    /// A residual became NaN or infinite: the problem's numbers overflow or underflow (heights,
+    /// moduli or pressures far outside physical ranges), so the iteration stops at once.
+    NonFinite,
 }
 
 /// Convergence residuals of a solve, all dimensionless.

@@ -280,28 +280,30 @@ impl ContactSolver {
                 let start = constrained_cg::solve(ws, op, load, &estimate)?;
                 let mut search =
                     approach_search::solve(ws, op, pressure, start.approach, &settings)?;
-                search.fft_transforms += start.fft_transforms;
-                search.free_set_iterations += start.free_set_iterations;
+                search.work += start.work;
                 (search, SolvePath::ApproachSearch)
             }
             SolveStrategy::Auto => {
                 let first = constrained_cg::solve(ws, op, load, &settings)?;
-                if first.termination == Termination::Converged {
+                // Overflowing numbers overflow on every path: no fall-back.
+                if matches!(
+                    first.termination,
+                    Termination::Converged | Termination::NonFinite
+                ) {
                     (first, SolvePath::ConstrainedCg)
                 } else {
                     // Restart from the rigid-plastic start: the stalled iterate may be far off.
                     ws.start_rigid_plastic(pressure);
                     let start = constrained_cg::solve(ws, op, load, &estimate)?;
                     let budget = CgSettings {
-                        max_iterations: settings.max_iterations.saturating_sub(first.iterations),
+                        max_iterations: settings
+                            .max_iterations
+                            .saturating_sub(first.work.iterations),
                         ..settings
                     };
                     let mut second =
                         approach_search::solve(ws, op, pressure, start.approach, &budget)?;
-                    second.iterations += first.iterations;
-                    second.fft_transforms += first.fft_transforms + start.fft_transforms;
-                    second.free_set_iterations +=
-                        first.free_set_iterations + start.free_set_iterations;
+                    second.work += first.work + start.work;
                     (second, SolvePath::ApproachSearch)
                 }
             }
@@ -311,7 +313,7 @@ impl ContactSolver {
                 step,
                 pressure,
                 termination: outcome.termination,
-                iterations: outcome.iterations,
+                iterations: outcome.work.iterations,
                 residuals: outcome.residuals,
             });
         }
@@ -430,10 +432,10 @@ impl ContactSolver {
             mean_separation: separation / n,
             max_elastic_deformation: max_u,
             approach: outcome.approach,
-            iterations: outcome.iterations,
+            iterations: outcome.work.iterations,
             coarse_iterations: 0,
-            free_set_iterations: outcome.free_set_iterations,
-            fft_transforms: outcome.fft_transforms,
+            free_set_iterations: outcome.work.free_set_iterations,
+            fft_transforms: outcome.work.fft_transforms,
             residuals: outcome.residuals,
             path,
             fields: self

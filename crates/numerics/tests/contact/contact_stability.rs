@@ -9,7 +9,7 @@ use std::f64::consts::TAU;
 
 use asperity_numerics::contact::{
     Boundary, CompositeGap, ContactError, ContactMaterial, ContactProblem, ContactSolver,
-    FieldRequest, GapError, SolverOptions,
+    FieldRequest, GapError, SolverOptions, Termination,
 };
 use asperity_numerics::surface::HeightMap;
 use ndarray::Array2;
@@ -78,6 +78,36 @@ fn shape_strategy() -> impl Strategy<Value = Shape> {
         1 => Just(Shape::Constant),
         1 => Just(Shape::Spike),
     ]
+}
+
+/// Heights whose squares overflow a 64-bit float are refused when the gap is built: every
+/// residual of the solver is scaled by the gap's rms, which would be infinite.
+#[test]
+fn gaps_whose_rms_overflows_are_refused() {
+    let z = heights(Shape::Random(7), 16, 1e200);
+    let surface = HeightMap::new(z, 1e-6, 1e-6).unwrap();
+    match CompositeGap::against_flat(&surface) {
+        Err(e @ GapError::Overflow { .. }) => assert!(e.to_string().contains("height unit")),
+        other => panic!("expected GapError::Overflow, got {other:?}"),
+    }
+}
+
+/// A load whose pressures overflow ends the iteration with its own termination, `NonFinite`,
+/// instead of being reported as a stall (or iterating on NaN).
+#[test]
+fn overflowing_pressures_end_as_non_finite() {
+    let surface = HeightMap::new(heights(Shape::Random(3), 32, 1e-6), 1e-6, 1e-6).unwrap();
+    let gap = CompositeGap::against_flat(&surface).unwrap();
+    let material =
+        ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, f64::INFINITY).unwrap();
+    let problem = ContactProblem::new(gap, material, Boundary::Periodic);
+    let mut solver = ContactSolver::new(problem, SolverOptions::default()).unwrap();
+    match solver.solve(1e306) {
+        Err(ContactError::NotConverged { termination, .. }) => {
+            assert_eq!(termination, Termination::NonFinite)
+        }
+        other => panic!("expected a NonFinite termination, got {other:?}"),
+    }
 }
 
 proptest! {
