@@ -26,7 +26,7 @@
 use ndarray::Array2;
 
 use super::gap::CompositeGap;
-use super::solver::ContactProblem;
+use super::problem::ContactProblem;
 
 /// A grid is coarsened only while the coarse grid keeps at least this many points along each
 /// side: on smaller grids the fine solve from the rigid-plastic start takes few iterations and

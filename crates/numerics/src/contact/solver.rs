@@ -1,17 +1,17 @@
 //! The load-stepped contact solver: problem definition, warm starts, step results.
 
-use ndarray::{Array2, ArrayView2};
+use ndarray::Array2;
 use rayon::prelude::*;
 
 use super::approach_search;
 use super::constrained_cg::{self, CgOutcome, CgSettings, Control};
 use super::error::ContactError;
-use super::gap::CompositeGap;
-use super::influence::{Boundary, InfluenceOperator};
+use super::influence::InfluenceOperator;
 use super::load_curve::{ContactFields, LoadCurve, LoadStep};
 use super::material::ContactMaterial;
 use super::multilevel;
 use super::options::{FieldRequest, SolvePath, SolveStrategy, SolverOptions, Termination};
+use super::problem::ContactProblem;
 use super::workspace::{Workspace, BLOCK};
 
 /// Sums over the fields of a converged step, block by block (combined in block order, so they do
@@ -62,55 +62,6 @@ impl FieldSums {
 /// preconditioner's kernel.
 fn preconditions(options: &SolverOptions, material: &ContactMaterial) -> bool {
     options.preconditioned && material.is_elastic()
-}
-
-/// A normal contact problem: initial gap, material pair and lateral boundary condition.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ContactProblem {
-    gap: CompositeGap,
-    material: ContactMaterial,
-    boundary: Boundary,
-}
-
-impl ContactProblem {
-    /// Builds the problem from a composite gap.
-    pub fn new(gap: CompositeGap, material: ContactMaterial, boundary: Boundary) -> Self {
-        Self {
-            gap,
-            material,
-            boundary,
-        }
-    }
-
-    /// Builds the problem from a gap array in m (`[[iy, ix]]`) and pixel spacings in m.
-    pub fn from_gap_array(
-        gap: ArrayView2<f64>,
-        dx: f64,
-        dy: f64,
-        material: ContactMaterial,
-        boundary: Boundary,
-    ) -> Result<Self, ContactError> {
-        Ok(Self::new(
-            CompositeGap::from_gap_array(gap, dx, dy)?,
-            material,
-            boundary,
-        ))
-    }
-
-    /// The initial gap.
-    pub fn gap(&self) -> &CompositeGap {
-        &self.gap
-    }
-
-    /// The material pair.
-    pub fn material(&self) -> &ContactMaterial {
-        &self.material
-    }
-
-    /// The boundary condition.
-    pub fn boundary(&self) -> Boundary {
-        self.boundary
-    }
 }
 
 /// Reusable solver of one [`ContactProblem`]: holds the FFT plans, the influence kernel and all

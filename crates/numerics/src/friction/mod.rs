@@ -38,11 +38,13 @@ pub mod gw_functions;
 pub mod jackson_green;
 pub mod material;
 pub mod model_laws;
+pub mod model_options;
 pub mod net_load_grid;
 pub mod per_spot;
 pub mod per_summit;
 pub(crate) mod quadrature;
 pub(crate) mod root_finding;
+pub mod solve_settings;
 pub mod static_friction;
 pub mod statistical_integrals;
 pub mod summit_statistics;
@@ -55,17 +57,17 @@ pub use gw_functions::{gw_function, upper_tail_probability, INTEGRAL_REL_TOL};
 pub use jackson_green::JacksonGreenLaw;
 pub use material::{AdhesionParameters, CriticalValues, Material, TABOR_FACTOR};
 pub use model_laws::{ModelBasis, ModelLaws};
+pub use model_options::{FullStickOptions, ModelOptions};
 pub use net_load_grid::{net_load, GridEvaluations, NetLoadGrid};
 pub use per_spot::{per_spot_friction, PerSpotResult, SpotFriction, SpotLaw, SpotLoad};
 pub use per_summit::{
     per_summit_friction, summit_friction, PerSummitResult, SummitContact, SummitFriction,
 };
 pub use quadrature::QuadratureOutcome;
+pub use solve_settings::SolveSettings;
 pub use static_friction::{
     static_friction, static_friction_at_pressure, static_friction_curve, static_friction_on_grid,
-    SolveSettings, SolveStatus, StaticFrictionResult,
+    SolveStatus, StaticFrictionResult,
 };
-pub use statistical_integrals::{
-    AdhesionForce, FullStickOptions, IntegralValue, ModelOptions, StatisticalModel,
-};
+pub use statistical_integrals::{AdhesionForce, IntegralValue, StatisticalModel};
 pub use summit_statistics::{SpectralMoments, SummitStatistics, MCCOOL_ALPHA_BOUND};

@@ -23,7 +23,7 @@ use super::asperity_laws::{
 use super::error::FrictionError;
 use super::full_stick::{FullStickLaw, STICK_LOAD_FIT_LIMIT};
 use super::material::Material;
-use super::statistical_integrals::ModelOptions;
+use super::model_options::ModelOptions;
 
 /// How far a model's constants are confirmed (written to every friction row).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -23,7 +23,7 @@
 
 use super::error::FrictionError;
 use super::root_finding::golden_minimum;
-use super::static_friction::SolveSettings;
+use super::solve_settings::SolveSettings;
 use super::statistical_integrals::StatisticalModel;
 
 /// Relative margin of the bounds, far above the quadrature error.

@@ -34,7 +34,7 @@ use super::asperity_laws::{
 use super::error::{require_positive, FrictionError};
 use super::material::{AdhesionParameters, Material};
 use super::model_laws::ModelLaws;
-use super::statistical_integrals::ModelOptions;
+use super::model_options::ModelOptions;
 
 /// One identified summit with its interference from the contact solution.
 #[derive(Debug, Clone, Copy, PartialEq)]
