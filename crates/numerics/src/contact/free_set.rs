@@ -137,10 +137,7 @@ pub(super) fn iterate(
         } else {
             0.0
         };
-        for ((ri, &vi), &fi) in r.iter_mut().zip(&v).zip(&free) {
-            *ri = if fi { vi - delta } else { 0.0 };
-        }
-        let residual = r.iter().fold(0.0f64, |a, &x| a.max(x.abs()));
+        let residual = free_residual(&mut r, &v, &free, delta);
         if residual < 0.9 * best {
             best = residual;
             last_progress = iterations;
@@ -168,11 +165,7 @@ pub(super) fn iterate(
         if !(tau.is_finite() && tau > 0.0) {
             break delta;
         }
-        let (step, hit) = feasible_step(&p, &t, tau, task.flow_pressure);
-        p.iter_mut().zip(&t).for_each(|(pi, &ti)| *pi -= step * ti);
-        v.iter_mut().zip(&w).for_each(|(vi, &wi)| *vi -= step * wi);
-        if let Some(a) = hit {
-            p[a] = if t[a] > 0.0 { 0.0 } else { task.flow_pressure };
+        if let Some(a) = advance(&mut p, &mut v, (&t, &w), tau, task.flow_pressure) {
             free[a] = false;
             free_count -= 1;
             restart = true;
@@ -184,6 +177,32 @@ pub(super) fn iterate(
     }
     ws.restricted = matrix;
     FreeSetOutcome { iterations, delta }
+}
+
+/// `r = v − δ` on the free points (0 on those at a bound); returns `max |r|`.
+fn free_residual(r: &mut [f64], v: &[f64], free: &[bool], delta: f64) -> f64 {
+    for ((ri, &vi), &fi) in r.iter_mut().zip(v).zip(free) {
+        *ri = if fi { vi - delta } else { 0.0 };
+    }
+    r.iter().fold(0.0f64, |a, &x| a.max(x.abs()))
+}
+
+/// Moves the pressures `p` by `−τ t` (at most to the first bound reached) and their gaps `v` by
+/// `−τ w` (`w = A t`); returns the point that reached a bound, set exactly to it.
+fn advance(
+    p: &mut [f64],
+    v: &mut [f64],
+    (t, w): (&[f64], &[f64]),
+    tau: f64,
+    flow_pressure: f64,
+) -> Option<usize> {
+    let (step, hit) = feasible_step(p, t, tau, flow_pressure);
+    p.iter_mut().zip(t).for_each(|(pi, &ti)| *pi -= step * ti);
+    v.iter_mut().zip(w).for_each(|(vi, &wi)| *vi -= step * wi);
+    if let Some(a) = hit {
+        p[a] = if t[a] > 0.0 { 0.0 } else { flow_pressure };
+    }
+    hit
 }
 
 /// `Σ values` over the points not held at a bound.

@@ -81,6 +81,84 @@ fn reciprocal_kernel(kernel: &[f64], norm: f64) -> Vec<f64> {
         .collect()
 }
 
+/// An operator's FFT, kernel and optional preconditioner kernel.
+type Kernels = (RealFft2d, Vec<f64>, Option<Vec<f64>>);
+
+/// The FFT, the spectral kernel and (with `preconditioner`) the preconditioner's kernel of a
+/// periodic grid: `2/(E* |q|)` with `q` the wavevector, zero at `q = 0` (the mean pressure
+/// moves the body, not the gap).
+fn periodic_kernels(
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    dy: f64,
+    composite_modulus: f64,
+    preconditioner: bool,
+) -> Result<Kernels, FftFailure> {
+    let fft = RealFft2d::for_convolution(nx, ny);
+    let nxc = nx / 2 + 1;
+    let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
+    let norm = 1.0 / (nx as f64 * ny as f64);
+    let mut kernel = vec![0.0; nxc * ny];
+    for kx in 0..nxc {
+        for ky in 0..ny {
+            let ky_signed = if ky <= ny / 2 {
+                ky as f64
+            } else {
+                ky as f64 - ny as f64
+            };
+            let q = 2.0 * PI * ((kx as f64 / lx).powi(2) + (ky_signed / ly).powi(2)).sqrt();
+            if q > 0.0 {
+                kernel[kx * ny + ky] = 2.0 / (composite_modulus * q) * norm;
+            }
+        }
+    }
+    let inverse = preconditioner
+        .then(|| fft.convolution_kernel(reciprocal_kernel(&kernel, norm)))
+        .transpose()?;
+    let kernel = fft.convolution_kernel(kernel)?;
+    Ok((fft, kernel, inverse))
+}
+
+/// The FFT, the spectral kernel and (with `preconditioner`) the preconditioner's kernel of a
+/// non-periodic grid: Love's pixel influence on a grid zero-padded to at least twice the size
+/// (DC-FFT).
+fn non_periodic_kernels(
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    dy: f64,
+    composite_modulus: f64,
+    preconditioner: bool,
+) -> Result<Kernels, FftFailure> {
+    let (mx, my) = (fast_even_length(2 * nx), fast_even_length(2 * ny));
+    let mut stencil = vec![0.0; mx * my];
+    // Pixel offset of padded index `j` on a circle of even length `m`: the stencil is
+    // even (`j` and `m − j` hold opposite offsets), so its spectrum is real.
+    let offset = |j: usize, m: usize| -> f64 {
+        if j < m / 2 {
+            j as f64
+        } else {
+            j as f64 - m as f64
+        }
+    };
+    for jy in 0..my {
+        let y = offset(jy, my) * dy;
+        for jx in 0..mx {
+            let x = offset(jx, mx) * dx;
+            stencil[jy * mx + jx] = pixel_influence(x, y, dx, dy) / composite_modulus;
+        }
+    }
+    let mut fft = RealFft2d::for_convolution(mx, my);
+    let norm = 1.0 / (mx as f64 * my as f64);
+    let spectral: Vec<f64> = fft.forward(&stencil)?.iter().map(|c| c.re * norm).collect();
+    let inverse = preconditioner
+        .then(|| fft.convolution_kernel(reciprocal_kernel(&spectral, norm)))
+        .transpose()?;
+    let kernel = fft.convolution_kernel(spectral)?;
+    Ok((fft, kernel, inverse))
+}
+
 impl InfluenceOperator {
     /// Builds the kernel for a grid `nx × ny` of pixel size `dx × dy` (m) and composite modulus
     /// `E*` (Pa); with `preconditioner`, also the kernel of [`Self::precondition_rows_into`]
@@ -97,59 +175,10 @@ impl InfluenceOperator {
     ) -> Result<Self, FftFailure> {
         let (fft, kernel, inverse_kernel) = match boundary {
             Boundary::Periodic => {
-                let fft = RealFft2d::for_convolution(nx, ny);
-                let nxc = nx / 2 + 1;
-                let (lx, ly) = (nx as f64 * dx, ny as f64 * dy);
-                let norm = 1.0 / (nx as f64 * ny as f64);
-                let mut kernel = vec![0.0; nxc * ny];
-                for kx in 0..nxc {
-                    for ky in 0..ny {
-                        let ky_signed = if ky <= ny / 2 {
-                            ky as f64
-                        } else {
-                            ky as f64 - ny as f64
-                        };
-                        let q =
-                            2.0 * PI * ((kx as f64 / lx).powi(2) + (ky_signed / ly).powi(2)).sqrt();
-                        if q > 0.0 {
-                            kernel[kx * ny + ky] = 2.0 / (composite_modulus * q) * norm;
-                        }
-                    }
-                }
-                let inverse = preconditioner
-                    .then(|| fft.convolution_kernel(reciprocal_kernel(&kernel, norm)))
-                    .transpose()?;
-                let kernel = fft.convolution_kernel(kernel)?;
-                (fft, kernel, inverse)
+                periodic_kernels(nx, ny, dx, dy, composite_modulus, preconditioner)?
             }
             Boundary::NonPeriodic => {
-                let (mx, my) = (fast_even_length(2 * nx), fast_even_length(2 * ny));
-                let mut stencil = vec![0.0; mx * my];
-                // Pixel offset of padded index `j` on a circle of even length `m`: the stencil is
-                // even (`j` and `m − j` hold opposite offsets), so its spectrum is real.
-                let offset = |j: usize, m: usize| -> f64 {
-                    if j < m / 2 {
-                        j as f64
-                    } else {
-                        j as f64 - m as f64
-                    }
-                };
-                for jy in 0..my {
-                    let y = offset(jy, my) * dy;
-                    for jx in 0..mx {
-                        let x = offset(jx, mx) * dx;
-                        stencil[jy * mx + jx] = pixel_influence(x, y, dx, dy) / composite_modulus;
-                    }
-                }
-                let mut fft = RealFft2d::for_convolution(mx, my);
-                let norm = 1.0 / (mx as f64 * my as f64);
-                let spectral: Vec<f64> =
-                    fft.forward(&stencil)?.iter().map(|c| c.re * norm).collect();
-                let inverse = preconditioner
-                    .then(|| fft.convolution_kernel(reciprocal_kernel(&spectral, norm)))
-                    .transpose()?;
-                let kernel = fft.convolution_kernel(spectral)?;
-                (fft, kernel, inverse)
+                non_periodic_kernels(nx, ny, dx, dy, composite_modulus, preconditioner)?
             }
         };
         let mut operator = Self {

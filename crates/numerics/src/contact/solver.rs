@@ -197,21 +197,50 @@ impl ContactSolver {
             self.workspace.rebalance(pressure * n);
             (0, prolongated)
         };
+        let settings = self.cg_settings(pressure, prolongated);
+        self.last_nominal = None;
+        let (outcome, path) = self.run_strategy(pressure, &settings)?;
+        if outcome.termination != Termination::Converged {
+            return Err(ContactError::NotConverged {
+                step,
+                pressure,
+                termination: outcome.termination,
+                iterations: outcome.work.iterations,
+                residuals: outcome.residuals,
+            });
+        }
+        self.last_nominal = Some(pressure);
+        let mut step = self.step_result(pressure, &outcome, path);
+        step.coarse_iterations = coarse_iterations;
+        Ok(step)
+    }
+
+    /// The settings of a step's constrained CG at `pressure` (Pa); `prolongated`: the step
+    /// starts from a coarse grid's solution.
+    fn cg_settings(&self, pressure: f64, prolongated: bool) -> CgSettings {
         let e_star = self.problem.material().composite_modulus();
         let gap = self.problem.gap();
         let pixel_displacement = pressure * (gap.dx() * gap.dy()).sqrt() / e_star;
-        let settings = CgSettings {
+        CgSettings {
             tolerance: self.options.tolerance,
             max_iterations: self.options.max_iterations,
             stall_iterations: self.options.stall_iterations,
-            flow_pressure: plim,
+            flow_pressure: self.problem.material().flow_pressure(),
             gap_scale: self.rms.max(pixel_displacement),
             default_step: 1.0 / self.operator.self_influence(),
             // Measured to pay from a coarse grid's solution only (`precondition` in
             // `constrained_cg.rs`).
             precondition: preconditions(&self.options, self.problem.material()) && prolongated,
-        };
-        self.last_nominal = None;
+        }
+    }
+
+    /// Solves the started step by the configured strategy (`SolveStrategy`), with the work of
+    /// every attempt added up.
+    fn run_strategy(
+        &mut self,
+        pressure: f64,
+        settings: &CgSettings,
+    ) -> Result<(CgOutcome, SolvePath), ContactError> {
         let ws = &mut self.workspace;
         let op = &mut self.operator;
         let load = Control::Load {
@@ -220,22 +249,22 @@ impl ContactSolver {
         // Zero load-controlled iterations: only the approach estimate of the start.
         let estimate = CgSettings {
             max_iterations: 0,
-            ..settings
+            ..*settings
         };
-        let (outcome, path) = match self.options.strategy {
+        Ok(match self.options.strategy {
             SolveStrategy::ConstrainedCg => (
-                constrained_cg::solve(ws, op, load, &settings)?,
+                constrained_cg::solve(ws, op, load, settings)?,
                 SolvePath::ConstrainedCg,
             ),
             SolveStrategy::ApproachSearch => {
                 let start = constrained_cg::solve(ws, op, load, &estimate)?;
                 let mut search =
-                    approach_search::solve(ws, op, pressure, start.approach, &settings)?;
+                    approach_search::solve(ws, op, pressure, start.approach, settings)?;
                 search.work += start.work;
                 (search, SolvePath::ApproachSearch)
             }
             SolveStrategy::Auto => {
-                let first = constrained_cg::solve(ws, op, load, &settings)?;
+                let first = constrained_cg::solve(ws, op, load, settings)?;
                 // Overflowing numbers overflow on every path: no fall-back.
                 if matches!(
                     first.termination,
@@ -250,7 +279,7 @@ impl ContactSolver {
                         max_iterations: settings
                             .max_iterations
                             .saturating_sub(first.work.iterations),
-                        ..settings
+                        ..*settings
                     };
                     let mut second =
                         approach_search::solve(ws, op, pressure, start.approach, &budget)?;
@@ -258,20 +287,7 @@ impl ContactSolver {
                     (second, SolvePath::ApproachSearch)
                 }
             }
-        };
-        if outcome.termination != Termination::Converged {
-            return Err(ContactError::NotConverged {
-                step,
-                pressure,
-                termination: outcome.termination,
-                iterations: outcome.work.iterations,
-                residuals: outcome.residuals,
-            });
-        }
-        self.last_nominal = Some(pressure);
-        let mut step = self.step_result(pressure, &outcome, path);
-        step.coarse_iterations = coarse_iterations;
-        Ok(step)
+        })
     }
 
     /// Whether every step starts cold, from the multilevel start, instead of from the last

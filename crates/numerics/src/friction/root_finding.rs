@@ -64,33 +64,8 @@ pub(crate) fn brent<E>(
                 iterations: iteration,
             });
         }
-        if previous_step.abs() >= tol && fa.abs() > fb.abs() {
-            let s = fb / fa;
-            let (mut p, mut q) = if a == c {
-                (2.0 * half * s, 1.0 - s)
-            } else {
-                let q = fa / fc;
-                let r = fb / fc;
-                (
-                    s * (2.0 * half * q * (q - r) - (b - a) * (r - 1.0)),
-                    (q - 1.0) * (r - 1.0) * (s - 1.0),
-                )
-            };
-            if p > 0.0 {
-                q = -q;
-            }
-            p = p.abs();
-            if 2.0 * p < (3.0 * half * q - (tol * q).abs()).min((previous_step * q).abs()) {
-                previous_step = step;
-                step = p / q;
-            } else {
-                step = half;
-                previous_step = step;
-            }
-        } else {
-            step = half;
-            previous_step = step;
-        }
+        (step, previous_step) =
+            next_step([a, b, c], [fa, fb, fc], half, tol, (step, previous_step));
         a = b;
         fa = fb;
         b += if step.abs() > tol {
@@ -105,6 +80,42 @@ pub(crate) fn brent<E>(
         f: fb,
         iterations: max_iterations,
     })
+}
+
+/// Brent's next step from `b` and the step before it: inverse quadratic interpolation through
+/// `(a, b, c)` (the secant when `a = c`) where it stays well inside the bracket and shrinks
+/// fast enough, else bisection (`half`, half the bracket towards `c`).
+fn next_step(
+    [a, b, c]: [f64; 3],
+    [fa, fb, fc]: [f64; 3],
+    half: f64,
+    tol: f64,
+    (step, previous_step): (f64, f64),
+) -> (f64, f64) {
+    // Negated as written (not as `<`), so a NaN takes bisection.
+    if !(previous_step.abs() >= tol && fa.abs() > fb.abs()) {
+        return (half, half);
+    }
+    let s = fb / fa;
+    let (mut p, mut q) = if a == c {
+        (2.0 * half * s, 1.0 - s)
+    } else {
+        let q = fa / fc;
+        let r = fb / fc;
+        (
+            s * (2.0 * half * q * (q - r) - (b - a) * (r - 1.0)),
+            (q - 1.0) * (r - 1.0) * (s - 1.0),
+        )
+    };
+    if p > 0.0 {
+        q = -q;
+    }
+    p = p.abs();
+    if 2.0 * p < (3.0 * half * q - (tol * q).abs()).min((previous_step * q).abs()) {
+        (p / q, step)
+    } else {
+        (half, half)
+    }
 }
 
 /// Golden-section minimisation of f on [a, b] until b − a ≤ x_tol; returns (x, f(x), iterations).

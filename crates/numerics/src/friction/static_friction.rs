@@ -105,25 +105,7 @@ pub fn static_friction_on_grid(
         grid.cover_load(model, load, settings)?;
     }
     let brackets = grid.brackets(model, load)?;
-    let Some(&first) = brackets.first() else {
-        return Err(if load < 0.0 {
-            let pull_off = grid.pull_off_load(model)?;
-            FrictionError::LoadBelowPullOff { load, pull_off }
-        } else {
-            FrictionError::LoadAboveSearchRange {
-                load,
-                max_load: grid.net_load_at(model, 0)?,
-                d_star_min: grid.d_star(0).unwrap_or(settings.d_star_min),
-            }
-        });
-    };
-    let (Some(a), Some(b)) = (grid.d_star(first), grid.d_star(first + 1)) else {
-        return Err(FrictionError::InvalidParameter {
-            name: "grid",
-            value: first as f64,
-            expected: "a bracket inside the grid",
-        });
-    };
+    let (first, a, b) = first_bracket(model, grid, &brackets, load, settings)?;
     let fa = grid.net_load_at(model, first)?;
     let fb = grid.net_load_at(model, first + 1)?;
     // Brent runs on ln(net/F) when the whole bracket carries a compressive net load (F > 0): the
@@ -174,6 +156,37 @@ pub fn static_friction_on_grid(
         .map(|(_, p, fs)| (p, fs));
     let roots_found = grid.count_roots(&brackets);
     evaluate_at(model, load, root.x, cached, roots_found, root.iterations)
+}
+
+/// The first bracket of a sign change of `P − F_s − F` on the grid: its index and the d* at
+/// its ends; without one, why (below the pull-off load, or above the grid's range).
+fn first_bracket(
+    model: &StatisticalModel,
+    grid: &mut NetLoadGrid,
+    brackets: &[usize],
+    load: f64,
+    settings: &SolveSettings,
+) -> Result<(usize, f64, f64), FrictionError> {
+    let Some(&first) = brackets.first() else {
+        return Err(if load < 0.0 {
+            let pull_off = grid.pull_off_load(model)?;
+            FrictionError::LoadBelowPullOff { load, pull_off }
+        } else {
+            FrictionError::LoadAboveSearchRange {
+                load,
+                max_load: grid.net_load_at(model, 0)?,
+                d_star_min: grid.d_star(0).unwrap_or(settings.d_star_min),
+            }
+        });
+    };
+    let (Some(a), Some(b)) = (grid.d_star(first), grid.d_star(first + 1)) else {
+        return Err(FrictionError::InvalidParameter {
+            name: "grid",
+            value: first as f64,
+            expected: "a bracket inside the grid",
+        });
+    };
+    Ok((first, a, b))
 }
 
 /// Solve for one external load `load` (N > pull-off load).

@@ -85,7 +85,7 @@ pub fn fill_missing(map: &HeightMap, options: FillOptions) -> Result<FilledSurfa
             tolerance: options.tolerance,
         });
     }
-    let (nx, ny) = (map.nx(), map.ny());
+    let nx = map.nx();
     let z: Vec<f64> = map.heights().iter().copied().collect();
     let missing: Vec<usize> = (0..z.len()).filter(|&p| z[p].is_nan()).collect();
     if missing.is_empty() {
@@ -107,76 +107,9 @@ pub fn fill_missing(map: &HeightMap, options: FillOptions) -> Result<FilledSurfa
             min_fraction: options.min_valid_fraction,
         });
     }
-    // Stencil weights scaled by dx²: 1 along x, (dx/dy)² along y.
-    let wy = (map.dx() / map.dy()).powi(2);
-    let mut unknown = vec![usize::MAX; z.len()];
-    for (k, &p) in missing.iter().enumerate() {
-        unknown[p] = k;
-    }
+    let system = LaplaceSystem::new(map, &z, &missing);
+    let (x, iterations, residual) = system.solve(&options)?;
     let m = missing.len();
-    let mut stencil: Vec<Vec<(usize, f64)>> = Vec::with_capacity(m);
-    let mut diag = vec![0.0; m];
-    let mut b = vec![0.0; m];
-    for (k, &p) in missing.iter().enumerate() {
-        let (ix, iy) = (p % nx, p / nx);
-        let mut links = Vec::with_capacity(4);
-        let neighbours = [
-            (ix > 0).then(|| (p - 1, 1.0)),
-            (ix + 1 < nx).then(|| (p + 1, 1.0)),
-            (iy > 0).then(|| (p - nx, wy)),
-            (iy + 1 < ny).then(|| (p + nx, wy)),
-        ];
-        for (q, w) in neighbours.into_iter().flatten() {
-            diag[k] += w;
-            if z[q].is_nan() {
-                links.push((unknown[q], w));
-            } else {
-                b[k] += w * z[q];
-            }
-        }
-        stencil.push(links);
-    }
-    let apply = |x: &[f64], out: &mut [f64]| {
-        for k in 0..m {
-            out[k] = diag[k] * x[k] - stencil[k].iter().map(|&(j, w)| w * x[j]).sum::<f64>();
-        }
-    };
-    let dot = |a: &[f64], c: &[f64]| a.iter().zip(c).map(|(x, y)| x * y).sum::<f64>();
-
-    // Initial guess u = 0, so the initial residual is b; if b = 0 then u = 0 is the exact solution.
-    let mut x = vec![0.0; m];
-    let mut r = b.clone();
-    let b_norm = dot(&b, &b).sqrt();
-    let reference = if b_norm > 0.0 { b_norm } else { 1.0 };
-    let mut s: Vec<f64> = (0..m).map(|k| r[k] / diag[k]).collect();
-    let mut d = s.clone();
-    let mut rs = dot(&r, &s);
-    let mut ad = vec![0.0; m];
-    let mut iterations = 0;
-    let mut residual = dot(&r, &r).sqrt() / reference;
-    while residual > options.tolerance {
-        if iterations == options.max_iterations {
-            return Err(FillError::NotConverged {
-                iterations,
-                relative_residual: residual,
-            });
-        }
-        apply(&d, &mut ad);
-        let alpha = rs / dot(&d, &ad);
-        for k in 0..m {
-            x[k] += alpha * d[k];
-            r[k] -= alpha * ad[k];
-            s[k] = r[k] / diag[k];
-        }
-        let rs_new = dot(&r, &s);
-        let beta = rs_new / rs;
-        rs = rs_new;
-        for k in 0..m {
-            d[k] = s[k] + beta * d[k];
-        }
-        iterations += 1;
-        residual = dot(&r, &r).sqrt() / reference;
-    }
     let mut filled = map.heights().clone();
     for (&p, &value) in missing.iter().zip(&x) {
         filled[[p / nx, p % nx]] = value;
@@ -187,4 +120,99 @@ pub fn fill_missing(map: &HeightMap, options: FillOptions) -> Result<FilledSurfa
         iterations,
         relative_residual: residual,
     })
+}
+
+/// The discrete Laplace equation on the missing points (5-point stencil, weights scaled by dx²:
+/// 1 along x, (dx/dy)² along y), the known neighbours moved to the right-hand side.
+struct LaplaceSystem {
+    /// Per unknown: its unknown neighbours and their weights.
+    stencil: Vec<Vec<(usize, f64)>>,
+    diag: Vec<f64>,
+    b: Vec<f64>,
+}
+
+impl LaplaceSystem {
+    fn new(map: &HeightMap, z: &[f64], missing: &[usize]) -> Self {
+        let (nx, ny) = (map.nx(), map.ny());
+        let wy = (map.dx() / map.dy()).powi(2);
+        let mut unknown = vec![usize::MAX; z.len()];
+        for (k, &p) in missing.iter().enumerate() {
+            unknown[p] = k;
+        }
+        let m = missing.len();
+        let mut stencil: Vec<Vec<(usize, f64)>> = Vec::with_capacity(m);
+        let mut diag = vec![0.0; m];
+        let mut b = vec![0.0; m];
+        for (k, &p) in missing.iter().enumerate() {
+            let (ix, iy) = (p % nx, p / nx);
+            let mut links = Vec::with_capacity(4);
+            let neighbours = [
+                (ix > 0).then(|| (p - 1, 1.0)),
+                (ix + 1 < nx).then(|| (p + 1, 1.0)),
+                (iy > 0).then(|| (p - nx, wy)),
+                (iy + 1 < ny).then(|| (p + nx, wy)),
+            ];
+            for (q, w) in neighbours.into_iter().flatten() {
+                diag[k] += w;
+                if z[q].is_nan() {
+                    links.push((unknown[q], w));
+                } else {
+                    b[k] += w * z[q];
+                }
+            }
+            stencil.push(links);
+        }
+        Self { stencil, diag, b }
+    }
+
+    /// `out = A x`.
+    fn apply(&self, x: &[f64], out: &mut [f64]) {
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = self.diag[k] * x[k] - self.stencil[k].iter().map(|&(j, w)| w * x[j]).sum::<f64>();
+        }
+    }
+
+    /// Jacobi-preconditioned conjugate gradients from `x = 0` to the relative residual
+    /// `|r|/|b| ≤ tolerance`: the solution, the iterations and the final relative residual.
+    fn solve(&self, options: &FillOptions) -> Result<(Vec<f64>, usize, f64), FillError> {
+        let (diag, b) = (&self.diag, &self.b);
+        let m = b.len();
+        let dot = |a: &[f64], c: &[f64]| a.iter().zip(c).map(|(x, y)| x * y).sum::<f64>();
+        // Initial guess u = 0, so the initial residual is b; if b = 0 then u = 0 is the exact
+        // solution.
+        let mut x = vec![0.0; m];
+        let mut r = b.clone();
+        let b_norm = dot(b, b).sqrt();
+        let reference = if b_norm > 0.0 { b_norm } else { 1.0 };
+        let mut s: Vec<f64> = (0..m).map(|k| r[k] / diag[k]).collect();
+        let mut d = s.clone();
+        let mut rs = dot(&r, &s);
+        let mut ad = vec![0.0; m];
+        let mut iterations = 0;
+        let mut residual = dot(&r, &r).sqrt() / reference;
+        while residual > options.tolerance {
+            if iterations == options.max_iterations {
+                return Err(FillError::NotConverged {
+                    iterations,
+                    relative_residual: residual,
+                });
+            }
+            self.apply(&d, &mut ad);
+            let alpha = rs / dot(&d, &ad);
+            for k in 0..m {
+                x[k] += alpha * d[k];
+                r[k] -= alpha * ad[k];
+                s[k] = r[k] / diag[k];
+            }
+            let rs_new = dot(&r, &s);
+            let beta = rs_new / rs;
+            rs = rs_new;
+            for k in 0..m {
+                d[k] = s[k] + beta * d[k];
+            }
+            iterations += 1;
+            residual = dot(&r, &r).sqrt() / reference;
+        }
+        Ok((x, iterations, residual))
+    }
 }

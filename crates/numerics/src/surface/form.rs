@@ -10,6 +10,8 @@
 //! `O(nx·ny·(n+1)²)`. Degree 1 is the least-squares plane (ISO 25178-2 "F-operator: plane").
 //! Missing points stay missing in the result.
 
+use ndarray::Array2;
+
 use super::{HeightMap, HeightMapError};
 
 /// Highest polynomial degree accepted (66 terms); higher degrees are rarely form, and the cost grows
@@ -80,7 +82,39 @@ pub fn remove_polynomial_form(map: &HeightMap, degree: usize) -> Result<FormRemo
     }
     let px = legendre_table(map.nx(), degree);
     let py = legendre_table(map.ny(), degree);
-    let k = degree + 1;
+    let (mut gram, rhs) = normal_equations(z, &orders, &px, &py);
+    let coefficients =
+        solve_cholesky(&mut gram, &rhs, n_terms).ok_or(FormError::Singular { degree })?;
+
+    let (residual, sum_sq) = subtract_form(z, &orders, &coefficients, &px, &py);
+    let surface = HeightMap::new(residual, map.dx(), map.dy())?;
+    Ok(FormRemoval {
+        surface,
+        degree,
+        terms: orders
+            .iter()
+            .zip(&coefficients)
+            .map(|(&(x_order, y_order), &coefficient)| LegendreTerm {
+                x_order,
+                y_order,
+                coefficient,
+            })
+            .collect(),
+        residual_rms: (sum_sq / valid as f64).sqrt(),
+    })
+}
+
+/// The normal equations `G c = r` of the least-squares fit of the Legendre products
+/// `P_i(x) P_j(y)` (`orders`) to the valid heights of `z`, accumulated row by row: `G` is
+/// symmetric, both triangles filled.
+fn normal_equations(
+    z: &Array2<f64>,
+    orders: &[(usize, usize)],
+    px: &[Vec<f64>],
+    py: &[Vec<f64>],
+) -> (Vec<f64>, Vec<f64>) {
+    let n_terms = orders.len();
+    let k = px.first().map_or(1, Vec::len);
     let mut gram = vec![0.0; n_terms * n_terms];
     let mut rhs = vec![0.0; n_terms];
     let mut row_moments = vec![0.0; k * k];
@@ -113,15 +147,24 @@ pub fn remove_polynomial_form(map: &HeightMap, degree: usize) -> Result<FormRemo
             gram[p * n_terms + q] = gram[q * n_terms + p];
         }
     }
-    let coefficients =
-        solve_cholesky(&mut gram, &rhs, n_terms).ok_or(FormError::Singular { degree })?;
+    (gram, rhs)
+}
 
+/// `z` minus the fitted form (missing points stay missing) and the sum of squared residuals.
+fn subtract_form(
+    z: &Array2<f64>,
+    orders: &[(usize, usize)],
+    coefficients: &[f64],
+    px: &[Vec<f64>],
+    py: &[Vec<f64>],
+) -> (Array2<f64>, f64) {
+    let k = px.first().map_or(1, Vec::len);
     let mut residual = z.clone();
     let mut sum_sq = 0.0;
     let mut row_coefficients = vec![0.0; k];
     for (iy, mut row) in residual.rows_mut().into_iter().enumerate() {
         row_coefficients.fill(0.0);
-        for (&(i, j), &c) in orders.iter().zip(&coefficients) {
+        for (&(i, j), &c) in orders.iter().zip(coefficients) {
             row_coefficients[i] += c * py[iy][j];
         }
         let mut row_sum_sq = 0.0;
@@ -139,21 +182,7 @@ pub fn remove_polynomial_form(map: &HeightMap, degree: usize) -> Result<FormRemo
         }
         sum_sq += row_sum_sq;
     }
-    let surface = HeightMap::new(residual, map.dx(), map.dy())?;
-    Ok(FormRemoval {
-        surface,
-        degree,
-        terms: orders
-            .iter()
-            .zip(&coefficients)
-            .map(|(&(x_order, y_order), &coefficient)| LegendreTerm {
-                x_order,
-                y_order,
-                coefficient,
-            })
-            .collect(),
-        residual_rms: (sum_sq / valid as f64).sqrt(),
-    })
+    (residual, sum_sq)
 }
 
 /// `(x_order, y_order)` of every term with `x_order + y_order ≤ degree`, by total degree, then by

@@ -135,17 +135,7 @@ pub fn find_summits(map: &HeightMap, options: SummitOptions) -> Result<Summits, 
     let prominences = options
         .min_prominence
         .map(|_| topographic_prominences(flat, nx, ny, boundary));
-    let pairs = |n: usize| -> Vec<Option<(usize, usize)>> {
-        (0..n)
-            .map(|i| {
-                Some((
-                    neighbour_index(i, -1, n, boundary)?,
-                    neighbour_index(i, 1, n, boundary)?,
-                ))
-            })
-            .collect()
-    };
-    let (columns, rows) = (pairs(nx), pairs(ny));
+    let (columns, rows) = (neighbour_pairs(nx, boundary), neighbour_pairs(ny, boundary));
 
     let mut summits = Vec::new();
     let mut candidate_count = 0;
@@ -159,17 +149,7 @@ pub fn find_summits(map: &HeightMap, options: SummitOptions) -> Result<Summits, 
             };
             let p = iy * nx + ix;
             let centre = flat[p];
-            // Raster indices in the order of NEIGHBOURS.
-            let q = [
-                ym * nx + xm,
-                ym * nx + ix,
-                ym * nx + xp,
-                iy * nx + xm,
-                iy * nx + xp,
-                yp * nx + xm,
-                yp * nx + ix,
-                yp * nx + xp,
-            ];
+            let q = neighbour_raster([xm, ix, xp], [ym, iy, yp], nx);
             let around = q.map(|j| flat[j]);
             if centre.is_nan() || around.iter().any(|h| h.is_nan()) {
                 continue;
@@ -196,25 +176,15 @@ pub fn find_summits(map: &HeightMap, options: SummitOptions) -> Result<Summits, 
             {
                 continue;
             }
-            // around: 0 (−1,−1) 1 (0,−1) 2 (1,−1) 3 (−1,0) 4 (1,0) 5 (−1,1) 6 (0,1) 7 (1,1)
-            let zx = (around[4] - around[3]) / (2.0 * dx);
-            let zy = (around[6] - around[1]) / (2.0 * dy);
-            let zxx = (around[4] - 2.0 * centre + around[3]) / (dx * dx);
-            let zyy = (around[6] - 2.0 * centre + around[1]) / (dy * dy);
-            let zxy = (around[7] - around[2] - around[5] + around[0]) / (4.0 * dx * dy);
-            let half_sum = -(zxx + zyy) / 2.0;
-            let half_diff = (((zxx - zyy) / 2.0).powi(2) + zxy * zxy).sqrt();
-            summits.push(Summit {
+            summits.push(summit_at(
                 ix,
                 iy,
-                x: ix as f64 * dx,
-                y: iy as f64 * dy,
+                (dx, dy),
+                centre,
+                &around,
                 height,
-                slope: (zx * zx + zy * zy).sqrt(),
-                radius: 1.0 / half_sum,
-                principal_curvatures: [half_sum + half_diff, half_sum - half_diff],
                 prominence,
-            });
+            ));
         }
     }
     let statistics = summarise(&summits, candidate_count, dx * dy, mean);
@@ -222,6 +192,66 @@ pub fn find_summits(map: &HeightMap, options: SummitOptions) -> Result<Summits, 
         summits,
         statistics,
     })
+}
+
+/// Raster indices of the 8 neighbours in the order of `NEIGHBOURS`, from the columns
+/// `[previous, own, next]` and rows `[previous, own, next]` of a point on a grid `nx` wide.
+fn neighbour_raster([xm, ix, xp]: [usize; 3], [ym, iy, yp]: [usize; 3], nx: usize) -> [usize; 8] {
+    [
+        ym * nx + xm,
+        ym * nx + ix,
+        ym * nx + xp,
+        iy * nx + xm,
+        iy * nx + xp,
+        yp * nx + xm,
+        yp * nx + ix,
+        yp * nx + xp,
+    ]
+}
+
+/// The neighbours (previous, next) of every index along an axis of `n` points, `None` where the
+/// boundary leaves one out.
+fn neighbour_pairs(n: usize, boundary: Boundary) -> Vec<Option<(usize, usize)>> {
+    (0..n)
+        .map(|i| {
+            Some((
+                neighbour_index(i, -1, n, boundary)?,
+                neighbour_index(i, 1, n, boundary)?,
+            ))
+        })
+        .collect()
+}
+
+/// The summit at `(ix, iy)` with its slope, principal curvatures and radius from central
+/// differences over its 8 neighbours `around` (in the order of `NEIGHBOURS`).
+fn summit_at(
+    ix: usize,
+    iy: usize,
+    (dx, dy): (f64, f64),
+    centre: f64,
+    around: &[f64; 8],
+    height: f64,
+    prominence: Option<f64>,
+) -> Summit {
+    // around: 0 (−1,−1) 1 (0,−1) 2 (1,−1) 3 (−1,0) 4 (1,0) 5 (−1,1) 6 (0,1) 7 (1,1)
+    let zx = (around[4] - around[3]) / (2.0 * dx);
+    let zy = (around[6] - around[1]) / (2.0 * dy);
+    let zxx = (around[4] - 2.0 * centre + around[3]) / (dx * dx);
+    let zyy = (around[6] - 2.0 * centre + around[1]) / (dy * dy);
+    let zxy = (around[7] - around[2] - around[5] + around[0]) / (4.0 * dx * dy);
+    let half_sum = -(zxx + zyy) / 2.0;
+    let half_diff = (((zxx - zyy) / 2.0).powi(2) + zxy * zxy).sqrt();
+    Summit {
+        ix,
+        iy,
+        x: ix as f64 * dx,
+        y: iy as f64 * dy,
+        height,
+        slope: (zx * zx + zy * zy).sqrt(),
+        radius: 1.0 / half_sum,
+        principal_curvatures: [half_sum + half_diff, half_sum - half_diff],
+        prominence,
+    }
 }
 
 /// `true` if the point (height `a`, raster index `p`) ranks above (height `b`, index `q`).
@@ -272,22 +302,7 @@ fn summarise(
 /// higher neighbours belong to several components is the col of all but the highest of them, whose
 /// peaks get prominence `peak − col`; the last surviving peak of each region gets `peak − region min`.
 fn topographic_prominences(z: &[f64], nx: usize, ny: usize, boundary: Boundary) -> Vec<f64> {
-    // Sort keys: descending height (order-preserving integer image of the float, inverted), then
-    // ascending raster index — the same total order as `ranks_above`.
-    let descending_key = |h: f64| {
-        let bits = h.to_bits();
-        let ascending = if bits >> 63 == 1 {
-            !bits
-        } else {
-            bits | 1 << 63
-        };
-        u64::MAX - ascending
-    };
-    let mut order: Vec<(u64, usize)> = (0..z.len())
-        .filter(|&p| !z[p].is_nan())
-        .map(|p| (descending_key(z[p]), p))
-        .collect();
-    order.par_sort_unstable();
+    let order = descending_order(z);
     const UNSEEN: usize = usize::MAX;
     // Union by size keeps the trees shallow; `peak[root]` is the highest point of the component and
     // `lowest[root]` the last (lowest) point added to it.
@@ -352,6 +367,28 @@ fn topographic_prominences(z: &[f64], nx: usize, ny: usize, boundary: Boundary) 
         }
     }
     prominence
+}
+
+/// The valid points of `z` from highest to lowest, ties by ascending raster index (the order
+/// of `ranks_above`), each with its sort key.
+fn descending_order(z: &[f64]) -> Vec<(u64, usize)> {
+    // Sort keys: descending height (order-preserving integer image of the float, inverted), then
+    // ascending raster index — the same total order as `ranks_above`.
+    let descending_key = |h: f64| {
+        let bits = h.to_bits();
+        let ascending = if bits >> 63 == 1 {
+            !bits
+        } else {
+            bits | 1 << 63
+        };
+        u64::MAX - ascending
+    };
+    let mut order: Vec<(u64, usize)> = (0..z.len())
+        .filter(|&p| !z[p].is_nan())
+        .map(|p| (descending_key(z[p]), p))
+        .collect();
+    order.par_sort_unstable();
+    order
 }
 
 /// Root of `p` with path halving.
