@@ -76,54 +76,15 @@ pub fn slurm(args: SlurmArgs) -> Result<ExitCode> {
     let exe = std::env::current_exe().context("cannot locate the asperity executable")?;
     let needed = plan.needed_for(&study.outputs);
     let units = ShardPlan::split(&plan, &needed, 1).units.max(1);
-    let max_array = max_array_size();
-    let requested = args.array_size.unwrap_or(units);
-    anyhow::ensure!(requested >= 1, "--array-size must be at least 1");
-    let count = requested.min(units).min(max_array);
-    if count < requested {
-        eprintln!(
-            "note: {count} array tasks instead of {requested} ({units} units of work, \
-             MaxArraySize {max_array})"
-        );
-    }
+    let count = array_count(&args, units)?;
     if let Some(k) = args.throttle {
         anyhow::ensure!(k >= 1, "--throttle must be at least 1");
     }
     let split = ShardPlan::split(&plan, &needed, count);
     std::fs::create_dir_all(dir.join("logs"))
         .with_context(|| format!("cannot create {}", dir.display()))?;
-    let header = |name: &str, log: &str| {
-        let mut s = format!(
-            "#!/bin/bash\n#SBATCH --job-name={name}\n#SBATCH --output={}\n\
-             #SBATCH --cpus-per-task={}\n",
-            dir.join("logs").join(log).display(),
-            args.cpus_per_task
-        );
-        for (flag, value) in [
-            ("partition", &args.partition),
-            ("time", &args.time),
-            ("mem", &args.mem),
-        ] {
-            if let Some(v) = value {
-                let _ = writeln!(s, "#SBATCH --{flag}={v}");
-            }
-        }
-        s
-    };
-    let mut run = format!(
-        "{} run {} --cache {} --quiet --jobs {}",
-        quote(&exe),
-        quote(&study_path),
-        quote(&cache),
-        args.cpus_per_task
-    );
-    for o in &args.set.overrides {
-        let _ = write!(
-            run,
-            " --set {}",
-            quote_text(&format!("{}={}", o.name, o.text))
-        );
-    }
+    let header = |name: &str, log: &str| sbatch_header(&args, &dir, name, log);
+    let run = run_command(&args, &exe, &study_path, &cache);
     let mut array = header(&format!("asperity-{}", study.name()), "shard-%A_%a.out");
     let throttle = args.throttle.map(|k| format!("%{k}")).unwrap_or_default();
     let _ = writeln!(array, "#SBATCH --array=0-{}{throttle}", count - 1);
@@ -168,6 +129,61 @@ pub fn slurm(args: SlurmArgs) -> Result<ExitCode> {
     println!("submitted array job {array_id} and collect job {collect_id}");
     println!("tables will be in {}", out.display());
     Ok(ExitCode::SUCCESS)
+}
+
+/// The number of array tasks: `--array-size` (default one per unit of work), at most the units
+/// and Slurm's `MaxArraySize`; says so when it is fewer than asked.
+fn array_count(args: &SlurmArgs, units: usize) -> Result<usize> {
+    let max_array = max_array_size();
+    let requested = args.array_size.unwrap_or(units);
+    anyhow::ensure!(requested >= 1, "--array-size must be at least 1");
+    let count = requested.min(units).min(max_array);
+    if count < requested {
+        eprintln!(
+            "note: {count} array tasks instead of {requested} ({units} units of work, \
+             MaxArraySize {max_array})"
+        );
+    }
+    Ok(count)
+}
+
+/// The `#SBATCH` header of a job script named `name` logging to `dir/logs/log`.
+fn sbatch_header(args: &SlurmArgs, dir: &Path, name: &str, log: &str) -> String {
+    let mut s = format!(
+        "#!/bin/bash\n#SBATCH --job-name={name}\n#SBATCH --output={}\n\
+         #SBATCH --cpus-per-task={}\n",
+        dir.join("logs").join(log).display(),
+        args.cpus_per_task
+    );
+    for (flag, value) in [
+        ("partition", &args.partition),
+        ("time", &args.time),
+        ("mem", &args.mem),
+    ] {
+        if let Some(v) = value {
+            let _ = writeln!(s, "#SBATCH --{flag}={v}");
+        }
+    }
+    s
+}
+
+/// The `asperity run` command line each job runs (without `--shard` or `--out`).
+fn run_command(args: &SlurmArgs, exe: &Path, study_path: &Path, cache: &Path) -> String {
+    let mut run = format!(
+        "{} run {} --cache {} --quiet --jobs {}",
+        quote(exe),
+        quote(study_path),
+        quote(cache),
+        args.cpus_per_task
+    );
+    for o in &args.set.overrides {
+        let _ = write!(
+            run,
+            " --set {}",
+            quote_text(&format!("{}={}", o.name, o.text))
+        );
+    }
+    run
 }
 
 /// Runs `sbatch --parsable [extra] script` and returns the job id.

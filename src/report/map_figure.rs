@@ -109,36 +109,8 @@ impl MapFigure<'_> {
         let factor = nx.max(ny).div_ceil(MAX_PIXELS).max(1);
         let raster = block_average(self.values, factor);
         let (my, mx) = raster.dim();
-        let shown = |v: f64| v.is_finite() && (!self.zero_is_empty || v > 0.0);
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for &v in raster.iter().filter(|v| shown(**v)) {
-            lo = lo.min(v);
-            hi = hi.max(v);
-        }
-        if self.zero_is_empty {
-            lo = 0.0;
-        }
-        if !hi.is_finite() {
-            (lo, hi) = (0.0, 1.0);
-        } else if hi <= lo {
-            hi = lo + lo.abs().max(1e-30);
-        }
-        let mut rgb = Vec::with_capacity(mx * my * 3);
-        let mut missing = false;
-        for iy in (0..my).rev() {
-            for ix in 0..mx {
-                let v = raster[[iy, ix]];
-                let c = if v.is_nan() {
-                    missing = true;
-                    NAN_GREY
-                } else if !shown(v) {
-                    EMPTY_WHITE
-                } else {
-                    colour((v - lo) / (hi - lo))
-                };
-                rgb.extend_from_slice(&c);
-            }
-        }
+        let (lo, hi) = self.colour_range(&raster);
+        let (rgb, missing) = self.pixels(&raster, (lo, hi));
         // Small maps are enlarged by whole pixels here so every viewer shows crisp cells.
         let zoom = ((BOX as usize) / mx.max(my)).max(1);
         let image = png_data_uri(mx * zoom, my * zoom, &enlarge(&rgb, mx, zoom))?;
@@ -168,36 +140,7 @@ impl MapFigure<'_> {
             r##"<image x="{left}" y="{top}" width="{w:.1}" height="{h:.1}" preserveAspectRatio="none" style="image-rendering:pixelated" href="{image}"/><rect x="{left}" y="{top}" width="{w:.1}" height="{h:.1}" fill="none" stroke="#333"/>"##
         );
         let bottom = top + h;
-        for (v, label) in linear_ticks(0.0, lx * length.factor, 4) {
-            let x = left + v / (lx * length.factor) * w;
-            let _ = write!(
-                s,
-                r##"<line x1="{x:.1}" y1="{bottom:.1}" x2="{x:.1}" y2="{:.1}" stroke="#333"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
-                bottom + 5.0,
-                bottom + 18.0,
-                escape(&label)
-            );
-        }
-        for (v, label) in linear_ticks(0.0, ly * length.factor, 4) {
-            let y = bottom - v / (ly * length.factor) * h;
-            let _ = write!(
-                s,
-                r##"<line x1="{:.1}" y1="{y:.1}" x2="{left}" y2="{y:.1}" stroke="#333"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
-                left - 5.0,
-                left - 8.0,
-                y + 4.0,
-                escape(&label)
-            );
-        }
-        let _ = write!(
-            s,
-            r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text><text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#,
-            left + w / 2.0,
-            bottom + 40.0,
-            escape(&length.axis_label("x")),
-            top + h / 2.0,
-            escape(&length.axis_label("y"))
-        );
+        draw_axes(&mut s, (left, top, w, h), (lx, ly), &length);
         self.draw_colour_bar(&mut s, (bar_x, top, h), (lo, hi), &value_unit, &bar_image);
         let mut notes = Vec::new();
         if self.zero_is_empty {
@@ -217,6 +160,52 @@ impl MapFigure<'_> {
         }
         s.push_str("</svg>");
         Ok(s)
+    }
+
+    /// The colour scale's range: the shown values' minimum (0 when zero means no contact) and
+    /// maximum, widened when they coincide.
+    fn colour_range(&self, raster: &Array2<f64>) -> (f64, f64) {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &v in raster.iter().filter(|v| self.shown(**v)) {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+        if self.zero_is_empty {
+            lo = 0.0;
+        }
+        if !hi.is_finite() {
+            (lo, hi) = (0.0, 1.0);
+        } else if hi <= lo {
+            hi = lo + lo.abs().max(1e-30);
+        }
+        (lo, hi)
+    }
+
+    /// Whether `v` is drawn in colour (not missing, not an empty zero).
+    fn shown(&self, v: f64) -> bool {
+        v.is_finite() && (!self.zero_is_empty || v > 0.0)
+    }
+
+    /// RGB rows of the raster, top row first, and whether any point is missing.
+    fn pixels(&self, raster: &Array2<f64>, (lo, hi): (f64, f64)) -> (Vec<u8>, bool) {
+        let (my, mx) = raster.dim();
+        let mut rgb = Vec::with_capacity(mx * my * 3);
+        let mut missing = false;
+        for iy in (0..my).rev() {
+            for ix in 0..mx {
+                let v = raster[[iy, ix]];
+                let c = if v.is_nan() {
+                    missing = true;
+                    NAN_GREY
+                } else if !self.shown(v) {
+                    EMPTY_WHITE
+                } else {
+                    colour((v - lo) / (hi - lo))
+                };
+                rgb.extend_from_slice(&c);
+            }
+        }
+        (rgb, missing)
     }
 
     fn draw_colour_bar(
@@ -252,6 +241,47 @@ impl MapFigure<'_> {
             );
         }
     }
+}
+
+/// Ticks and labels of the map's x and y axes (lengths `lx`, `ly` in m) around the box
+/// `(left, top, w, h)`.
+fn draw_axes(
+    s: &mut String,
+    (left, top, w, h): (f64, f64, f64, f64),
+    (lx, ly): (f64, f64),
+    length: &DisplayUnit,
+) {
+    let bottom = top + h;
+    for (v, label) in linear_ticks(0.0, lx * length.factor, 4) {
+        let x = left + v / (lx * length.factor) * w;
+        let _ = write!(
+            s,
+            r##"<line x1="{x:.1}" y1="{bottom:.1}" x2="{x:.1}" y2="{:.1}" stroke="#333"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
+            bottom + 5.0,
+            bottom + 18.0,
+            escape(&label)
+        );
+    }
+    for (v, label) in linear_ticks(0.0, ly * length.factor, 4) {
+        let y = bottom - v / (ly * length.factor) * h;
+        let _ = write!(
+            s,
+            r##"<line x1="{:.1}" y1="{y:.1}" x2="{left}" y2="{y:.1}" stroke="#333"/><text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"##,
+            left - 5.0,
+            left - 8.0,
+            y + 4.0,
+            escape(&label)
+        );
+    }
+    let _ = write!(
+        s,
+        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text><text transform="translate(16,{:.1}) rotate(-90)" text-anchor="middle">{}</text>"#,
+        left + w / 2.0,
+        bottom + 40.0,
+        escape(&length.axis_label("x")),
+        top + h / 2.0,
+        escape(&length.axis_label("y"))
+    );
 }
 
 #[cfg(test)]

@@ -70,6 +70,59 @@ pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Re
         .ok_or_else(|| ReportError::NotAResultsDir(dir.clone()))?;
     let scenarios = ScenarioSet::from_table(&scenario_table, options.replicates.as_deref())?;
     let mut skipped = Vec::new();
+    let tables = node_tables(dir, &scenarios, &mut skipped)?;
+    let metrics = metrics::select_metrics(&tables, &scenarios, &options.metrics)?;
+    let mut sections = Vec::new();
+
+    sections.push(trend_section(&scenarios, &metrics, &mut skipped));
+    sections.extend(twin_comparison::twin_comparison(&scenarios, &tables));
+
+    let contacts = tables.iter().find(|t| t.kind == "contact");
+    match (contacts, ResultTable::read(dir, "contacts_load_curve")?) {
+        (Some(contacts), Some(curve)) => sections.push(Section {
+            title: String::from("Load curves"),
+            intro: String::from(
+                "True contact area fraction and stress ratio at each load step of the contacts.",
+            ),
+            figures: trends::load_curve_figures(&scenarios, contacts, &curve),
+        }),
+        _ => skipped.push(String::from(
+            "load curves: they need contacts.parquet and contacts_load_curve.parquet",
+        )),
+    }
+
+    sections.extend(map_section(
+        options,
+        cache,
+        &scenarios,
+        &tables,
+        &mut skipped,
+    )?);
+
+    let study = scenario_table
+        .study
+        .clone()
+        .unwrap_or_else(|| dir.display().to_string());
+    let header = PageHeader {
+        title: format!("asperity report: {study}"),
+        facts: header_facts(options, &scenarios, &tables),
+        skipped: skipped.clone(),
+    };
+    let figures = sections.iter().map(|s| s.figures.len()).sum();
+    Ok(Report {
+        html: html::page(&header, &sections),
+        figures,
+        skipped,
+    })
+}
+
+/// The node tables of the results folder that scenarios use; the others are named in `skipped`
+/// with the reason.
+fn node_tables(
+    dir: &std::path::Path,
+    scenarios: &ScenarioSet,
+    skipped: &mut Vec<String>,
+) -> Result<Vec<NodeTable>, ReportError> {
     let mut tables = Vec::new();
     for (name, kind) in NODE_TABLES {
         match ResultTable::read(dir, name)? {
@@ -91,33 +144,25 @@ pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Re
             }
         }
     }
-    let metrics = metrics::select_metrics(&tables, &scenarios, &options.metrics)?;
-    let mut sections = Vec::new();
+    Ok(tables)
+}
 
-    sections.push(trend_section(&scenarios, &metrics, &mut skipped));
-    sections.extend(twin_comparison::twin_comparison(&scenarios, &tables));
-
-    let contacts = tables.iter().find(|t| t.kind == "contact");
-    match (contacts, ResultTable::read(dir, "contacts_load_curve")?) {
-        (Some(contacts), Some(curve)) => sections.push(Section {
-            title: String::from("Load curves"),
-            intro: String::from(
-                "True contact area fraction and stress ratio at each load step of the contacts.",
-            ),
-            figures: trends::load_curve_figures(&scenarios, contacts, &curve),
-        }),
-        _ => skipped.push(String::from(
-            "load curves: they need contacts.parquet and contacts_load_curve.parquet",
-        )),
-    }
-
+/// The maps of the chosen scenarios (`--scenario`, else spread over the swept configurations),
+/// from verified cache entries; `None` without a cache or without scenarios.
+fn map_section(
+    options: &ReportOptions,
+    cache: Option<&Cache>,
+    scenarios: &ScenarioSet,
+    tables: &[NodeTable],
+    skipped: &mut Vec<String>,
+) -> Result<Option<Section>, ReportError> {
     let chosen = if options.map_scenarios.is_empty() {
-        maps::default_scenarios(&scenarios, options.map_count)
+        maps::default_scenarios(scenarios, options.map_count)
     } else {
         options.map_scenarios.clone()
     };
-    match cache {
-        Some(cache) if !chosen.is_empty() => sections.push(Section {
+    Ok(match cache {
+        Some(cache) if !chosen.is_empty() => Some(Section {
             title: String::from("Maps"),
             intro: format!(
                 "Scenarios {}: heights of the surfaces and contact pressure of the final load step, \
@@ -128,26 +173,13 @@ pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Re
                     .collect::<Vec<_>>()
                     .join(", ")
             ),
-            figures: maps::map_figures(cache, &scenarios, &tables, &chosen, &mut skipped)?,
+            figures: maps::map_figures(cache, scenarios, tables, &chosen, skipped)?,
         }),
-        Some(_) => {}
-        None => skipped.push(String::from("maps: no cache given")),
-    }
-
-    let study = scenario_table
-        .study
-        .clone()
-        .unwrap_or_else(|| dir.display().to_string());
-    let header = PageHeader {
-        title: format!("asperity report: {study}"),
-        facts: header_facts(options, &scenarios, &tables),
-        skipped: skipped.clone(),
-    };
-    let figures = sections.iter().map(|s| s.figures.len()).sum();
-    Ok(Report {
-        html: html::page(&header, &sections),
-        figures,
-        skipped,
+        Some(_) => None,
+        None => {
+            skipped.push(String::from("maps: no cache given"));
+            None
+        }
     })
 }
 

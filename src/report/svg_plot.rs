@@ -115,54 +115,66 @@ impl LinePlot {
         );
         self.draw_axes(&mut s, &x_scale, &y_scale);
         for (i, series) in self.series.iter().enumerate() {
-            let colour = PALETTE[i % PALETTE.len()];
-            let mut visible: Vec<&PlotPoint> = series
-                .points
-                .iter()
-                .filter(|p| {
-                    p.x.is_finite()
-                        && p.y.is_finite()
-                        && (!self.x_log || p.x > 0.0)
-                        && (!self.y_log || p.y > 0.0)
-                })
-                .collect();
-            visible.sort_by(|a, b| a.x.total_cmp(&b.x));
-            if series.joined && visible.len() > 1 {
-                let path: Vec<String> = visible
-                    .iter()
-                    .map(|p| format!("{:.1},{:.1}", px(p.x), py(p.y)))
-                    .collect();
-                let _ = write!(
-                    s,
-                    r#"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="1.8"/>"#,
-                    path.join(" ")
-                );
-            }
-            for p in visible {
-                let (x, y) = (px(p.x), py(p.y));
-                if let Some(e) = p.y_error.filter(|e| *e > 0.0 && e.is_finite()) {
-                    let top = py(p.y + e);
-                    let bottom = if self.y_log && p.y - e <= 0.0 {
-                        TOP + PLOT_HEIGHT
-                    } else {
-                        py(p.y - e)
-                    };
-                    let _ = write!(
-                        s,
-                        r#"<path d="M{x:.1},{top:.1}V{bottom:.1}M{:.1},{top:.1}h8M{:.1},{bottom:.1}h8" stroke="{colour}" stroke-width="1.3" fill="none"/>"#,
-                        x - 4.0,
-                        x - 4.0
-                    );
-                }
-                let _ = write!(
-                    s,
-                    r#"<circle cx="{x:.1}" cy="{y:.1}" r="3.5" fill="{colour}"/>"#
-                );
-            }
+            self.draw_series(&mut s, series, PALETTE[i % PALETTE.len()], &px, &py);
         }
         self.draw_legend(&mut s, LEFT + PLOT_WIDTH + RIGHT);
         s.push_str("</svg>");
         s
+    }
+
+    /// One series: its points (those a log axis can show), joined by a line if asked, with
+    /// error bars.
+    fn draw_series(
+        &self,
+        s: &mut String,
+        series: &PlotSeries,
+        colour: &str,
+        px: &impl Fn(f64) -> f64,
+        py: &impl Fn(f64) -> f64,
+    ) {
+        let mut visible: Vec<&PlotPoint> = series
+            .points
+            .iter()
+            .filter(|p| {
+                p.x.is_finite()
+                    && p.y.is_finite()
+                    && (!self.x_log || p.x > 0.0)
+                    && (!self.y_log || p.y > 0.0)
+            })
+            .collect();
+        visible.sort_by(|a, b| a.x.total_cmp(&b.x));
+        if series.joined && visible.len() > 1 {
+            let path: Vec<String> = visible
+                .iter()
+                .map(|p| format!("{:.1},{:.1}", px(p.x), py(p.y)))
+                .collect();
+            let _ = write!(
+                s,
+                r#"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="1.8"/>"#,
+                path.join(" ")
+            );
+        }
+        for p in visible {
+            let (x, y) = (px(p.x), py(p.y));
+            if let Some(e) = p.y_error.filter(|e| *e > 0.0 && e.is_finite()) {
+                let top = py(p.y + e);
+                let bottom = if self.y_log && p.y - e <= 0.0 {
+                    TOP + PLOT_HEIGHT
+                } else {
+                    py(p.y - e)
+                };
+                let _ = write!(
+                    s,
+                    r#"<path d="M{x:.1},{top:.1}V{bottom:.1}M{:.1},{top:.1}h8M{:.1},{bottom:.1}h8" stroke="{colour}" stroke-width="1.3" fill="none"/>"#,
+                    x - 4.0,
+                    x - 4.0
+                );
+            }
+            let _ = write!(
+                s,
+                r#"<circle cx="{x:.1}" cy="{y:.1}" r="3.5" fill="{colour}"/>"#
+            );
+        }
     }
 
     fn draw_axes(&self, s: &mut String, x_scale: &Scale, y_scale: &Scale) {

@@ -211,20 +211,59 @@ fn downstream<'a>(
         .collect()
 }
 
-/// Twin mean ± std against the measured value per group of the swept parameters.
-fn comparison_figure(scenarios: &ScenarioSet, pair: &Pair<'_>) -> Option<Figure> {
-    let measured = Metric::resolve(pair.table, pair.measured, pair.column)?;
-    let twin = Metric::resolve(pair.table, pair.twin, pair.column)?;
-    let mut rows: Vec<(String, f64, Summary)> = Vec::new();
+/// Per group of the swept parameters: its label, the measured mean and the twin's summary
+/// (groups where either has no value are left out).
+fn comparison_rows(
+    scenarios: &ScenarioSet,
+    measured: &Metric,
+    twin: &Metric,
+) -> Vec<(String, f64, Summary)> {
+    let mut rows = Vec::new();
     for (label, members) in scenarios.groups(&scenarios.swept()) {
         let values =
             |m: &Metric| -> Vec<f64> { members.iter().filter_map(|&s| m.values[s]).collect() };
-        let (Some(x), Some(y)) = (Summary::of(&values(&measured)), Summary::of(&values(&twin)))
+        let (Some(x), Some(y)) = (Summary::of(&values(measured)), Summary::of(&values(twin)))
         else {
             continue;
         };
         rows.push((label, x.mean, y));
     }
+    rows
+}
+
+/// The figure's values: measured, twin mean, std and count per group, and their ratio.
+fn comparison_table(rows: &[(String, f64, Summary)], unit: &DisplayUnit) -> ValueTable {
+    ValueTable {
+        header: vec![
+            String::from("group"),
+            unit.axis_label("measured"),
+            unit.axis_label("twin mean"),
+            unit.axis_label("twin std"),
+            String::from("n"),
+            String::from("twin / measured"),
+        ],
+        rows: rows
+            .iter()
+            .map(|(label, x, y)| {
+                vec![
+                    label.clone(),
+                    format_number(x * unit.factor),
+                    format_number(y.mean * unit.factor),
+                    y.std
+                        .map_or(String::from("—"), |e| format_number(e * unit.factor)),
+                    y.n.to_string(),
+                    format_number(y.mean / x),
+                ]
+            })
+            .collect(),
+    }
+}
+
+/// Twin mean ± std against the measured value per group of the swept parameters.
+fn comparison_figure(scenarios: &ScenarioSet, pair: &Pair<'_>) -> Option<Figure> {
+    let measured = Metric::resolve(pair.table, pair.measured, pair.column)?;
+    let twin = Metric::resolve(pair.table, pair.twin, pair.column)?;
+    let rows = comparison_rows(scenarios, &measured, &twin);
     if rows.is_empty() {
         return None;
     }
@@ -274,30 +313,7 @@ fn comparison_figure(scenarios: &ScenarioSet, pair: &Pair<'_>) -> Option<Figure>
             },
         ],
     };
-    let values = ValueTable {
-        header: vec![
-            String::from("group"),
-            unit.axis_label("measured"),
-            unit.axis_label("twin mean"),
-            unit.axis_label("twin std"),
-            String::from("n"),
-            String::from("twin / measured"),
-        ],
-        rows: rows
-            .iter()
-            .map(|(label, x, y)| {
-                vec![
-                    label.clone(),
-                    format_number(x * unit.factor),
-                    format_number(y.mean * unit.factor),
-                    y.std
-                        .map_or(String::from("—"), |e| format_number(e * unit.factor)),
-                    y.n.to_string(),
-                    format_number(y.mean / x),
-                ]
-            })
-            .collect(),
-    };
+    let values = comparison_table(&rows, &unit);
     Some(Figure {
         svg: Some(plot.to_svg()),
         caption: format!(
