@@ -19,7 +19,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 
 use asperity::engine::cache::Cache;
 use asperity::engine::execute::{execute, ExecuteOptions, NoProgress};
-use asperity::engine::output::{write_tables, write_timings, OutputMetadata};
+use asperity::engine::output::{OutputMetadata, ResultSet};
 use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::nodes::TribologyNode;
@@ -137,9 +137,11 @@ fn cached_rerun(c: &mut Criterion) {
             let report = execute(&plan, &f.cache, &f.options, &NoProgress).unwrap();
             assert_eq!(report.cached, 30_000);
             let out = f.dir.join("out");
-            let mut files = write_tables(&out, &plan, &report, &study.outputs, &f.meta).unwrap();
-            files.push(write_timings(&out, &plan, &report, &f.meta).unwrap());
-            files
+            let mut set = ResultSet::stage(&out).unwrap();
+            set.write_tables(&plan, &report, &study.outputs, &f.meta)
+                .unwrap();
+            set.write_timings(&plan, &report, &f.meta).unwrap();
+            set.publish().unwrap()
         })
     });
     group.finish();

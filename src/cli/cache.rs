@@ -7,7 +7,8 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 
 use asperity::engine::cache_admin::{
-    collect_garbage, list_entries, parse_age, remove_entry, verify_entry, GcCriteria,
+    check_structure, collect_garbage, list_entries, parse_age, remove_entry, verify_entry,
+    GcCriteria, Repair,
 };
 
 use super::CacheArg;
@@ -31,7 +32,9 @@ enum CacheAction {
         #[command(flatten)]
         cache: CacheArg,
     },
-    /// Verify every entry's checksums; exit code 1 when any entry is corrupt.
+    /// Verify every entry's checksums and the cache's folder structure (files or links where
+    /// folders belong, unknown files in kind folders, links, stray temporary files); exit code 1
+    /// when anything is corrupt or damaged.
     Verify {
         #[command(flatten)]
         cache: CacheArg,
@@ -39,8 +42,9 @@ enum CacheAction {
         #[arg(long)]
         delete: bool,
     },
-    /// Delete entries no given study can reach and/or older than an age. Criteria combine:
-    /// only entries matching all given criteria are deleted.
+    /// Repair the cache's folder structure (what `verify` reports as damaged) and delete entries
+    /// no given study can reach and/or older than an age. Criteria combine: only entries matching
+    /// all given criteria are deleted; with none, only the structure is repaired.
     Gc {
         #[command(flatten)]
         cache: CacheArg,
@@ -127,6 +131,10 @@ pub fn cache(args: CacheArgs) -> Result<ExitCode> {
         }
         CacheAction::Verify { cache, delete } => {
             let cache = cache.open()?;
+            let damage = check_structure(&cache)?;
+            for d in &damage {
+                println!("DAMAGED {d}");
+            }
             let entries = list_entries(&cache)?;
             let mut corrupt = 0;
             for e in &entries {
@@ -139,8 +147,17 @@ pub fn cache(args: CacheArgs) -> Result<ExitCode> {
                     }
                 }
             }
-            println!("{} entries verified, {corrupt} corrupt", entries.len());
-            if corrupt > 0 && !delete {
+            println!(
+                "{} entries verified, {corrupt} corrupt, {} structural damage(s){}",
+                entries.len(),
+                damage.len(),
+                if damage.is_empty() {
+                    ""
+                } else {
+                    " (`asperity cache gc` repairs them)"
+                }
+            );
+            if (corrupt > 0 && !delete) || !damage.is_empty() {
                 return Ok(ExitCode::from(1));
             }
         }
@@ -150,10 +167,6 @@ pub fn cache(args: CacheArgs) -> Result<ExitCode> {
             older_than,
             dry_run,
         } => {
-            anyhow::ensure!(
-                !studies.is_empty() || older_than.is_some(),
-                "give the studies whose entries to keep and/or --older-than AGE"
-            );
             let cache = cache.open()?;
             let mut keep: Option<HashSet<String>> = None;
             for path in &studies {
@@ -164,20 +177,33 @@ pub fn cache(args: CacheArgs) -> Result<ExitCode> {
             }
             let report = collect_garbage(&cache, &GcCriteria { keep, older_than }, dry_run)?;
             let verb = if dry_run { "would delete" } else { "deleted" };
+            for d in &report.damage {
+                let done = match (&d.repair, dry_run) {
+                    (Repair::Manual(what), _) => what.clone(),
+                    (repair, true) => format!("would be {repair}"),
+                    (repair, false) => repair.to_string(),
+                };
+                println!("damaged: {d}: {done}");
+            }
             for e in &report.removed {
                 println!("{verb} {} {} ({} bytes)", e.kind, e.key, e.bytes);
             }
+            let repaired = report
+                .damage
+                .iter()
+                .filter(|d| !matches!(d.repair, Repair::Manual(_)))
+                .count();
             println!(
-                "{verb} {} entries ({}), kept {}{}",
+                "{verb} {} entries ({}), kept {}; {} structural damage(s), {repaired} {}",
                 report.removed.len(),
                 human(report.freed_bytes),
                 report.kept,
-                if report.stale_tmp > 0 {
-                    format!("; removed {} stale temporary folders", report.stale_tmp)
-                } else {
-                    String::new()
-                }
+                report.damage.len(),
+                if dry_run { "repairable" } else { "repaired" }
             );
+            if studies.is_empty() && older_than.is_none() {
+                println!("(no studies or --older-than given: no entry is deleted)");
+            }
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -1,13 +1,19 @@
 //! The progress bar of `asperity run` (indicatif), fed by the engine's progress events.
 
+use std::collections::HashSet;
+use std::sync::Mutex;
+
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use asperity::engine::execute::{NodeStatus, Progress};
 use asperity::engine::plan::PlannedNode;
 
 /// A progress bar with ETA on stderr (hidden with `--quiet` or when stderr is not a terminal).
+/// Each distinct warning is printed once: one cause met by many nodes (a damaged cache folder
+/// every result of a kind fails to be stored in) is one line, not one per node.
 pub struct BarProgress {
     bar: ProgressBar,
+    warned: Mutex<HashSet<String>>,
 }
 
 impl BarProgress {
@@ -22,7 +28,10 @@ impl BarProgress {
             )
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
-        Self { bar }
+        Self {
+            bar,
+            warned: Mutex::default(),
+        }
     }
 
     pub fn finish(&self) {
@@ -49,6 +58,12 @@ impl Progress for BarProgress {
     }
 
     fn warn(&self, message: &str) {
-        self.bar.suspend(|| eprintln!("warning: {message}"));
+        let mut warned = self
+            .warned
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if warned.insert(message.to_string()) {
+            self.bar.suspend(|| eprintln!("warning: {message}"));
+        }
     }
 }

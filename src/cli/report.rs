@@ -6,7 +6,8 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
-use asperity::report::{build_report, ReportOptions};
+use asperity::engine::output::Generation;
+use asperity::report::{build_report, Report, ReportOptions};
 
 /// Arguments of `asperity report`.
 #[derive(Debug, clap::Args)]
@@ -49,12 +50,8 @@ pub fn report(args: ReportArgs) -> Result<ExitCode> {
         map_count: args.maps,
         map_scenarios: args.scenario,
     };
-    let report = build_report(&options, Some(&cache))?;
     let out = args.out.unwrap_or_else(|| args.results.join("report.html"));
-    let tmp = out.with_extension("html.tmp");
-    std::fs::write(&tmp, &report.html)
-        .with_context(|| format!("cannot write {}", tmp.display()))?;
-    std::fs::rename(&tmp, &out).with_context(|| format!("cannot write {}", out.display()))?;
+    let report = read_one_set(&options, &cache, &out)?;
     for s in &report.skipped {
         eprintln!("skipped: {s}");
     }
@@ -65,4 +62,37 @@ pub fn report(args: ReportArgs) -> Result<ExitCode> {
         report.html.len() / 1024
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// How often the report is rebuilt when runs keep publishing into the results folder.
+const READ_ATTEMPTS: usize = 3;
+
+/// Builds the report from one published set of tables and writes it to `out`. A run publishes
+/// a new set by replacing the folder whole (a new [`Generation`]); a report whose folder changed
+/// while it read the tables, or before its page was written into it, is built again.
+fn read_one_set(
+    options: &ReportOptions,
+    cache: &asperity::engine::cache::Cache,
+    out: &std::path::Path,
+) -> Result<Report> {
+    let generation = || {
+        Generation::of(&options.results_dir)
+            .with_context(|| format!("cannot read {}", options.results_dir.display()))
+    };
+    for _ in 0..READ_ATTEMPTS {
+        let before = generation()?;
+        let report = build_report(options, Some(cache))?;
+        let tmp = out.with_extension("html.tmp");
+        std::fs::write(&tmp, &report.html)
+            .with_context(|| format!("cannot write {}", tmp.display()))?;
+        std::fs::rename(&tmp, out).with_context(|| format!("cannot write {}", out.display()))?;
+        if generation()? == before {
+            return Ok(report);
+        }
+    }
+    anyhow::bail!(
+        "{} was replaced by {READ_ATTEMPTS} runs while the report read it; run the report again \
+         when the runs writing into it are done",
+        options.results_dir.display()
+    )
 }

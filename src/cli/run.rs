@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use asperity::engine::execute::{
     execute, execute_nodes, ExecuteOptions, NodeOutcome, NodeStatus, RunReport,
 };
-use asperity::engine::output::{write_summaries, write_tables, write_timings, OutputMetadata};
+use asperity::engine::output::{check_target, OutputMetadata, ResultSet};
 use asperity::engine::plan::Plan;
 use asperity::engine::shard::{Shard, ShardPlan};
 
@@ -22,7 +22,9 @@ pub struct RunArgs {
     study: PathBuf,
     #[command(flatten)]
     set: super::SetArg,
-    /// Output folder for the Parquet tables [default: results/<study>].
+    /// Output folder for the Parquet tables [default: results/<study>]. It is replaced whole,
+    /// in one step, when the run's tables are complete (files put into it, such as an earlier
+    /// report.html, go with it); only an absent, empty or earlier results folder is replaced.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     #[command(flatten)]
@@ -65,6 +67,9 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
             .unwrap_or_else(default_memory_budget),
         tool_version: asperity::TOOL_VERSION.to_string(),
     };
+    if args.shard.is_none() {
+        check_target(&out)?;
+    }
     let progress = BarProgress::new(args.quiet);
     if let Some(shard) = args.shard {
         let split = ShardPlan::split(&plan, &plan.needed_for(&study.outputs), shard.count);
@@ -91,15 +96,11 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         tool_version: asperity::TOOL_VERSION.to_string(),
         overrides: study.overrides.clone(),
     };
-    let mut files = write_tables(&out, &plan, &report, &study.outputs, &meta)?;
-    files.extend(write_summaries(
-        &out,
-        &plan,
-        &report,
-        &study.file.summaries,
-        &meta,
-    )?);
-    files.push(write_timings(&out, &plan, &report, &meta)?);
+    let mut set = ResultSet::stage(&out)?;
+    set.write_tables(&plan, &report, &study.outputs, &meta)?;
+    set.write_summaries(&plan, &report, &study.file.summaries, &meta)?;
+    set.write_timings(&plan, &report, &meta)?;
+    let files = set.publish()?;
     report_failures(&plan, &report);
     println!(
         "{}: {} computed, {} reused from cache, {} failed, {} skipped{} in {:.2} s",

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use asperity::engine::cache::{Cache, Manifest};
 use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, RunReport};
-use asperity::engine::output::{write_tables, OutputMetadata};
+use asperity::engine::output::{OutputMetadata, ResultSet};
 use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::nodes::TribologyNode;
@@ -58,7 +58,10 @@ fn run(dir: &Path, text: &str, cache: &Path, out: &str) -> (Plan, RunReport) {
         tool_version: String::from("test"),
         overrides: Vec::new(),
     };
-    write_tables(&dir.join(out), &plan, &report, &study.outputs, &meta).unwrap();
+    let mut set = ResultSet::stage(&dir.join(out)).unwrap();
+    set.write_tables(&plan, &report, &study.outputs, &meta)
+        .unwrap();
+    set.publish().unwrap();
     (plan, report)
 }
 

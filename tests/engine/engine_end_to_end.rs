@@ -6,7 +6,7 @@ use std::process::Command;
 
 use asperity::engine::cache::Cache;
 use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, RunReport};
-use asperity::engine::output::{write_tables, OutputMetadata};
+use asperity::engine::output::{OutputMetadata, ResultSet};
 use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::nodes::TribologyNode;
@@ -59,7 +59,10 @@ fn run(dir: &Path, text: &str, cache: &Path, out: &str) -> Run {
         tool_version: String::from("test"),
         overrides: Vec::new(),
     };
-    let files = write_tables(&dir.join(out), &plan, &report, &study.outputs, &meta).unwrap();
+    let mut set = ResultSet::stage(&dir.join(out)).unwrap();
+    set.write_tables(&plan, &report, &study.outputs, &meta)
+        .unwrap();
+    let files = set.publish().unwrap();
     Run {
         plan,
         report,

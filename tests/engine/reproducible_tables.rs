@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use asperity::engine::cache::Cache;
 use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, RunReport};
-use asperity::engine::output::{write_summaries, write_tables, write_timings, OutputMetadata};
+use asperity::engine::output::{OutputMetadata, ResultSet};
 use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::nodes::TribologyNode;
@@ -87,9 +87,13 @@ fn run(study_path: &Path, cache: &Path, out: &Path, threads: usize) -> RunReport
         tool_version: String::from("test"),
         overrides: Vec::new(),
     };
-    write_tables(out, &plan, &report, &study.outputs, &meta).unwrap();
-    write_summaries(out, &plan, &report, &study.file.summaries, &meta).unwrap();
-    write_timings(out, &plan, &report, &meta).unwrap();
+    let mut set = ResultSet::stage(out).unwrap();
+    set.write_tables(&plan, &report, &study.outputs, &meta)
+        .unwrap();
+    set.write_summaries(&plan, &report, &study.file.summaries, &meta)
+        .unwrap();
+    set.write_timings(&plan, &report, &meta).unwrap();
+    set.publish().unwrap();
     report
 }
 

@@ -1,6 +1,7 @@
 //! Crash safety, measured: `asperity run` is SIGKILLed at random (seeded) moments, again and
 //! again; a rerun then completes, every cache entry verifies, no stale temporary folder is left,
-//! no corrupt entry was ever read back, and the tables equal those of an uninterrupted run.
+//! no corrupt entry was ever read back, and the tables equal those of an uninterrupted run; a run
+//! into the killed runs' results folder removes the staging folders they left.
 //!
 //! CI runs 20 kills. For more (e.g. 200, another seed):
 //! `ASPERITY_CRASH_KILLS=200 ASPERITY_CRASH_SEED=7 cargo test --test crash_safety -- --nocapture`
@@ -106,6 +107,19 @@ fn sigkill_at_random_moments_never_corrupts_the_cache() {
         assert_same_tables(&out, &dir.join("out-ref"));
         let _ = std::fs::remove_dir_all(&cache);
     }
+    // Staging folders of killed runs are stale: the next run into that folder removes them.
+    ok(&run(
+        &study,
+        &dir.join("cache-ref"),
+        &dir.join("out-killed"),
+        &[],
+    ));
+    assert!(
+        staging_leftovers(&dir).is_empty(),
+        "{:?}",
+        staging_leftovers(&dir)
+    );
+    assert_same_tables(&dir.join("out-killed"), &dir.join("out-ref"));
     println!(
         "{kills} kills in {rounds} rounds, {landed} landed in a running process \
          (uninterrupted run: {full_ms} ms)"

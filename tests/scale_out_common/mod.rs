@@ -156,3 +156,69 @@ pub fn tmp_contents(cache_dir: &Path) -> Vec<String> {
         })
         .unwrap_or_default()
 }
+
+/// The text cells of column `name` of a Parquet table.
+pub fn text_column(path: &Path, name: &str) -> Vec<String> {
+    read_table(path)
+        .column(name)
+        .unwrap()
+        .str()
+        .unwrap()
+        .iter()
+        .map(|v| v.unwrap_or_default().to_string())
+        .collect()
+}
+
+/// Asserts that a results folder holds one run's complete, joinable set: `scenarios`,
+/// `timings` and the kind tables `kinds`, where the keys the scenarios name (every `*_key`
+/// column) are exactly the keys of the kind tables and of the timings.
+pub fn assert_joinable(out: &Path, kinds: &[&str]) {
+    use std::collections::BTreeSet;
+    let scenarios = out.join("scenarios.parquet");
+    let named: BTreeSet<String> = read_table(&scenarios)
+        .get_column_names()
+        .iter()
+        .filter(|c| c.ends_with("_key"))
+        .flat_map(|c| text_column(&scenarios, c))
+        .collect();
+    let listed: BTreeSet<String> = kinds
+        .iter()
+        .flat_map(|k| text_column(&out.join(format!("{k}.parquet")), "key"))
+        .collect();
+    assert!(!named.is_empty(), "no keys in {}", scenarios.display());
+    assert_eq!(
+        named,
+        listed,
+        "scenarios and kind tables of {}",
+        out.display()
+    );
+    let timed: BTreeSet<String> = text_column(&out.join("timings.parquet"), "key")
+        .into_iter()
+        .collect();
+    assert_eq!(named, timed, "scenarios and timings of {}", out.display());
+}
+
+/// Names in `dir` that a results folder's staging or replacement left (`.<name>.staging.…`,
+/// `.<name>.old.…`), or a temporary file.
+pub fn staging_leftovers(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .map(|r| {
+            r.flatten()
+                .map(|e| e.file_name().to_string_lossy().to_string())
+                .filter(|n| n.contains(".staging.") || n.contains(".old.") || n.ends_with(".tmp"))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// The integer cells of column `name` of a Parquet table.
+pub fn int_column(path: &Path, name: &str) -> Vec<i64> {
+    read_table(path)
+        .column(name)
+        .unwrap()
+        .i64()
+        .unwrap()
+        .iter()
+        .map(|v| v.unwrap_or_default())
+        .collect()
+}

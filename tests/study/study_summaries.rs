@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use asperity::engine::cache::Cache;
 use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, RunReport};
-use asperity::engine::output::{write_summaries, write_tables, OutputMetadata};
+use asperity::engine::output::{OutputMetadata, ResultSet};
 use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::nodes::TribologyNode;
@@ -104,9 +104,17 @@ fn grouped_statistics_match_the_node_table() {
     // The summaries need the surface table even though `outputs` lists only scenarios.
     assert_eq!(study.outputs, ["scenarios", "surfaces"]);
     let out = dir.join("out");
-    write_tables(&out, &plan, &report, &study.outputs, &meta).unwrap();
-    let files = write_summaries(&out, &plan, &report, &study.file.summaries, &meta).unwrap();
-    assert_eq!(files.len(), 2);
+    let mut set = ResultSet::stage(&out).unwrap();
+    set.write_tables(&plan, &report, &study.outputs, &meta)
+        .unwrap();
+    set.write_summaries(&plan, &report, &study.file.summaries, &meta)
+        .unwrap();
+    let files = set.publish().unwrap();
+    let summaries = files.iter().filter(|f| {
+        f.file_name()
+            .is_some_and(|n| n.to_string_lossy().starts_with("summary_"))
+    });
+    assert_eq!(summaries.count(), 2);
 
     let surfaces = read(&out.join("surfaces.parquet"));
     let per_sq = read(&out.join("summary_per_sq.parquet"));
@@ -164,9 +172,20 @@ fn a_metric_the_node_does_not_have_is_an_error_with_a_suggestion() {
         report,
         meta,
     } = run(&dir, &STUDY.replace("s.sdq", "s.sdqq"));
-    let e = write_summaries(&dir, &plan, &report, &study.file.summaries, &meta)
+    let mut set = ResultSet::stage(&dir.join("out")).unwrap();
+    let e = set
+        .write_summaries(&plan, &report, &study.file.summaries, &meta)
         .unwrap_err()
         .to_string();
+    drop(set);
+    // The failed set left nothing: no results folder, no staging folder.
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().to_string())
+        .filter(|n| n.contains("out"))
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
     assert!(e.contains("summary 'per_sq'"), "{e}");
     assert!(e.contains("no numeric metric 'sdqq'"), "{e}");
     assert!(e.contains("did you mean 'sdq'"), "{e}");

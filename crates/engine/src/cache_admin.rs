@@ -2,14 +2,18 @@
 //!
 //! Walks `<root>/entries/<kind>/<key[..2]>/<key>/`. Removal renames an entry into `tmp/` first
 //! (like [`Cache::discard`]), so a concurrent run either sees the whole entry or none of it and
-//! recomputes; garbage collection never touches an entry a given study can reach.
+//! recomputes; garbage collection never touches an entry a given study can reach. Besides the
+//! entries, verification checks the folder structure and garbage collection repairs it
+//! ([`crate::cache::structure`]).
 
 use std::collections::HashSet;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
-use crate::cache::{Cache, CacheError, Manifest};
+use crate::cache::{remove_any, Cache, CacheError, Manifest};
+
+pub use crate::cache::structure::{check as check_structure, Damage, Repair};
 use crate::hash::NodeKey;
 
 /// One entry found on disk.
@@ -115,19 +119,28 @@ pub struct GcReport {
     pub removed: Vec<EntryInfo>,
     pub kept: usize,
     pub freed_bytes: u64,
-    /// Temporary folders of interrupted writers removed (0 in a dry run).
-    pub stale_tmp: usize,
+    /// Structural damage found, stray temporary files and folders included; repaired unless in a
+    /// dry run (see each one's [`Repair`]).
+    pub damage: Vec<Damage>,
 }
 
-/// Removes the entries matching `criteria` (nothing is removed when `dry_run`), then empty
-/// prefix directories and stale temporary folders.
+/// Repairs the structure ([`check_structure`]), removes the entries matching `criteria`, then
+/// empty prefix folders; a dry run changes nothing.
 pub fn collect_garbage(
     cache: &Cache,
     criteria: &GcCriteria,
     dry_run: bool,
 ) -> Result<GcReport, CacheError> {
     let now = SystemTime::now();
-    let mut report = GcReport::default();
+    let mut report = GcReport {
+        damage: check_structure(cache)?,
+        ..GcReport::default()
+    };
+    if !dry_run {
+        for damage in &report.damage {
+            crate::cache::structure::repair(cache, damage)?;
+        }
+    }
     for entry in list_entries(cache)? {
         if !criteria.is_garbage(&entry, now) {
             report.kept += 1;
@@ -140,7 +153,6 @@ pub fn collect_garbage(
         report.removed.push(entry);
     }
     if !dry_run {
-        report.stale_tmp = cache.clean_stale_tmp()?;
         remove_empty_dirs(&cache.root().join("entries"))?;
     }
     Ok(report)
@@ -158,7 +170,7 @@ pub fn remove_entry(cache: &Cache, entry: &EntryInfo) -> Result<(), CacheError> 
         move |source| CacheError::Io { path, source }
     };
     match fs::rename(&entry.dir, &grave) {
-        Ok(()) => fs::remove_dir_all(&grave).map_err(io(&grave)),
+        Ok(()) => remove_any(&grave).map_err(io(&grave)),
         Err(_) if !entry.dir.exists() => Ok(()),
         Err(e) => Err(io(&entry.dir)(e)),
     }

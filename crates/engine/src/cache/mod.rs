@@ -18,14 +18,16 @@
 //! reported, discarded and recomputed by the caller — never used.
 
 mod names;
+pub mod structure;
 mod summary;
+mod tmp;
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::ffi::{OsStr, OsString};
 use std::fs::{self, File};
 use std::io::{ErrorKind, Read, Write};
 use std::path::{Path, PathBuf};
-use std::time::{Duration, SystemTime, UNIX_EPOCH};
+use std::time::{SystemTime, UNIX_EPOCH};
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -36,6 +38,8 @@ use crate::npy;
 use crate::value::Field;
 
 use summary::{Summary, SUMMARY_FILE};
+use tmp::stale_tmp;
+pub(crate) use tmp::{hostname, process_alive, remove_any, FOREIGN_TMP_MAX_AGE};
 
 /// What the cache records about one entry.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -126,6 +130,12 @@ pub enum CacheError {
     },
     #[error("corrupt cache entry {path}: {reason}")]
     Corrupt { path: PathBuf, reason: String },
+    /// The cache's folder structure is damaged where a result is to be stored.
+    #[error(
+        "damaged cache: {path} {reason}, so no result can be stored under it; \
+         `asperity cache gc` repairs it"
+    )]
+    Damaged { path: PathBuf, reason: String },
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CacheError + '_ {
@@ -147,9 +157,6 @@ fn compress(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
     encoder.finish()?;
     Ok(frame)
 }
-
-/// How old a temporary directory of another host must be before it is considered abandoned.
-const FOREIGN_TMP_MAX_AGE: Duration = Duration::from_secs(24 * 3600);
 
 /// A cache rooted at a directory.
 #[derive(Debug, Clone)]
@@ -428,7 +435,8 @@ impl Cache {
         write_synced(tmp, "manifest.blake3", checksum.as_bytes())?;
         sync_dir(tmp)?;
         let parent = final_dir.parent().unwrap_or(&self.root);
-        fs::create_dir_all(parent).map_err(io_err(parent))?;
+        fs::create_dir_all(parent)
+            .map_err(|e| self.damaged_ancestor(parent).unwrap_or(io_err(parent)(e)))?;
         match fs::rename(tmp, final_dir) {
             Ok(()) => {
                 sync_dir(parent)?;
@@ -437,6 +445,32 @@ impl Cache {
             Err(_) if final_dir.exists() => Ok(false),
             Err(e) => Err(io_err(final_dir)(e)),
         }
+    }
+
+    /// The first of `dir`'s ancestors below the cache root (or `dir` itself) that exists but is
+    /// not a folder: what keeps a folder from being created there.
+    fn damaged_ancestor(&self, dir: &Path) -> Option<CacheError> {
+        let below = dir.strip_prefix(&self.root).ok()?;
+        let mut path = self.root.clone();
+        for part in below {
+            path.push(part);
+            match fs::symlink_metadata(&path) {
+                Ok(m) if m.is_dir() => {}
+                Ok(m) => {
+                    let reason = if m.file_type().is_symlink() {
+                        "is a link where a folder belongs"
+                    } else {
+                        "is a file where a folder belongs"
+                    };
+                    return Some(CacheError::Damaged {
+                        path,
+                        reason: reason.to_string(),
+                    });
+                }
+                Err(_) => return None,
+            }
+        }
+        None
     }
 
     /// Removes an entry (after a failed verification). The entry is first renamed away so no
@@ -450,64 +484,25 @@ impl Cache {
             std::process::id()
         ));
         match fs::rename(&dir, &graveyard) {
-            Ok(()) => fs::remove_dir_all(&graveyard).map_err(io_err(&graveyard)),
+            Ok(()) => remove_any(&graveyard).map_err(io_err(&graveyard)),
             Err(_) if !dir.exists() => Ok(()),
             Err(e) => Err(io_err(&dir)(e)),
         }
     }
 
-    /// Deletes temporary directories left by writers that died: those of this host whose process
-    /// no longer runs, and any older than a day. Returns how many were removed.
+    /// Deletes what writers that died left in `tmp/` ([`stale_tmp`] says what is stale). Returns
+    /// how many were removed.
     pub fn clean_stale_tmp(&self) -> Result<usize, CacheError> {
         let tmp = self.root.join("tmp");
         let mut removed = 0;
         let entries = fs::read_dir(&tmp).map_err(io_err(&tmp))?;
-        let host = hostname();
         for entry in entries.flatten() {
-            let name = entry.file_name().to_string_lossy().to_string();
-            let stale = match parse_owner(&name) {
-                Some((h, pid)) if h == host => !process_alive(pid),
-                _ => entry
-                    .metadata()
-                    .and_then(|m| m.modified())
-                    .ok()
-                    .and_then(|t| t.elapsed().ok())
-                    .is_some_and(|age| age > FOREIGN_TMP_MAX_AGE),
-            };
-            if stale && fs::remove_dir_all(entry.path()).is_ok() {
+            if stale_tmp(&entry).is_some() && remove_any(&entry.path()).is_ok() {
                 removed += 1;
             }
         }
         Ok(removed)
     }
-}
-
-/// `(host, pid)` from a temporary directory name `<key>.<host>.<pid>.<nanos>` or
-/// `discarded.<key>.<host>.<pid>`.
-fn parse_owner(name: &str) -> Option<(String, u32)> {
-    let parts: Vec<&str> = name.split('.').collect();
-    if parts.first() == Some(&"discarded") && parts.len() >= 4 {
-        let pid = parts[parts.len() - 1].parse().ok()?;
-        return Some((parts[2..parts.len() - 1].join("."), pid));
-    }
-    if parts.len() >= 4 {
-        let pid = parts[parts.len() - 2].parse().ok()?;
-        return Some((parts[1..parts.len() - 2].join("."), pid));
-    }
-    None
-}
-
-fn process_alive(pid: u32) -> bool {
-    pid == std::process::id() || Path::new(&format!("/proc/{pid}")).exists()
-}
-
-fn hostname() -> String {
-    fs::read_to_string("/proc/sys/kernel/hostname")
-        .map(|h| h.trim().to_string())
-        .ok()
-        .filter(|h| !h.is_empty())
-        .or_else(|| std::env::var("HOSTNAME").ok())
-        .unwrap_or_else(|| String::from("localhost"))
 }
 
 /// The arrays (`arrays`) and the tables (`tables`) of an entry's payloads, each payload read

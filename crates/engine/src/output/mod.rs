@@ -8,9 +8,14 @@
 //! order: `scenarios` by scenario; a kind table by the first scenario that uses an instance, then
 //! by the study file's order of the node names (an instance shared by several scenarios or names
 //! appears once, where it first appears); a long table follows its kind table. Run timings go to
-//! the separate `timings.parquet` ([`write_timings`]), the one file that differs between runs.
-//! Each file is written to a temporary name and renamed.
+//! the separate `timings.parquet` ([`ResultSet::write_timings`]), the one file that differs
+//! between runs.
+//!
+//! **All or nothing.** The tables of a run are written into a [`ResultSet`], a private staging
+//! folder, and published in one step (`result_set.rs`): a reader finds the complete set of one
+//! run or the previous one, never a mix, and a failed write leaves the previous set untouched.
 
+mod result_set;
 mod row_table;
 
 use std::borrow::Cow;
@@ -33,6 +38,8 @@ use crate::value::{ParamValue, Value};
 
 use row_table::{field_cell, text, to_series, RowTable};
 
+pub use result_set::{check_target, Generation, ResultSet};
+
 /// Identification written into every file's metadata.
 #[derive(Debug, Clone)]
 pub struct OutputMetadata {
@@ -50,63 +57,78 @@ pub enum OutputError {
     Write { path: PathBuf, message: String },
 }
 
-/// Writes the requested tables into `dir` (in parallel, one file per task); returns the files
-/// written, in the order of `tables`, each kind table followed by its long tables.
-pub fn write_tables(
-    dir: &Path,
-    plan: &Plan,
-    report: &RunReport,
-    tables: &[String],
-    meta: &OutputMetadata,
-) -> Result<Vec<PathBuf>, OutputError> {
-    std::fs::create_dir_all(dir).map_err(|e| OutputError::Write {
-        path: dir.to_path_buf(),
-        message: e.to_string(),
-    })?;
-    let written: Vec<Vec<Result<PathBuf, OutputError>>> = tables
-        .par_iter()
-        .map(|table| {
-            let files: Vec<(String, RowTable)> = if table == SCENARIOS_TABLE {
-                vec![(table.clone(), scenarios_table(plan, report))]
-            } else {
-                let (main, long) = kind_tables(plan, report, table);
-                std::iter::once((table.clone(), main))
-                    .chain(long.into_iter().map(|(n, t)| (format!("{table}_{n}"), t)))
+impl ResultSet {
+    /// Writes the requested tables (in parallel, one file per task), in the order of `tables`,
+    /// each kind table followed by its long tables.
+    pub fn write_tables(
+        &mut self,
+        plan: &Plan,
+        report: &RunReport,
+        tables: &[String],
+        meta: &OutputMetadata,
+    ) -> Result<(), OutputError> {
+        let dirs = (self.staging(), self.target());
+        let written: Vec<Vec<Result<String, OutputError>>> = tables
+            .par_iter()
+            .map(|table| {
+                let files: Vec<(String, RowTable)> = if table == SCENARIOS_TABLE {
+                    vec![(table.clone(), scenarios_table(plan, report))]
+                } else {
+                    let (main, long) = kind_tables(plan, report, table);
+                    std::iter::once((table.clone(), main))
+                        .chain(long.into_iter().map(|(n, t)| (format!("{table}_{n}"), t)))
+                        .collect()
+                };
+                files
+                    .into_par_iter()
+                    .map(|(name, t)| write_parquet(dirs, &name, t, meta))
                     .collect()
-            };
-            files
-                .into_par_iter()
-                .map(|(name, t)| write_parquet(dir, &name, t, meta))
-                .collect()
-        })
-        .collect();
-    written.into_iter().flatten().collect()
-}
-
-/// Writes one `summary_<name>` table per study summary into `dir`; returns the files written.
-pub fn write_summaries(
-    dir: &Path,
-    plan: &Plan,
-    report: &RunReport,
-    summaries: &IndexMap<String, Located<SummarySpec>>,
-    meta: &OutputMetadata,
-) -> Result<Vec<PathBuf>, OutputError> {
-    let mut written = Vec::new();
-    for (name, spec) in summaries {
-        let table = format!("summary_{name}");
-        let columns =
-            summary_columns(name, &spec.value, plan, report).map_err(|e| OutputError::Write {
-                path: dir.join(format!("{table}.parquet")),
-                message: e.to_string(),
-            })?;
-        written.push(write_parquet(
-            dir,
-            &table,
-            RowTable::from_columns(columns),
-            meta,
-        )?);
+            })
+            .collect();
+        for file in written.into_iter().flatten() {
+            self.record(file?);
+        }
+        Ok(())
     }
-    Ok(written)
+
+    /// Writes one `summary_<name>` table per study summary.
+    pub fn write_summaries(
+        &mut self,
+        plan: &Plan,
+        report: &RunReport,
+        summaries: &IndexMap<String, Located<SummarySpec>>,
+        meta: &OutputMetadata,
+    ) -> Result<(), OutputError> {
+        for (name, spec) in summaries {
+            let table = format!("summary_{name}");
+            let columns = summary_columns(name, &spec.value, plan, report).map_err(|e| {
+                OutputError::Write {
+                    path: self.target().join(format!("{table}.parquet")),
+                    message: e.to_string(),
+                }
+            })?;
+            let dirs = (self.staging(), self.target());
+            let file = write_parquet(dirs, &table, RowTable::from_columns(columns), meta)?;
+            self.record(file);
+        }
+        Ok(())
+    }
+
+    /// Writes `timings.parquet`: one row per instance the run needed, in the kind tables' row
+    /// order, with `key`, `kind`, `nodes`, `status`, `from_cache` and `compute_seconds` (the time
+    /// of the computation that produced the result, also when it was read from the cache). It
+    /// describes the run, not the results, and is the one output that is not byte-reproducible.
+    pub fn write_timings(
+        &mut self,
+        plan: &Plan,
+        report: &RunReport,
+        meta: &OutputMetadata,
+    ) -> Result<(), OutputError> {
+        let dirs = (self.staging(), self.target());
+        let file = write_parquet(dirs, TIMINGS_TABLE, timings_table(plan, report), meta)?;
+        self.record(file);
+        Ok(())
+    }
 }
 
 fn scenarios_table(plan: &Plan, report: &RunReport) -> RowTable {
@@ -240,16 +262,8 @@ fn row_order(plan: &Plan) -> Vec<usize> {
 /// The name of the run-timing table.
 pub const TIMINGS_TABLE: &str = "timings";
 
-/// Writes `timings.parquet`: one row per instance the run needed, in the kind tables' row order,
-/// with `key`, `kind`, `nodes`, `status`, `from_cache` and `compute_seconds` (the time of the
-/// computation that produced the result, also when it was read from the cache). It describes the
-/// run, not the results, and is the one output that is not byte-reproducible.
-pub fn write_timings(
-    dir: &Path,
-    plan: &Plan,
-    report: &RunReport,
-    meta: &OutputMetadata,
-) -> Result<PathBuf, OutputError> {
+/// The rows of `timings.parquet` ([`ResultSet::write_timings`]).
+fn timings_table(plan: &Plan, report: &RunReport) -> RowTable {
     let mut t = RowTable::default();
     for i in row_order(plan) {
         let Some(outcome) = report.outcomes.get(i).and_then(Option::as_ref) else {
@@ -273,7 +287,7 @@ pub fn write_timings(
             ),
         ]);
     }
-    write_parquet(dir, TIMINGS_TABLE, t, meta)
+    t
 }
 
 fn add_long_tables(long: &mut BTreeMap<String, RowTable>, key: &str, outcome: &NodeOutcome) {
@@ -299,15 +313,18 @@ fn append_long(target: &mut RowTable, key: &str, t: &Table) {
     target.push_columns(rows, std::iter::once(key_column).chain(columns));
 }
 
+/// Writes `<name>.parquet` into the staging folder, fsynced; returns its file name. Errors name
+/// the file as it is published, in the target folder.
 fn write_parquet(
-    dir: &Path,
+    (staging, target): (&Path, &Path),
     name: &str,
     table: RowTable,
     meta: &OutputMetadata,
-) -> Result<PathBuf, OutputError> {
-    let path = dir.join(format!("{name}.parquet"));
+) -> Result<String, OutputError> {
+    let file_name = format!("{name}.parquet");
+    let path = staging.join(&file_name);
     let err = |message: String| OutputError::Write {
-        path: path.clone(),
+        path: target.join(&file_name),
         message,
     };
     let units: BTreeMap<&str, &str> = table
@@ -341,13 +358,12 @@ fn write_parquet(
         ),
         (String::from("asperity.units"), units),
     ]);
-    let tmp = dir.join(format!(".{name}.parquet.tmp"));
-    let file = File::create(&tmp).map_err(|e| err(e.to_string()))?;
-    ParquetWriter::new(file)
+    let mut file = File::create(&path).map_err(|e| err(e.to_string()))?;
+    ParquetWriter::new(&mut file)
         .with_compression(ParquetCompression::Uncompressed)
         .with_key_value_metadata(Some(metadata))
         .finish(&mut df)
         .map_err(|e| err(e.to_string()))?;
-    std::fs::rename(&tmp, &path).map_err(|e| err(e.to_string()))?;
-    Ok(path)
+    file.sync_all().map_err(|e| err(e.to_string()))?;
+    Ok(file_name)
 }
