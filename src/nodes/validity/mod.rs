@@ -255,8 +255,8 @@ pub fn check_artifact(kind: &str, artifact: &mut Artifact) -> Result<(), NodeErr
     let mut flags = Vec::new();
     for field in &artifact.metrics {
         if let Value::Float(v) = field.value {
-            let column = column_name(&field.name, field.dimension);
-            check_value(kind, &field.name, &column, field.dimension, v, &mut flags)?;
+            let label = format!("`{}`", column_name(&field.name, field.dimension));
+            check_value(kind, &field.name, &label, field.dimension, v, &mut flags)?;
         }
     }
     for (table, t) in &artifact.tables {
@@ -265,8 +265,8 @@ pub fn check_artifact(kind: &str, artifact: &mut Artifact) -> Result<(), NodeErr
                 continue;
             };
             for (row, &v) in values.iter().enumerate() {
-                let column = format!("{} (long table `{table}`, row {row})", c.column_name());
-                check_value(kind, &c.name, &column, c.dimension, v, &mut flags)?;
+                let label = format!("`{}` (long table `{table}`, row {row})", c.column_name());
+                check_value(kind, &c.name, &label, c.dimension, v, &mut flags)?;
             }
         }
     }
@@ -285,26 +285,26 @@ pub fn check_fields(kind: &str, fields: &[Field]) -> Result<(), NodeError> {
     let mut flags = Vec::new();
     for field in fields {
         if let Value::Float(v) = field.value {
-            let column = column_name(&field.name, field.dimension);
-            check_value(kind, &field.name, &column, field.dimension, v, &mut flags)?;
+            let label = format!("`{}`", column_name(&field.name, field.dimension));
+            check_value(kind, &field.name, &label, field.dimension, v, &mut flags)?;
         }
     }
     Ok(())
 }
 
-/// One value of column `name` (shown as `column`): finite, and inside every rule of the kind
-/// on that column.
+/// One value of column `name` (shown as `label`): finite, and inside every rule of the kind on
+/// that column.
 fn check_value(
     kind: &str,
     name: &str,
-    column: &str,
+    label: &str,
     dimension: Dimension,
     v: f64,
     flags: &mut Vec<String>,
 ) -> Result<(), NodeError> {
     if !v.is_finite() {
         return Err(NodeError::new(format!(
-            "`{column}` is {}: {FINITE_WHY}",
+            "{label} is {}: {FINITE_WHY}",
             format_number(v)
         )));
     }
@@ -317,7 +317,7 @@ fn check_value(
         }
         let range = rule.range.describe(dimension.si_symbol());
         let sentence = format!(
-            "`{column}` = {} is outside {range}: {}",
+            "{label} = {} is outside {range}: {}",
             format_number(v),
             rule.why
         );
