@@ -7,11 +7,11 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
+use asperity::engine::value::Field;
+use asperity::nodes::validity;
 use asperity::surface::io::{
     detect_format, parse_topography, LineScan, ScaleSource, TopographyData,
 };
-use asperity::engine::value::Field;
-use asperity::nodes::validity;
 use asperity::surface::{amplitude_statistics, AmplitudeStatistics, Boundary, HeightMap};
 use asperity::units::Dimension;
 
@@ -132,13 +132,17 @@ fn check_values(map: &HeightMap, spacing: ScaleSource, a: &AmplitudeStatistics) 
     if spacing == ScaleSource::File {
         fields.extend([len("dx", map.dx()), len("dy", map.dy())]);
         let slopes = [("sdq", a.sdq), ("sdr_percent", a.sdr_percent)];
-        fields.extend(slopes.into_iter().filter_map(|(n, v)| {
-            v.map(|v| Field::float(n, v, Dimension::Dimensionless))
-        }));
+        fields.extend(
+            slopes
+                .into_iter()
+                .filter_map(|(n, v)| v.map(|v| Field::float(n, v, Dimension::Dimensionless))),
+        );
     }
-    fields.extend(optional.into_iter().filter_map(|(n, v)| {
-        v.map(|v| Field::float(n, v, Dimension::Dimensionless))
-    }));
+    fields.extend(
+        optional
+            .into_iter()
+            .filter_map(|(n, v)| v.map(|v| Field::float(n, v, Dimension::Dimensionless))),
+    );
     validity::check_fields(validity::SURFACE, &fields)
         .map_err(|e| anyhow::anyhow!("this file's values are not physically possible: {e}"))?;
     if spacing == ScaleSource::File {

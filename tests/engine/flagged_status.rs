@@ -81,7 +81,11 @@ fn a_flagged_row_keeps_its_numbers_says_why_and_reads_back_from_the_cache() {
     let surfaces = dir.join("out1/surfaces.parquet");
     assert_eq!(texts(&surfaces, "status"), ["flagged", "ok"]);
     let message = texts(&surfaces, "message");
-    assert!(message[0].contains("exceeds the map's larger side"), "{}", message[0]);
+    assert!(
+        message[0].contains("exceeds the map's larger side"),
+        "{}",
+        message[0]
+    );
     assert_eq!(message[1], "");
     assert_eq!(
         texts(&dir.join("out1/scenarios.parquet"), "status"),
@@ -95,8 +99,15 @@ fn a_flagged_row_keeps_its_numbers_says_why_and_reads_back_from_the_cache() {
     // From the cache: the same flags, the same bytes.
     let (_, second) = run(&dir, "out2");
     assert_eq!((second.cached, second.flagged), (2, 1));
-    for table in ["surfaces.parquet", "scenarios.parquet", "surfaces_summits.parquet"] {
-        assert!(same_bytes(&dir.join("out1"), &dir.join("out2"), table), "{table}");
+    for table in [
+        "surfaces.parquet",
+        "scenarios.parquet",
+        "surfaces_summits.parquet",
+    ] {
+        assert!(
+            same_bytes(&dir.join("out1"), &dir.join("out2"), table),
+            "{table}"
+        );
     }
 
     // Read through the manifest (an entry without `summary.bin`): the flags are there too; an
@@ -111,7 +122,11 @@ fn a_flagged_row_keeps_its_numbers_says_why_and_reads_back_from_the_cache() {
     }
     let (_, third) = run(&dir, "out3");
     assert_eq!((third.cached, third.flagged), (2, 1));
-    assert!(same_bytes(&dir.join("out1"), &dir.join("out3"), "surfaces.parquet"));
+    assert!(same_bytes(
+        &dir.join("out1"),
+        &dir.join("out3"),
+        "surfaces.parquet"
+    ));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

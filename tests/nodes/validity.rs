@@ -69,13 +69,22 @@ fn the_base_study_is_ok() {
 
 #[test]
 fn a_nominal_pressure_above_the_hardness_is_refused_at_validate_and_at_run() {
-    let text = BASE.replace("nominal_pressures: [20 MPa]\n  shear", "nominal_pressures: [10 GPa]\n  shear");
+    let text = BASE.replace(
+        "nominal_pressures: [20 MPa]\n  shear",
+        "nominal_pressures: [10 GPa]\n  shear",
+    );
     let e = plan_error(&text);
     assert!(e.contains("f.yaml:"), "{e}");
     assert!(e.contains("nominal_pressures[0]"), "{e}");
-    assert!(e.contains("exceeds the flow pressure H = 1.96133e9 Pa"), "{e}");
+    assert!(
+        e.contains("exceeds the flow pressure H = 1.96133e9 Pa"),
+        "{e}"
+    );
     // As a force the pressure is known only at run time: 156 N on 0.125² mm² is 9.98 GPa.
-    let text = BASE.replace("nominal_pressures: [20 MPa]\n  shear", "loads: [156 N]\n  shear");
+    let text = BASE.replace(
+        "nominal_pressures: [20 MPa]\n  shear",
+        "loads: [156 N]\n  shear",
+    );
     let (plan, report) = run(&text, "validity-force");
     let m = failure(named(&plan, &report.outcomes, "stick")).to_string();
     assert!(m.contains("exceeds the flow pressure"), "{m}");
@@ -86,11 +95,18 @@ fn a_nominal_pressure_above_the_hardness_is_refused_at_validate_and_at_run() {
 fn a_gw_area_beyond_the_nominal_area_fails_and_a_steep_contact_is_flagged() {
     let (plan, report) = run(&BASE.replace("sq: 0.05 um", "sq: 64 um"), "validity-rough");
     let m = failure(named(&plan, &report.outcomes, "stick"));
-    assert!(m.contains("`area_fraction` = ") && m.contains("outside [0, 1]"), "{m}");
+    assert!(
+        m.contains("`area_fraction` = ") && m.contains("outside [0, 1]"),
+        "{m}"
+    );
     assert!(m.contains("Greenwood–Williamson"), "{m}");
     let contact = named(&plan, &report.outcomes, "contact");
     assert_eq!(contact.label(), "flagged");
-    assert!(contact.message().contains("rms slope Sdq = "), "{}", contact.message());
+    assert!(
+        contact.message().contains("rms slope Sdq = "),
+        "{}",
+        contact.message()
+    );
     assert!(report.flagged >= 1);
 }
 
@@ -102,20 +118,36 @@ fn an_interface_factor_above_one_is_refused_at_validate() {
             &format!("model: junction_shear\n      interface_factor: {c}"),
         );
         let e = plan_error(&text);
-        assert!(e.contains("interface_factor") && e.contains("[0, 1]"), "{c}: {e}");
+        assert!(
+            e.contains("interface_factor") && e.contains("[0, 1]"),
+            "{c}: {e}"
+        );
     }
-    let text = BASE.replace("model: junction_shear", "model: junction_shear\n      interface_factor: 1");
+    let text = BASE.replace(
+        "model: junction_shear",
+        "model: junction_shear\n      interface_factor: 1",
+    );
     assert_eq!(plan_error(&text), "");
 }
 
 #[test]
 fn a_sub_picometre_sq_fails_at_the_surface_with_its_cause() {
-    let (plan, report) = run(&BASE.replace("sq: 0.05 um", "sq: 1e-300 m"), "validity-tiny");
+    let (plan, report) = run(
+        &BASE.replace("sq: 0.05 um", "sq: 1e-300 m"),
+        "validity-tiny",
+    );
     let m = failure(named(&plan, &report.outcomes, "lower"));
-    assert!(m.contains("`sq_m` = 0 is outside ≥ 1e-12 m") && m.contains("underflow"), "{m}");
+    assert!(
+        m.contains("`sq_m` = 0 is outside ≥ 1e-12 m") && m.contains("underflow"),
+        "{m}"
+    );
     for name in ["contact", "stick", "shear"] {
         let o = named(&plan, &report.outcomes, name);
-        assert!(matches!(o.status, NodeStatus::Skipped(_)), "{name}: {:?}", o.status);
+        assert!(
+            matches!(o.status, NodeStatus::Skipped(_)),
+            "{name}: {:?}",
+            o.status
+        );
     }
 }
 
@@ -134,7 +166,11 @@ fn a_contact_flow_pressure_far_from_the_hardness_is_refused_and_a_near_one_flagg
     let (plan, report) = run(&with_flow("2.5 GPa"), "validity-flow");
     let shear = named(&plan, &report.outcomes, "shear");
     assert_eq!(shear.label(), "flagged");
-    assert!(shear.message().contains("27.5 % apart"), "{}", shear.message());
+    assert!(
+        shear.message().contains("27.5 % apart"),
+        "{}",
+        shear.message()
+    );
     assert_eq!(named(&plan, &report.outcomes, "contact").label(), "ok");
     // Within 1 %: no flag.
     let (plan, report) = run(&with_flow("1.97 GPa"), "validity-flow-near");
@@ -148,12 +184,24 @@ fn coarse_grids_flag_the_contact_and_fail_spot_friction() {
         let (plan, report) = run(&text, &format!("validity-grid{n}"));
         let contact = named(&plan, &report.outcomes, "contact");
         assert_eq!(contact.label(), "flagged", "{n}: {:?}", contact.status);
-        assert!(contact.message().contains("resolves no contact spot"), "{n}");
+        assert!(
+            contact.message().contains("resolves no contact spot"),
+            "{n}"
+        );
         let m = failure(named(&plan, &report.outcomes, "shear"));
-        assert!(m.contains(&format!("{n}×{n} grid is too coarse")), "{n}: {m}");
+        assert!(
+            m.contains(&format!("{n}×{n} grid is too coarse")),
+            "{n}: {m}"
+        );
     }
-    let (plan, report) = run(&BASE.replace("grid: [64, 64]", "grid: [8, 8]"), "validity-grid8");
-    assert!(!matches!(named(&plan, &report.outcomes, "shear").status, NodeStatus::Failed(_)));
+    let (plan, report) = run(
+        &BASE.replace("grid: [64, 64]", "grid: [8, 8]"),
+        "validity-grid8",
+    );
+    assert!(!matches!(
+        named(&plan, &report.outcomes, "shear").status,
+        NodeStatus::Failed(_)
+    ));
 }
 
 /// A 16² text matrix of µm heights with `value` at one point.
@@ -221,13 +269,18 @@ fn heights_beyond_the_field_of_view_flag_the_surface() {
     let surface = named(&plan, &report.outcomes, "lower");
     assert_eq!(surface.label(), "flagged");
     assert!(
-        surface.message().contains("exceeds the map's larger side 0.000125 m"),
+        surface
+            .message()
+            .contains("exceeds the map's larger side 0.000125 m"),
         "{}",
         surface.message()
     );
     assert_eq!(named(&plan, &report.outcomes, "contact").label(), "flagged");
     let sq = float(outcomes(&plan, &report, "surface")[0], "sq");
-    assert!((sq / 2e-4 - 1.0).abs() < 1e-9, "a flagged row keeps its numbers: {sq}");
+    assert!(
+        (sq / 2e-4 - 1.0).abs() < 1e-9,
+        "a flagged row keeps its numbers: {sq}"
+    );
 }
 
 fn artifact(metrics: Vec<Field>) -> Artifact {
@@ -239,15 +292,25 @@ fn artifact(metrics: Vec<Field>) -> Artifact {
 
 #[test]
 fn non_finite_values_fail_with_the_column_named() {
-    let mut a = artifact(vec![Field::float("mu_s", f64::INFINITY, Dimension::Dimensionless)]);
+    let mut a = artifact(vec![Field::float(
+        "mu_s",
+        f64::INFINITY,
+        Dimension::Dimensionless,
+    )]);
     let e = check_artifact(FRICTION, &mut a).unwrap_err().message;
-    assert!(e.starts_with("`mu_s` is inf: a physical quantity is a finite number"), "{e}");
+    assert!(
+        e.starts_with("`mu_s` is inf: a physical quantity is a finite number"),
+        "{e}"
+    );
     let mut table = Table::default();
     table.push_float("local_mu", Dimension::Dimensionless, vec![0.3, f64::NAN]);
     let mut a = artifact(Vec::new());
     a.tables.insert(String::from("spots"), table);
     let e = check_artifact(FRICTION, &mut a).unwrap_err().message;
-    assert!(e.contains("`local_mu` (long table `spots`, row 1) is NaN"), "{e}");
+    assert!(
+        e.contains("`local_mu` (long table `spots`, row 1) is NaN"),
+        "{e}"
+    );
     let mut a = artifact(vec![Field::float("mu_s", -0.1, Dimension::Dimensionless)]);
     assert!(check_artifact(FRICTION, &mut a).is_err());
 }
@@ -264,16 +327,18 @@ fn resolution_limited_spots_carrying_most_of_the_load_flag_the_row() {
     };
     assert_eq!(share(0.5).unwrap(), Vec::<String>::new());
     let flags = share(0.8).unwrap();
-    assert!(flags.len() == 1 && flags[0].contains("one-pixel spots"), "{flags:?}");
+    assert!(
+        flags.len() == 1 && flags[0].contains("one-pixel spots"),
+        "{flags:?}"
+    );
     assert!(share(1.2).is_err());
 }
 
 #[test]
 fn every_rule_is_in_the_documentation() {
-    let docs = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/study-format.md"),
-    )
-    .unwrap();
+    let docs =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/study-format.md"))
+            .unwrap();
     let table = rules_markdown();
     assert!(
         docs.contains(&table),
@@ -303,6 +368,9 @@ fn run_prints_each_flag_and_exits_zero() {
             && stderr.contains("exceeds the map's larger side"),
         "{stderr}"
     );
-    assert!(stderr.contains("flagged: contact node 'contact' ("), "{stderr}");
+    assert!(
+        stderr.contains("flagged: contact node 'contact' ("),
+        "{stderr}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

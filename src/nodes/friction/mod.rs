@@ -119,8 +119,9 @@ pub struct FrictionSpec {
     /// `{a: 0.27, b: 0.35}` attributed to Brizmer, Kligerman & Etsion (2007), not confirmed.
     #[serde(default)]
     pub stick_law: Option<Box<StickLawSpec>>,
-    /// Junction shear: interface factor c ≥ 0 of the shear strength, τ_s = c·k of the softer
-    /// body (default 1, a clean metal junction; smaller for contaminated or lubricated ones).
+    /// Junction shear: interface factor c in [0, 1] of the shear strength, τ_s = c·k of the
+    /// softer body (default 1, a clean metal junction; smaller for contaminated or lubricated
+    /// ones; a junction stronger than the body would shear inside the body).
     #[serde(default)]
     pub interface_factor: Option<Param<f64>>,
     /// Per spot: grid neighbours that join contact points into one spot, 4 (edges, default) or

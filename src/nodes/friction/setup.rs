@@ -372,7 +372,11 @@ fn check_pressures_within_flow(
     };
     for (i, (&p, param)) in values.iter().zip(list).enumerate() {
         validity::cross::pressure_within_flow(p, pair.material.hardness).map_err(|message| {
-            spec_error(param.location(), &format!("nominal_pressures[{i}]"), message)
+            spec_error(
+                param.location(),
+                &format!("nominal_pressures[{i}]"),
+                message,
+            )
         })?;
     }
     Ok(())

@@ -172,7 +172,11 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: CONTACT,
-        columns: &["mean_contact_pressure", "max_elastic_deformation", "residual"],
+        columns: &[
+            "mean_contact_pressure",
+            "max_elastic_deformation",
+            "residual",
+        ],
         range: Range::AtLeast(0.0),
         severity: Severity::Fail,
         why: "contact pressures are compressive, a deformation magnitude and a residual are never \
@@ -332,7 +336,8 @@ fn check_value(
 /// The rules as the Markdown table of `docs/study-format.md` ("Validity of values"): kind,
 /// columns, range, outcome and reason, [`RULES`] in order, then the cross-input checks.
 pub fn rules_markdown() -> String {
-    let mut out = String::from("| kind | columns | range | outside | why |\n|---|---|---|---|---|\n");
+    let mut out =
+        String::from("| kind | columns | range | outside | why |\n|---|---|---|---|---|\n");
     let outcome = |s: Severity| match s {
         Severity::Fail => "fails",
         Severity::Flag => "flagged",
