@@ -3,7 +3,8 @@
 //! Only instances the requested tables need are touched. Instances run in parallel on the rayon
 //! pool as soon as their upstream finished, deepest first (see `RunContext::pull`), each first
 //! acquiring its memory estimate from a budget so large nodes do not run all at once. A failing
-//! node fails only its dependants.
+//! node fails only its dependants; a flagged one (computed, with sentences its row must be read
+//! with, [`Artifact::flags`]) is used by them like any other.
 
 use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap};
