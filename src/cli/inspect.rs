@@ -7,10 +7,13 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
+use asperity::engine::value::Field;
+use asperity::nodes::validity;
 use asperity::surface::io::{
     detect_format, parse_topography, LineScan, ScaleSource, TopographyData,
 };
-use asperity::surface::{amplitude_statistics, Boundary, HeightMap};
+use asperity::surface::{amplitude_statistics, AmplitudeStatistics, Boundary, HeightMap};
+use asperity::units::Dimension;
 
 /// Arguments of `asperity inspect`.
 #[derive(Debug, clap::Args)]
@@ -84,6 +87,7 @@ fn describe_map(map: &HeightMap, spacing: ScaleSource, height_unit: ScaleSource)
         ),
     }
     let a = amplitude_statistics(map, Boundary::Open)?;
+    check_values(map, spacing, &a)?;
     println!(
         "missing:   {} of {} points ({:.3} %)",
         a.missing_count,
@@ -109,6 +113,44 @@ fn describe_map(map: &HeightMap, spacing: ScaleSource, height_unit: ScaleSource)
         a.sdr_percent
             .map_or(String::from("undefined"), |v| format!("{v:.5}"))
     );
+    Ok(())
+}
+
+/// The surface node's validity rules on what `inspect` prints: an impossible value (a spacing
+/// that is not a positive length, an Sq that overflowed) is an error, heights larger than the
+/// field of view a warning on stderr.
+fn check_values(map: &HeightMap, spacing: ScaleSource, a: &AmplitudeStatistics) -> Result<()> {
+    let len = |name: &'static str, v: f64| Field::float(name, v, Dimension::Length);
+    let mut fields = vec![
+        len("sq", a.sq),
+        len("sa", a.sa),
+        len("sp", a.sp),
+        len("sv", a.sv),
+        len("sz", a.sz),
+    ];
+    let optional = [("ssk", a.ssk), ("sku", a.sku)];
+    if spacing == ScaleSource::File {
+        fields.extend([len("dx", map.dx()), len("dy", map.dy())]);
+        let slopes = [("sdq", a.sdq), ("sdr_percent", a.sdr_percent)];
+        fields.extend(
+            slopes
+                .into_iter()
+                .filter_map(|(n, v)| v.map(|v| Field::float(n, v, Dimension::Dimensionless))),
+        );
+    }
+    fields.extend(
+        optional
+            .into_iter()
+            .filter_map(|(n, v)| v.map(|v| Field::float(n, v, Dimension::Dimensionless))),
+    );
+    validity::check_fields(validity::SURFACE, &fields)
+        .map_err(|e| anyhow::anyhow!("this file's values are not physically possible: {e}"))?;
+    if spacing == ScaleSource::File {
+        let (lx, ly) = map.size();
+        if let Some(warning) = validity::cross::surface_size(a.sq, lx, ly) {
+            eprintln!("warning: {warning}");
+        }
+    }
     Ok(())
 }
 

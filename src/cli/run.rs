@@ -131,19 +131,23 @@ fn exit_code(report: &RunReport) -> ExitCode {
     }
 }
 
+/// One line on stderr per failed instance and one per flag of a flagged instance (flagged rows
+/// keep exit code 0: their values are possible, but must be read with the sentence).
 fn report_failures(plan: &Plan, report: &RunReport) {
     for (i, o) in report.outcomes.iter().enumerate() {
-        if let Some(NodeOutcome {
+        let Some(outcome) = o else { continue };
+        let node = &plan.nodes[i];
+        let (kind, names, key) = (node.task.kind(), node.names.join(", "), node.key.short());
+        if let NodeOutcome {
             status: NodeStatus::Failed(m),
             ..
-        }) = o
+        } = outcome
         {
-            eprintln!(
-                "failed: {} node '{}' ({}): {m}",
-                plan.nodes[i].task.kind(),
-                plan.nodes[i].names.join(", "),
-                plan.nodes[i].key.short()
-            );
+            eprintln!("failed: {kind} node '{names}' ({key}): {m}");
+        } else if outcome.is_flagged() {
+            for flag in &outcome.flags {
+                eprintln!("flagged: {kind} node '{names}' ({key}): {flag}");
+            }
         }
     }
 }

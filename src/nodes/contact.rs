@@ -14,6 +14,7 @@ use super::contact_view::{
 };
 use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
+use super::validity;
 use crate::contact::{
     BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
     FieldRequest, LoadCurve, LoadStep, SolverOptions,
@@ -21,7 +22,7 @@ use crate::contact::{
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
 use crate::engine::study::{Param, ResolveContext, SourceLocation, SpannedName, SpecError};
-use crate::engine::value::Field;
+use crate::engine::value::{Field, Value};
 use crate::materials::half_space_compliance;
 use crate::surface::HeightMap;
 use crate::units::{format_number, Dimension, Pressure, Quantity};
@@ -29,8 +30,9 @@ use crate::units::{format_number, Dimension, Pressure, Quantity};
 pub(crate) const KIND: &str = "contact";
 pub(crate) const TABLE: &str = "contacts";
 
-/// Implementation version of the `contact` kind; bump whenever its numerics change.
-pub const CONTACT_KIND_VERSION: u32 = 25;
+/// Implementation version of the `contact` kind; bump whenever its numerics change (26: the
+/// validity rules fail impossible values and flag coarse grids and steep slopes).
+pub const CONTACT_KIND_VERSION: u32 = 26;
 
 /// `contact: {...}`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -333,6 +335,11 @@ impl ContactTask {
         let body = |(e, nu): (f64, f64)| half_space_compliance(e, nu);
         body(self.lower) + self.upper.map_or(0.0, body)
     }
+
+    /// The flow pressure p_lim the contact was solved with (Pa; infinite when purely elastic).
+    pub(crate) fn flow_pressure(&self) -> f64 {
+        self.flow_pressure
+    }
 }
 
 fn height_map(input: &Artifact, role: &str) -> Result<HeightMap, NodeError> {
@@ -398,8 +405,35 @@ impl NodeTask for ContactTask {
                 .ok_or_else(|| NodeError::new("the final load step left no fields"))?;
             store_fields(&mut artifact, fields);
         }
+        artifact.flags = input_flags(inputs)?;
+        validity::check_artifact(KIND, &mut artifact)?;
         Ok(artifact)
     }
+}
+
+/// The flags the upstream surfaces give a contact: a grid too coarse to resolve a contact spot,
+/// a composite slope beyond the half-space theory's small-slope assumption.
+fn input_flags(inputs: &[&Artifact]) -> Result<Vec<String>, NodeError> {
+    let lower = SurfaceView::of(
+        inputs
+            .first()
+            .ok_or_else(|| NodeError::new("no lower surface"))?,
+        "lower",
+    )?;
+    let sdq: Vec<f64> = inputs
+        .iter()
+        .filter_map(|input| match input.metric("sdq").map(|f| &f.value) {
+            Some(Value::Float(s)) => Some(*s),
+            _ => None,
+        })
+        .collect();
+    Ok([
+        validity::cross::contact_grid(lower.nx, lower.ny),
+        validity::cross::contact_slope(&sdq),
+    ]
+    .into_iter()
+    .flatten()
+    .collect())
 }
 
 /// The contact problem of a task's upstream surfaces, with what the outputs need of it.

@@ -10,6 +10,7 @@ mod friction;
 mod material_spec;
 mod surface;
 pub(crate) mod surface_view;
+pub mod validity;
 
 use std::sync::Arc;
 

@@ -4,6 +4,7 @@ mod architecture;
 mod cache_policy;
 mod code_shape;
 mod engine_end_to_end;
+mod flagged_status;
 mod key_sensitivity;
 mod reproducible_tables;
 #[path = "../scale_out_common/mod.rs"]

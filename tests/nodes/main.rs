@@ -9,3 +9,4 @@ mod friction_node;
 #[path = "../nodes_common/mod.rs"]
 mod nodes_common;
 mod surface_node;
+mod validity;

@@ -19,6 +19,10 @@ pub struct Artifact {
     pub arrays: BTreeMap<String, ArrayD<f64>>,
     /// Long tables, written as `<kind table>_<name>.parquet` with a `key` column.
     pub tables: BTreeMap<String, Table>,
+    /// Sentences saying why the values must be read with care (possible, but outside a model's
+    /// assumptions). Non-empty: the row's `status` is `flagged` and its `message` holds them,
+    /// joined by "; ". The engine only carries them; the node kinds decide what is flagged.
+    pub flags: Vec<String>,
 }
 
 impl Artifact {

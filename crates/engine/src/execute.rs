@@ -3,7 +3,8 @@
 //! Only instances the requested tables need are touched. Instances run in parallel on the rayon
 //! pool as soon as their upstream finished, deepest first (see `RunContext::pull`), each first
 //! acquiring its memory estimate from a budget so large nodes do not run all at once. A failing
-//! node fails only its dependants.
+//! node fails only its dependants; a flagged one (computed, with sentences its row must be read
+//! with, [`Artifact::flags`]) is used by them like any other.
 
 use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap};
@@ -48,7 +49,7 @@ pub enum NodeStatus {
 }
 
 impl NodeStatus {
-    /// `"ok"`, `"failed"` or `"skipped"`, the `status` column of tables.
+    /// `"ok"`, `"failed"` or `"skipped"`; [`NodeOutcome::label`] adds `"flagged"`.
     pub fn label(&self) -> &'static str {
         match self {
             NodeStatus::Computed | NodeStatus::Cached => "ok",
@@ -72,8 +73,35 @@ pub struct NodeOutcome {
     pub status: NodeStatus,
     pub metrics: Vec<Field>,
     pub tables: BTreeMap<String, Table>,
+    /// The artifact's flags ([`Artifact::flags`]): why its values must be read with care.
+    pub flags: Vec<String>,
     /// Compute time (when computed now) or the recorded compute time (when cached), seconds.
     pub compute_seconds: f64,
+}
+
+impl NodeOutcome {
+    /// The `status` column of tables: `"flagged"` for a computed or cached instance with flags,
+    /// otherwise [`NodeStatus::label`].
+    pub fn label(&self) -> &'static str {
+        match self.status {
+            NodeStatus::Computed | NodeStatus::Cached if !self.flags.is_empty() => "flagged",
+            _ => self.status.label(),
+        }
+    }
+
+    /// The `message` column: the flags joined by "; " when flagged, the failure message when
+    /// failed or skipped, empty when ok.
+    pub fn message(&self) -> String {
+        match self.status {
+            NodeStatus::Computed | NodeStatus::Cached => self.flags.join("; "),
+            _ => self.status.message().to_string(),
+        }
+    }
+
+    /// `true` when the instance computed (or was cached) with flags.
+    pub fn is_flagged(&self) -> bool {
+        self.label() == "flagged"
+    }
 }
 
 /// Execution settings.
@@ -96,13 +124,15 @@ pub struct RunReport {
     pub cached: usize,
     pub failed: usize,
     pub skipped: usize,
+    /// Computed or cached instances with flags (also counted in `computed` or `cached`).
+    pub flagged: usize,
     /// Corrupt cache entries found, discarded and recomputed.
     pub discarded: usize,
     pub wall_seconds: f64,
 }
 
 impl RunReport {
-    /// `true` when every needed instance is ok.
+    /// `true` when every needed instance computed (flagged ones included).
     pub fn all_ok(&self) -> bool {
         self.failed == 0 && self.skipped == 0
     }
@@ -294,6 +324,9 @@ impl<'a> RunContext<'a> {
             NodeStatus::Failed(_) => report.failed += 1,
             NodeStatus::Skipped(_) => report.skipped += 1,
         }
+        if outcome.is_flagged() {
+            report.flagged += 1;
+        }
         if shared.dependants[i] > 0 {
             shared.artifacts[i] = artifact;
         }
@@ -337,17 +370,25 @@ impl<'a> RunContext<'a> {
                 self.regenerate(node, entry)
             }
             Some(CachedEntry { manifest, artifact }) => {
-                let outcome = |metrics, tables| NodeOutcome {
+                let outcome = |metrics, tables, flags| NodeOutcome {
                     status: NodeStatus::Cached,
                     metrics,
                     tables,
+                    flags,
                     compute_seconds: manifest.compute_seconds,
                 };
                 if with_payload {
-                    let row = outcome(artifact.metrics.clone(), artifact.tables.clone());
+                    let row = outcome(
+                        artifact.metrics.clone(),
+                        artifact.tables.clone(),
+                        artifact.flags.clone(),
+                    );
                     (row, Some(Arc::new(artifact)))
                 } else {
-                    (outcome(artifact.metrics, artifact.tables), None)
+                    (
+                        outcome(artifact.metrics, artifact.tables, artifact.flags),
+                        None,
+                    )
                 }
             }
             None => self.compute(node),
@@ -467,6 +508,7 @@ impl<'a> RunContext<'a> {
                 .map(|(r, u)| (r.to_string(), self.plan.nodes[*u].key.to_hex()))
                 .collect(),
             metrics: artifact.metrics.clone(),
+            flags: artifact.flags.clone(),
             payloads: Vec::new(),
             compute_seconds: seconds,
             tool_version: self.options.tool_version.clone(),
@@ -480,6 +522,7 @@ impl<'a> RunContext<'a> {
                 let without_arrays = Artifact {
                     metrics: artifact.metrics.clone(),
                     tables: artifact.tables.clone(),
+                    flags: artifact.flags.clone(),
                     ..Artifact::default()
                 };
                 self.cache.store(manifest, &without_arrays)
@@ -494,13 +537,14 @@ impl<'a> RunContext<'a> {
             status: NodeStatus::Computed,
             metrics: artifact.metrics.clone(),
             tables: artifact.tables.clone(),
+            flags: artifact.flags.clone(),
             compute_seconds: seconds,
         };
         (outcome, Some(Arc::new(artifact)))
     }
 
     /// The arrays of a cached [`ArrayStorage::Regenerate`] entry, recomputed. The recomputed
-    /// metrics must equal the cached ones; if they do not, the entry is replaced (and counted
+    /// metrics and flags must equal the cached ones; if they do not, the entry is replaced (and counted
     /// as discarded) and the node counts as computed.
     fn regenerate(
         &self,
@@ -508,11 +552,15 @@ impl<'a> RunContext<'a> {
         entry: CachedEntry,
     ) -> (NodeOutcome, Option<Arc<Artifact>>) {
         match self.run_compute(node) {
-            (Ok(artifact), _) if artifact.metrics == entry.artifact.metrics => {
+            (Ok(artifact), _)
+                if artifact.metrics == entry.artifact.metrics
+                    && artifact.flags == entry.artifact.flags =>
+            {
                 let outcome = NodeOutcome {
                     status: NodeStatus::Cached,
                     metrics: entry.artifact.metrics,
                     tables: entry.artifact.tables,
+                    flags: entry.artifact.flags,
                     compute_seconds: entry.manifest.compute_seconds,
                 };
                 (outcome, Some(Arc::new(artifact)))
@@ -520,7 +568,7 @@ impl<'a> RunContext<'a> {
             (Ok(artifact), seconds) => {
                 self.progress.warn(&format!(
                     "{} node '{}' ({}): recomputing its arrays did not reproduce its cached \
-                     metrics; the cache entry is replaced",
+                     metrics or flags; the cache entry is replaced",
                     node.task.kind(),
                     node.names.join(", "),
                     node.key.short()
@@ -541,6 +589,7 @@ fn failed_outcome(status: NodeStatus) -> NodeOutcome {
         status,
         metrics: Vec::new(),
         tables: BTreeMap::new(),
+        flags: Vec::new(),
         compute_seconds: 0.0,
     }
 }

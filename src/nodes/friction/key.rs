@@ -26,6 +26,8 @@ impl FrictionTask {
             adhesion,
             options,
             setup,
+            // Derived from the upstream contact's parameters (in its key) and the hardness.
+            input_flags: _,
         } = self;
         // `adhesion_beyond_fits` is not a study field: every friction node uses its default.
         let ModelOptions {

@@ -33,7 +33,9 @@ use crate::friction::{
 };
 use crate::units::{Area, Dimension, Force, Length, Pressure, Quantity, SurfaceEnergy};
 
+use super::contact_view::ContactView;
 use super::material_spec::MaterialSpec;
+use super::validity;
 
 mod key;
 mod model_setup;
@@ -45,8 +47,9 @@ mod statistical;
 pub(crate) const KIND: &str = "friction";
 pub(crate) const TABLE: &str = "friction";
 
-/// Implementation version of the `friction` kind; bump whenever its numerics change.
-pub const FRICTION_KIND_VERSION: u32 = 2;
+/// Implementation version of the `friction` kind; bump whenever its numerics change (3: the
+/// validity rules fail impossible values and flag assumptions the inputs stretch).
+pub const FRICTION_KIND_VERSION: u32 = 3;
 
 /// Default adhesion energy Δγ (N/m): "somewhat clean" metal surfaces, the value of the static
 /// friction experiments on 17-4PH compared with the KE model (reference workflow; the range
@@ -116,8 +119,9 @@ pub struct FrictionSpec {
     /// `{a: 0.27, b: 0.35}` attributed to Brizmer, Kligerman & Etsion (2007), not confirmed.
     #[serde(default)]
     pub stick_law: Option<Box<StickLawSpec>>,
-    /// Junction shear: interface factor c ≥ 0 of the shear strength, τ_s = c·k of the softer
-    /// body (default 1, a clean metal junction; smaller for contaminated or lubricated ones).
+    /// Junction shear: interface factor c in [0, 1] of the shear strength, τ_s = c·k of the
+    /// softer body (default 1, a clean metal junction; smaller for contaminated or lubricated
+    /// ones; a junction stronger than the body would shear inside the body).
     #[serde(default)]
     pub interface_factor: Option<Param<f64>>,
     /// Per spot: grid neighbours that join contact points into one spot, 4 (edges, default) or
@@ -258,6 +262,8 @@ pub(crate) enum MethodSetup {
 pub struct FrictionTask {
     model: FrictionModel,
     material: Material,
+    /// Flags found when the node was resolved (a contact flow pressure that differs from H).
+    input_flags: Vec<String>,
     /// The interface of `model: junction_shear`.
     junction_shear: Option<JunctionShear>,
     adhesion: AdhesionParameters,
@@ -351,6 +357,14 @@ impl NodeTask for FrictionTask {
             Field::text("model_basis", self.basis().name()),
         ];
         let mut tables = std::collections::BTreeMap::<String, Table>::new();
+        if let MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } =
+            &self.setup
+        {
+            let (ny, nx) = ContactView::of(input(inputs, *contact, "contact")?)?
+                .pressure
+                .dim();
+            validity::cross::friction_grid(nx, ny).map_err(NodeError::new)?;
+        }
         match &self.setup {
             MethodSetup::Statistical {
                 roughness,
@@ -387,11 +401,18 @@ impl NodeTask for FrictionTask {
                 &mut tables,
             )?,
         }
-        Ok(Artifact {
+        let mut artifact = Artifact {
             metrics,
             arrays: Default::default(),
             tables,
-        })
+            flags: self.input_flags.clone(),
+        };
+        if let Some(Value::Float(p)) = artifact.metric("nominal_pressure").map(|f| &f.value) {
+            validity::cross::pressure_within_flow(*p, self.material.hardness)
+                .map_err(NodeError::new)?;
+        }
+        validity::check_artifact(KIND, &mut artifact)?;
+        Ok(artifact)
     }
 }
 

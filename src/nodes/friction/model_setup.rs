@@ -13,6 +13,7 @@ use super::setup::{positive, resolve_choice, spec_error, MaterialPair};
 use super::{FrictionMethod, FrictionModel, FrictionSpec, JunctionShear};
 use crate::materials::half_space_compliance;
 use crate::nodes::contact::ContactTask;
+use crate::nodes::validity;
 
 /// The model and the method of the node; junction shear defaults to (and needs) `per_spot`.
 pub(super) fn model_and_method(
@@ -93,13 +94,7 @@ pub(super) fn model_inputs(
     let junction_shear = if model == FrictionModel::JunctionShear {
         let c = match &spec.interface_factor {
             Some(p) => ctx.resolve_checked(p, "interface_factor", |c: &f64| {
-                if c.is_finite() && *c >= 0.0 {
-                    Ok(())
-                } else {
-                    Err(String::from(
-                        "is out of range: the interface factor c must be >= 0 (1 for a clean metal junction)",
-                    ))
-                }
+                validity::cross::interface_factor(*c)
             })?,
             None => 1.0,
         };
@@ -155,7 +150,9 @@ fn full_stick_options(
 
 /// The checks of a method that reads a contact solution (`per_summit`, `per_spot`): no
 /// surfaces, roughness or loads of its own, an upstream contact node with `fields: true` and the
-/// same composite modulus. Returns the contact's input index and whether it was periodic.
+/// same composite modulus, and a flow pressure within a factor of 10 of the friction laws' H
+/// ([`validity::cross::flow_pressure_match`]). Returns the contact's input index, whether it was
+/// periodic and the flag of a flow pressure that differs by more than 1 %.
 pub(super) fn contact_solution(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
@@ -163,7 +160,7 @@ pub(super) fn contact_solution(
     contact: Option<usize>,
     pair: &MaterialPair,
     method: FrictionMethod,
-) -> Result<(usize, bool), SpecError> {
+) -> Result<(usize, bool, Option<String>), SpecError> {
     let not_here = |field: &str, what: &str| {
         Err(spec_error(
             location,
@@ -224,7 +221,10 @@ pub(super) fn contact_solution(
         ));
     }
     check_same_modulus(spec, contact_task, &name.value, pair)?;
-    Ok((index, contact_task.periodic()))
+    let flag =
+        validity::cross::flow_pressure_match(contact_task.flow_pressure(), pair.material.hardness)
+            .map_err(|message| spec_error(name.location, "contact", message))?;
+    Ok((index, contact_task.periodic(), flag))
 }
 
 /// The contact solution was computed with the contact's materials: the friction node's must

@@ -12,6 +12,7 @@ use crate::friction::{
 use crate::materials::half_space_compliance;
 
 use super::model_setup;
+use crate::nodes::validity;
 use crate::units::format_number;
 
 use super::{
@@ -229,10 +230,11 @@ pub(super) fn instantiate(
         ),
         None => None,
     };
-    let setup = method_setup(spec, ctx, method, &pair, nominal_area)?;
+    let (setup, input_flag) = method_setup(spec, ctx, method, &pair, nominal_area)?;
     Ok(FrictionTask {
         model,
         material: pair.material,
+        input_flags: input_flag.into_iter().collect(),
         junction_shear,
         adhesion,
         options: ModelOptions {
@@ -300,21 +302,24 @@ fn adhesion(
 }
 
 /// What the method needs: roughness and loads (statistical), or the contact solution and its
-/// options (per summit, per spot).
+/// options (per summit, per spot), with the flag of a contact whose flow pressure differs from
+/// the friction laws' H.
 fn method_setup(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
     method: FrictionMethod,
     pair: &MaterialPair,
     nominal_area: Option<f64>,
-) -> Result<MethodSetup, SpecError> {
+) -> Result<(MethodSetup, Option<String>), SpecError> {
     let location = location_of(spec);
     let surfaces = usize::from(spec.lower.is_some()) + usize::from(spec.upper.is_some());
     let contact = spec.contact.as_ref().map(|_| surfaces);
-    Ok(match method {
+    let mut flag = None;
+    let setup = match method {
         FrictionMethod::Statistical => {
             let roughness = roughness(spec, ctx, nominal_area, location)?;
             let loads = resolve_loads(spec, ctx, contact, location)?;
+            check_pressures_within_flow(spec, &loads, pair)?;
             MethodSetup::Statistical {
                 roughness,
                 nominal_area,
@@ -322,12 +327,13 @@ fn method_setup(
             }
         }
         FrictionMethod::PerSummit => {
-            let (contact, periodic) =
+            let (contact, periodic, mismatch) =
                 model_setup::contact_solution(spec, ctx, location, contact, pair, method)?;
             let summits_table = match &spec.summits_table {
                 Some(p) => ctx.resolve(p, "summits_table")?,
                 None => false,
             };
+            flag = mismatch;
             MethodSetup::PerSummit {
                 contact,
                 nominal_area,
@@ -336,9 +342,10 @@ fn method_setup(
             }
         }
         FrictionMethod::PerSpot => {
-            let (contact, periodic) =
+            let (contact, periodic, mismatch) =
                 model_setup::contact_solution(spec, ctx, location, contact, pair, method)?;
             let (connectivity, spots_table) = model_setup::spot_options(spec, ctx)?;
+            flag = mismatch;
             MethodSetup::PerSpot {
                 contact,
                 section: super::per_spot::Section {
@@ -349,7 +356,30 @@ fn method_setup(
                 },
             }
         }
-    })
+    };
+    Ok((setup, flag))
+}
+
+/// Statistical `nominal_pressures`: each at most the flow pressure H of the softer body
+/// ([`validity::cross::pressure_within_flow`]), an error at the value.
+fn check_pressures_within_flow(
+    spec: &FrictionSpec,
+    loads: &Loads,
+    pair: &MaterialPair,
+) -> Result<(), SpecError> {
+    let (Loads::Pressures(values), Some(list)) = (loads, &spec.nominal_pressures) else {
+        return Ok(());
+    };
+    for (i, (&p, param)) in values.iter().zip(list).enumerate() {
+        validity::cross::pressure_within_flow(p, pair.material.hardness).map_err(|message| {
+            spec_error(
+                param.location(),
+                &format!("nominal_pressures[{i}]"),
+                message,
+            )
+        })?;
+    }
+    Ok(())
 }
 
 /// The roughness of the statistical method: explicit `{sigma, radius, density}` (which needs a

@@ -20,6 +20,7 @@ use crate::engine::node::NodeError;
 use crate::engine::value::Field;
 use crate::friction::SummitStatistics as GwSummits;
 use crate::nodes::surface_view::{DX, DY, GRID_NX, GRID_NY, M0, M2, M4};
+use crate::nodes::validity;
 use crate::surface::spectral::{
     autocorrelation, hurst_exponent_of, periodic_autocorrelation_of, periodogram, radial_psd_of,
     spectral_moments, spectral_moments_of, texture_direction_of, AcfBoundary, HurstFitOptions,
@@ -37,6 +38,13 @@ pub(super) struct SurfaceReport {
     pub tables: BTreeMap<String, Table>,
     /// The RMS slope Sdq (also among the metrics), for checks of the lateral scale.
     pub sdq: Option<f64>,
+    /// Sq (also among the metrics), for the check against the map's size.
+    pub sq: f64,
+}
+
+/// The grid spacings `dx`, `dy` as the row reports them.
+pub(super) fn spacing_fields(map: &HeightMap) -> [Field; 2] {
+    [len(DX, map.dx()), len(DY, map.dy())]
 }
 
 fn len(name: &'static str, v: f64) -> Field {
@@ -78,6 +86,8 @@ pub(super) fn surface_report(
             .into_iter()
             .filter_map(|(name, v)| v.map(|v| num(name, v))),
     );
+    // An overflowed or underflowed amplitude is the cause of whatever the spectra would report.
+    validity::check_fields(validity::SURFACE, &metrics)?;
     let mut tables = BTreeMap::new();
     if a.missing_count == 0 && a.sq > 0.0 {
         spectral_metrics(map, boundary, &mut metrics, &mut tables)?;
@@ -87,6 +97,7 @@ pub(super) fn surface_report(
         metrics,
         tables,
         sdq: a.sdq,
+        sq: a.sq,
     })
 }
 

@@ -8,6 +8,7 @@ use crate::engine::node::{ArrayStorage, NodeError, NodeTask};
 use crate::engine::study::{ResolveContext, SpecError};
 use crate::engine::value::Field;
 use crate::nodes::surface_view::HEIGHTS;
+use crate::nodes::validity;
 use crate::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
 use crate::surface::{Boundary, HeightMap};
 
@@ -30,8 +31,9 @@ pub(crate) const KIND: &str = "surface";
 pub(crate) const TABLE: &str = "surfaces";
 
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
-/// computed statistics change, so stale cache entries are never reused.
-pub const SURFACE_KIND_VERSION: u32 = 7;
+/// computed statistics change, so stale cache entries are never reused (8: the validity rules
+/// fail impossible values and flag heights beyond the field of view).
+pub const SURFACE_KIND_VERSION: u32 = 8;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
 /// cache but regenerated when a dependant needs their heights.
@@ -137,8 +139,11 @@ impl NodeTask for SurfaceTask {
         }
     }
 
+    /// The heights' statistics, checked by [`validity`]: the spacing before any statistic is
+    /// computed, every value after.
     fn compute(&self, _inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
         let (map, boundary, source_metrics) = self.heights()?;
+        validity::check_fields(KIND, &metrics::spacing_fields(&map))?;
         let mut report = metrics::surface_report(&map, boundary)?;
         report.metrics.extend(source_metrics);
         if let SurfaceSource::Measured(_) = self.source {
@@ -147,11 +152,19 @@ impl NodeTask for SurfaceTask {
                 .metrics
                 .push(Field::text("lateral_scale_warning", warning));
         }
+        let flags = validity::cross::surface_size(
+            report.sq,
+            map.nx() as f64 * map.dx(),
+            map.ny() as f64 * map.dy(),
+        );
         let heights = map.into_heights().into_dyn();
-        Ok(Artifact {
+        let mut artifact = Artifact {
             metrics: report.metrics,
             arrays: [(String::from(HEIGHTS), heights)].into_iter().collect(),
             tables: report.tables,
-        })
+            flags: flags.into_iter().collect(),
+        };
+        validity::check_artifact(KIND, &mut artifact)?;
+        Ok(artifact)
     }
 }

@@ -51,6 +51,9 @@ pub struct Manifest {
     /// `(role, key)` of each upstream node.
     pub upstream: Vec<(String, String)>,
     pub metrics: Vec<Field>,
+    /// The artifact's flags; absent (no flags) in entries written before flags existed.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub flags: Vec<String>,
     pub payloads: Vec<Payload>,
     pub compute_seconds: f64,
     pub tool_version: String,
@@ -116,6 +119,8 @@ struct ManifestRead {
     kind: String,
     upstream: Vec<(String, String)>,
     metrics: Vec<Field>,
+    #[serde(default)]
+    flags: Vec<String>,
     payloads: Vec<Payload>,
     compute_seconds: f64,
 }
@@ -349,6 +354,7 @@ impl Cache {
             artifact: Artifact {
                 metrics: read.metrics,
                 tables,
+                flags: read.flags,
                 ..Artifact::default()
             },
             payloads: read.payloads,
@@ -422,6 +428,7 @@ impl Cache {
             compute_seconds: manifest.compute_seconds,
             metrics: &manifest.metrics,
             tables: &artifact.tables,
+            flags: &artifact.flags,
         });
         manifest
             .payloads

@@ -1,5 +1,5 @@
 //! `summary.bin`: what a read of a cache entry returns (key, kind, upstream keys, compute time,
-//! metrics, long tables and the payload list) in one compact, self-verifying file, so that a rerun
+//! metrics, long tables, flags and the payload list) in one compact, self-verifying file, so that a rerun
 //! reads one file per entry instead of the manifest, its checksum file and `tables.json`.
 //!
 //! Layout: the magic `asperity-summary`, the format version (u32), the XXH3-128 checksum of the
@@ -26,7 +26,9 @@ use super::{names, EntryManifest, Payload};
 pub(super) const SUMMARY_FILE: &str = "summary.bin";
 
 const MAGIC: &[u8; 16] = b"asperity-summary";
-const VERSION: u32 = 2;
+/// Version 3 added the flags; a version-2 summary is read through its manifest, whose missing
+/// `flags` field reads as no flags.
+const VERSION: u32 = 3;
 const CHECKSUM: usize = 16;
 const HEADER: usize = MAGIC.len() + 4 + CHECKSUM;
 
@@ -39,6 +41,7 @@ pub(super) struct Summary<'a> {
     pub compute_seconds: f64,
     pub metrics: &'a [Field],
     pub tables: &'a BTreeMap<String, Table>,
+    pub flags: &'a [String],
 }
 
 /// A decoded summary: the manifest part, an artifact with the metrics and tables, and the
@@ -70,6 +73,10 @@ pub(super) fn encode(summary: &Summary<'_>) -> Vec<u8> {
     for (name, table) in summary.tables {
         put_str(&mut body, name);
         put_table(&mut body, table);
+    }
+    put_len(&mut body, summary.flags.len());
+    for flag in summary.flags {
+        put_str(&mut body, flag);
     }
     put_len(&mut body, summary.payloads.len());
     for payload in summary.payloads {
@@ -115,6 +122,7 @@ pub(super) fn decode(
         .list(|r| Ok((r.string()?, r.table()?)))?
         .into_iter()
         .collect();
+    let flags = r.list(Reader::string)?;
     let payloads = if payloads {
         let list = r.list(Reader::payload)?;
         if !r.0.is_empty() {
@@ -132,6 +140,7 @@ pub(super) fn decode(
         artifact: Artifact {
             metrics,
             tables,
+            flags,
             ..Artifact::default()
         },
         payloads,
@@ -358,6 +367,7 @@ mod tests {
         payloads: Vec<Payload>,
         metrics: Vec<Field>,
         tables: BTreeMap<String, Table>,
+        flags: Vec<String>,
     }
 
     fn sample() -> Sample {
@@ -389,6 +399,7 @@ mod tests {
                 Field::text("model", "kogut_etsion".repeat(20)),
             ],
             tables: [(String::from("steps"), table)].into(),
+            flags: vec![String::from("area fraction 0.6 is beyond … light load")],
         }
     }
 
@@ -401,6 +412,7 @@ mod tests {
             compute_seconds: s.manifest.compute_seconds,
             metrics: &s.metrics,
             tables: &s.tables,
+            flags: &s.flags,
         })
     }
 
@@ -418,6 +430,7 @@ mod tests {
                 assert_eq!(d.payloads, s.payloads);
             }
             assert_eq!(d.artifact.tables, s.tables);
+            assert_eq!(d.artifact.flags, s.flags);
             assert_eq!(d.artifact.metrics.len(), s.metrics.len());
             for (a, b) in d.artifact.metrics.iter().zip(&s.metrics) {
                 assert_eq!((&a.name, a.dimension), (&b.name, b.dimension));

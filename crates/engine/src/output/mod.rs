@@ -154,19 +154,31 @@ fn scenarios_table(plan: &Plan, report: &RunReport) -> RowTable {
                 Some(ty.cell(value)),
             ));
         }
-        let mut status = "ok";
+        let mut labels = Vec::with_capacity(key_columns.len());
         for (&instance, key_column) in plan.scenario_nodes[s].iter().zip(&key_columns) {
             cells.push(text(key_column, plan.nodes[instance].key.to_hex()));
-            match report.outcomes.get(instance).and_then(Option::as_ref) {
-                Some(o) if o.status.label() != "ok" => status = "failed",
-                None if status == "ok" => status = "not_computed",
-                _ => {}
-            }
+            let outcome = report.outcomes.get(instance).and_then(Option::as_ref);
+            labels.push(outcome.map_or("not_computed", NodeOutcome::label));
         }
-        cells.push(text("status", status));
+        cells.push(text("status", scenario_status(&labels)));
         t.push_row(cells);
     }
     t
+}
+
+/// A scenario's status from its instances' labels: `failed` when one failed or was skipped, else
+/// `flagged` when one is flagged, else `not_computed` when one was not needed, else `ok`.
+fn scenario_status(labels: &[&str]) -> &'static str {
+    let any = |label: &str| labels.contains(&label);
+    if any("failed") || any("skipped") {
+        "failed"
+    } else if any("flagged") {
+        "flagged"
+    } else if any("not_computed") {
+        "not_computed"
+    } else {
+        "ok"
+    }
 }
 
 /// Parameter values are written with one type per column: a column whose values mix integers and
@@ -234,8 +246,8 @@ fn kind_tables(
         }
         cells.extend(params.iter().map(field_cell));
         cells.extend(outcome.metrics.iter().map(field_cell));
-        cells.push(text("status", outcome.status.label()));
-        cells.push(text("message", outcome.status.message()));
+        cells.push(text("status", outcome.label()));
+        cells.push(text("message", outcome.message()));
         main.push_row(cells);
         add_long_tables(&mut long, &key, outcome);
     }
@@ -274,7 +286,7 @@ fn timings_table(plan: &Plan, report: &RunReport) -> RowTable {
             text("key", node.key.to_hex()),
             text("kind", node.task.kind()),
             text("nodes", node.names.join(",")),
-            text("status", outcome.status.label()),
+            text("status", outcome.label()),
             (
                 Cow::Borrowed("from_cache"),
                 Dimension::Dimensionless,

@@ -1,0 +1,150 @@
+//! The third outcome, `flagged`: a computed instance whose values must be read with a sentence.
+//! Its row keeps its numbers with `status = flagged` and the sentences as `message`; the scenario
+//! is `flagged` when none of its nodes failed; the flags are cached with the entry (also when it
+//! is read through its manifest) and a cached run writes the same bytes as the computing one.
+
+use std::path::{Path, PathBuf};
+
+use asperity::engine::cache::Cache;
+use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, RunReport};
+use asperity::engine::output::{write_tables, write_timings, OutputMetadata};
+use asperity::engine::plan::Plan;
+use asperity::engine::study::Study;
+use asperity::nodes::TribologyNode;
+use polars::prelude::{ParquetReader, SerReader};
+
+/// Two surfaces: `tall` has an Sq larger than its 20 µm map (flagged), `fine` is ordinary.
+const STUDY: &str = r#"
+study: flagged
+parameters:
+  product:
+    sq: [30 um, 0.1 um]
+nodes:
+  s:
+    surface:
+      synthetic: {grid: [16, 16], size: [20 um, 20 um], sq: "${sq}", hurst: 0.8,
+                  correlation_length: 5 um, seed: 1}
+"#;
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("asperity-flagged-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(dir: &Path, out: &str) -> (Plan, RunReport) {
+    let study =
+        Study::<TribologyNode>::from_source(&dir.join("flagged.yaml"), STUDY.to_string()).unwrap();
+    let plan = Plan::build(&study).unwrap();
+    let options = ExecuteOptions {
+        tables: study.outputs.clone(),
+        memory_budget: 1 << 30,
+        tool_version: String::from("test"),
+    };
+    let cache = Cache::open(&dir.join("cache")).unwrap();
+    let report = execute(&plan, &cache, &options, &NoProgress).unwrap();
+    let meta = OutputMetadata {
+        study: study.name().to_string(),
+        study_file_hash: study.file_hash.clone(),
+        tool_version: String::from("test"),
+        overrides: Vec::new(),
+    };
+    write_tables(&dir.join(out), &plan, &report, &study.outputs, &meta).unwrap();
+    write_timings(&dir.join(out), &plan, &report, &meta).unwrap();
+    (plan, report)
+}
+
+fn texts(path: &Path, column: &str) -> Vec<String> {
+    let df = ParquetReader::new(std::fs::File::open(path).unwrap())
+        .finish()
+        .unwrap();
+    df.column(column)
+        .unwrap()
+        .str()
+        .unwrap()
+        .iter()
+        .map(|v| v.unwrap_or("null").to_string())
+        .collect()
+}
+
+fn same_bytes(a: &Path, b: &Path, table: &str) -> bool {
+    std::fs::read(a.join(table)).unwrap() == std::fs::read(b.join(table)).unwrap()
+}
+
+#[test]
+fn a_flagged_row_keeps_its_numbers_says_why_and_reads_back_from_the_cache() {
+    let dir = scratch("rows");
+    let (plan, first) = run(&dir, "out1");
+    assert_eq!((first.computed, first.flagged, first.failed), (2, 1, 0));
+    assert!(first.all_ok(), "flagged rows are not failures");
+    let surfaces = dir.join("out1/surfaces.parquet");
+    assert_eq!(texts(&surfaces, "status"), ["flagged", "ok"]);
+    let message = texts(&surfaces, "message");
+    assert!(
+        message[0].contains("exceeds the map's larger side"),
+        "{}",
+        message[0]
+    );
+    assert_eq!(message[1], "");
+    assert_eq!(
+        texts(&dir.join("out1/scenarios.parquet"), "status"),
+        ["flagged", "ok"]
+    );
+    assert_eq!(
+        texts(&dir.join("out1/timings.parquet"), "status"),
+        ["flagged", "ok"]
+    );
+
+    // From the cache: the same flags, the same bytes.
+    let (_, second) = run(&dir, "out2");
+    assert_eq!((second.cached, second.flagged), (2, 1));
+    for table in [
+        "surfaces.parquet",
+        "scenarios.parquet",
+        "surfaces_summits.parquet",
+    ] {
+        assert!(
+            same_bytes(&dir.join("out1"), &dir.join("out2"), table),
+            "{table}"
+        );
+    }
+
+    // Read through the manifest (an entry without `summary.bin`): the flags are there too; an
+    // unflagged entry's manifest has no `flags` field, as entries written before flags existed.
+    let cache = Cache::open(&dir.join("cache")).unwrap();
+    for node in &plan.nodes {
+        let entry = cache.entry_dir("surface", &node.key);
+        let manifest = without_summary(&entry);
+        let flagged = manifest.contains("\"flags\"");
+        let loaded = cache.load("surface", &node.key, false).unwrap().unwrap();
+        assert_eq!(flagged, !loaded.artifact.flags.is_empty());
+    }
+    let (_, third) = run(&dir, "out3");
+    assert_eq!((third.cached, third.flagged), (2, 1));
+    assert!(same_bytes(
+        &dir.join("out1"),
+        &dir.join("out3"),
+        "surfaces.parquet"
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Makes `entry` one written before summaries (no `summary.bin`, a manifest that does not list
+/// it, with its checksum). Returns the manifest's text.
+fn without_summary(entry: &Path) -> String {
+    std::fs::remove_file(entry.join("summary.bin")).unwrap();
+    let path = entry.join("manifest.json");
+    let mut manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    let payloads = manifest["payloads"].as_array_mut().unwrap();
+    payloads.retain(|p| p["file"] != "summary.bin");
+    let bytes = serde_json::to_vec_pretty(&manifest).unwrap();
+    std::fs::write(&path, &bytes).unwrap();
+    std::fs::write(
+        entry.join("manifest.blake3"),
+        blake3::hash(&bytes).to_hex().to_string(),
+    )
+    .unwrap();
+    String::from_utf8(bytes).unwrap()
+}
