@@ -93,7 +93,8 @@ def main():
     rep = report.Report(args.report, ctx.repo)
     header = {
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
-        "commit": git("rev-parse", "--short", "HEAD") + (" (dirty)" if git("status", "--porcelain", "--", "src", "crates") else ""),
+        "commit": git("log", "-1", "--format=%h", "--", "src", "crates", "Cargo.toml", "Cargo.lock")
+        + (" (dirty)" if git("status", "--porcelain", "--", "src", "crates") else ""),
         "binary": os.path.relpath(ctx.bin, REPO) if ctx.bin.startswith(REPO) else ctx.bin,
         "budget_minutes": args.budget_minutes,
         "seed": args.seed,

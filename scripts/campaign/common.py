@@ -36,6 +36,7 @@ FLAGS = [
     "no_message",  # exit != 0 with nothing on stderr
     "accepted_corrupt",  # damage that must be detected was not (checksums)
     "still_corrupt",  # the cache does not verify after a rerun and `cache gc`
+    "undetected",  # `cache verify` passed a damaged cache
 ]
 
 LOCATION = re.compile(r"[^\s:]+:\d+:\d+")

@@ -209,6 +209,7 @@ class CacheFamily:
             case.flags.add("lost_tables")
             case.notes += problems + ([why] if why else []) + ([f"rerun exit {r.rc}"] if r.rc else [])
         if not case.extra["detected"]:
+            case.flags.add("undetected")
             case.notes.append("cache verify passed the damaged cache")
         if not case.extra["verify_after_gc"]:
             case.flags.add("still_corrupt")

@@ -266,7 +266,7 @@ class FileFamily:
     def surface_study(self, case, base, inspect_out):
         ctx = self.ctx
         spacing = ""
-        if "not in the file" in inspect_out:
+        if re.search(r"^spacing:\s+not in the file", inspect_out, re.M):
             spacing = "        pixel_size: 1 um\n"
         study = (
             "study: damaged-file\nnodes:\n  s:\n    surface:\n      file:\n"

@@ -173,9 +173,11 @@ def tree_mutations(doc):
 
 
 def typo(key):
+    """Two letters swapped (`sutdy`), or one dropped where the swap changes nothing (`sed`)."""
     if len(key) < 3:
         return key + key
-    return key[0] + key[2] + key[1] + key[3:]
+    swapped = key[0] + key[2] + key[1] + key[3:]
+    return swapped if swapped != key else key[0] + key[2:]
 
 
 def line_mutations(text, rng, count):

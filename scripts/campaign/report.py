@@ -5,7 +5,7 @@ import os
 import re
 from collections import Counter, defaultdict
 
-from common import FLAGS, OUTCOMES, first_words, quote
+from common import OUTCOMES, first_words
 
 COMMON_COLUMNS = [
     ("cases", lambda cs: len(cs)),
@@ -120,6 +120,7 @@ class Report:
                      for f in ("debug_text", "repeated_clause", "lost_tables")]
             if fam == "cache":
                 cols.append(("still corrupt", lambda cs: sum("still_corrupt" in c.flags for c in cs)))
+                cols.insert(2, ("undetected", lambda cs: sum("undetected" in c.flags for c in cs)))
         names = [c[0] for c in cols]
         return ["| " + " | ".join(names) + " |", "|" + "---|" * len(names),
                 "| " + " | ".join(str(f(cs)) for _, f in cols) + " |"]
@@ -141,5 +142,3 @@ def cell(text, limit=110):
     text = " ".join(str(text).split()).replace("|", "\\|")
     return text if len(text) <= limit else text[: limit - 1] + "…"
 
-
-__all__ = ["Report", "FLAGS", "quote"]
