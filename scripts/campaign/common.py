@@ -2,7 +2,7 @@
 
 Every command runs in its own session (so a timeout kills the whole process group) with an
 address-space limit (RLIMIT_AS) and no core dumps; its stdout and stderr go to files, and its
-peak RSS comes from wait4. A case's outcome is one of OUTCOMES; on top of it a case collects
+peak RSS is its sampled VmHWM. A case's outcome is one of OUTCOMES; on top of it a case collects
 flags (FLAGS): things that must never happen whatever the outcome.
 """
 
@@ -68,7 +68,7 @@ class Proc:
 
     def tail(self, n=3000):
         out = f"$ (cd {self.cwd} && {' '.join(quote(a) for a in self.argv)})\n"
-        out += f"exit {self.rc}, {self.seconds:.1f} s, peak RSS {self.maxrss_mib:.0f} MiB"
+        out += f"exit {self.rc}, {self.seconds:.1f} s, peak RSS (sampled) {self.maxrss_mib:.0f} MiB"
         out += " (timed out)\n" if self.timed_out else "\n"
         out += "--- stdout (tail) ---\n" + self.stdout[-n:] + "\n"
         out += "--- stderr (tail) ---\n" + self.stderr[-n:] + "\n"
@@ -109,19 +109,23 @@ class Runner:
         return (argv, cwd, pid, out, err, time.monotonic())
 
     def finish(self, handle, timeout=None):
-        """Waits for a started command (killing its group at the timeout)."""
+        """Waits for a started command (killing its group at the timeout). The peak RSS is the
+        child's VmHWM sampled while it runs (wait4's ru_maxrss would include the RSS of this
+        Python process, which the child had at fork)."""
         argv, cwd, pid, out, err, t0 = handle
         limit = self.timeout if timeout is None else timeout
         timed_out = False
         delay = 0.005
+        hwm_kib = 0
         while True:
-            wpid, status, usage = os.wait4(pid, os.WNOHANG)
+            wpid, status = os.waitpid(pid, os.WNOHANG)
             if wpid == pid:
                 break
+            hwm_kib = max(hwm_kib, vm_hwm_kib(pid))
             if time.monotonic() - t0 > limit:
                 timed_out = True
                 kill_group(pid)
-                _, status, usage = os.wait4(pid, 0)
+                _, status = os.waitpid(pid, 0)
                 break
             time.sleep(delay)
             delay = min(delay * 2, 0.05)
@@ -134,7 +138,7 @@ class Runner:
             stdout=read_text(out),
             stderr=read_text(err),
             seconds=seconds,
-            maxrss_mib=usage.ru_maxrss / 1024,
+            maxrss_mib=hwm_kib / 1024,
             timed_out=timed_out,
         )
 
@@ -155,6 +159,27 @@ def spawn(argv, cwd, env, stdio, preexec):
         finally:
             os._exit(127)
     return pid
+
+
+def own_name():
+    with open("/proc/self/comm") as f:
+        return f.read().strip()
+
+
+OWN_NAME = own_name()
+
+
+def vm_hwm_kib(pid):
+    """VmHWM of a running process in KiB; 0 when it cannot be read or the child has not yet
+    left this process's image (between fork and exec it has this process's memory)."""
+    try:
+        with open(f"/proc/{pid}/status") as f:
+            fields = dict(line.split(":", 1) for line in f if ":" in line)
+        if fields["Name"].strip() == OWN_NAME:
+            return 0
+        return int(fields["VmHWM"].split()[0])
+    except (OSError, ValueError, KeyError):
+        return 0
 
 
 def kill_group(pid):

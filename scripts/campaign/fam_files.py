@@ -89,11 +89,13 @@ def generic_mutations(path, data, others, rng):
     return out
 
 
-def has_main_xml(path):
+def has_binary_payload(path):
+    """An x3p with main.xml and a bindata/ payload (not a DataList in the XML)."""
     try:
-        return "main.xml" in zipfile.ZipFile(path).namelist()
+        names = zipfile.ZipFile(path).namelist()
     except (OSError, zipfile.BadZipFile):
         return False
+    return "main.xml" in names and any(n.startswith("bindata/") for n in names)
 
 
 def x3p_zero_payload(data, side=16384):
@@ -106,10 +108,11 @@ def x3p_zero_payload(data, side=16384):
         xml = re.sub(r"<Size([XY])>\d+<", rf"<Size\g<1>>{side}<", xml)
         xml = re.sub(r"(<CZ>.*?<DataType>)\w(</DataType>)", r"\g<1>D\2", xml, flags=re.S)
         xml = re.sub(r"<MD5ChecksumPointData>[^<]*</MD5ChecksumPointData>", "", xml)
+        link = re.search(r"<PointDataLink>([^<]*)<", xml)
         buf = io.BytesIO()
         with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as w:
             w.writestr("main.xml", xml)
-            with w.open("bindata/data.bin", "w", force_zip64=True) as f:
+            with w.open(link.group(1) if link else "bindata/data.bin", "w", force_zip64=True) as f:
                 chunk = bytes(1 << 22)
                 for _ in range(side * side * 8 // len(chunk)):
                     f.write(chunk)
@@ -172,7 +175,7 @@ class FileFamily:
         self.cases = self.build()
 
     def build(self):
-        x3ps = [p for p in self.files if p.endswith(".x3p") and has_main_xml(p)]
+        x3ps = [p for p in self.files if p.endswith(".x3p") and has_binary_payload(p)]
         special = [(None, "FIFO as topography file", "fifo", False),
                    (None, "/dev/zero as topography file", "/dev/zero", False)]
         if x3ps:
