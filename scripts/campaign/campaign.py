@@ -19,6 +19,7 @@ import json
 import os
 import random
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -84,6 +85,8 @@ def git(*args):
 
 def main():
     args = parse_args()
+    # SIGTERM ends the campaign like Ctrl-C: the running command is killed, the table printed.
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     ctx = Context(args)
     chosen = [f for f in SHARES if f in args.families.split(",")]
     start = time.monotonic()

@@ -117,18 +117,22 @@ class Runner:
         timed_out = False
         delay = 0.005
         hwm_kib = 0
-        while True:
-            wpid, status = os.waitpid(pid, os.WNOHANG)
-            if wpid == pid:
-                break
-            hwm_kib = max(hwm_kib, vm_hwm_kib(pid))
-            if time.monotonic() - t0 > limit:
-                timed_out = True
-                kill_group(pid)
-                _, status = os.waitpid(pid, 0)
-                break
-            time.sleep(delay)
-            delay = min(delay * 2, 0.05)
+        try:
+            while True:
+                wpid, status = os.waitpid(pid, os.WNOHANG)
+                if wpid == pid:
+                    break
+                hwm_kib = max(hwm_kib, vm_hwm_kib(pid))
+                if time.monotonic() - t0 > limit:
+                    timed_out = True
+                    kill_group(pid)
+                    _, status = os.waitpid(pid, 0)
+                    break
+                time.sleep(delay)
+                delay = min(delay * 2, 0.05)
+        except BaseException:  # interrupted: the child is in its own session, end it too
+            kill_group(pid)
+            raise
         seconds = time.monotonic() - t0
         rc = os.waitstatus_to_exitcode(status)
         return Proc(
