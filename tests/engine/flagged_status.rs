@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use asperity::engine::cache::Cache;
 use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, RunReport};
-use asperity::engine::output::{write_tables, write_timings, OutputMetadata};
+use asperity::engine::output::{OutputMetadata, ResultSet};
 use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::nodes::TribologyNode;
@@ -50,8 +50,11 @@ fn run(dir: &Path, out: &str) -> (Plan, RunReport) {
         tool_version: String::from("test"),
         overrides: Vec::new(),
     };
-    write_tables(&dir.join(out), &plan, &report, &study.outputs, &meta).unwrap();
-    write_timings(&dir.join(out), &plan, &report, &meta).unwrap();
+    let mut set = ResultSet::stage(&dir.join(out)).unwrap();
+    set.write_tables(&plan, &report, &study.outputs, &meta)
+        .unwrap();
+    set.write_timings(&plan, &report, &meta).unwrap();
+    set.publish().unwrap();
     (plan, report)
 }
 

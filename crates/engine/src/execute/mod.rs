@@ -9,7 +9,7 @@
 use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap};
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::{Arc, Condvar, Mutex};
+use std::sync::{Arc, Mutex};
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
 use crate::artifact::{Artifact, Table};
@@ -18,6 +18,12 @@ use crate::hash::NodeKey;
 use crate::node::{ArrayStorage, NodeError};
 use crate::plan::{Plan, PlannedNode};
 use crate::value::Field;
+
+mod memory_budget;
+mod outcome;
+
+use memory_budget::MemoryBudget;
+pub use outcome::{NodeOutcome, NodeStatus};
 
 /// Receives progress events; the CLI draws a progress bar, tests ignore them.
 pub trait Progress: Sync {
@@ -36,72 +42,6 @@ impl Progress for NoProgress {
     fn start(&self, _: usize) {}
     fn finished(&self, _: &PlannedNode, _: &NodeStatus) {}
     fn warn(&self, _: &str) {}
-}
-
-/// What happened to one instance.
-#[derive(Debug, Clone, PartialEq)]
-pub enum NodeStatus {
-    Computed,
-    Cached,
-    Failed(String),
-    /// Not computed because an upstream instance failed.
-    Skipped(String),
-}
-
-impl NodeStatus {
-    /// `"ok"`, `"failed"` or `"skipped"`; [`NodeOutcome::label`] adds `"flagged"`.
-    pub fn label(&self) -> &'static str {
-        match self {
-            NodeStatus::Computed | NodeStatus::Cached => "ok",
-            NodeStatus::Failed(_) => "failed",
-            NodeStatus::Skipped(_) => "skipped",
-        }
-    }
-
-    /// The failure message, empty when ok.
-    pub fn message(&self) -> &str {
-        match self {
-            NodeStatus::Failed(m) | NodeStatus::Skipped(m) => m,
-            _ => "",
-        }
-    }
-}
-
-/// The outcome of one instance: its status and the row data for the tables.
-#[derive(Debug, Clone, PartialEq)]
-pub struct NodeOutcome {
-    pub status: NodeStatus,
-    pub metrics: Vec<Field>,
-    pub tables: BTreeMap<String, Table>,
-    /// The artifact's flags ([`Artifact::flags`]): why its values must be read with care.
-    pub flags: Vec<String>,
-    /// Compute time (when computed now) or the recorded compute time (when cached), seconds.
-    pub compute_seconds: f64,
-}
-
-impl NodeOutcome {
-    /// The `status` column of tables: `"flagged"` for a computed or cached instance with flags,
-    /// otherwise [`NodeStatus::label`].
-    pub fn label(&self) -> &'static str {
-        match self.status {
-            NodeStatus::Computed | NodeStatus::Cached if !self.flags.is_empty() => "flagged",
-            _ => self.status.label(),
-        }
-    }
-
-    /// The `message` column: the flags joined by "; " when flagged, the failure message when
-    /// failed or skipped, empty when ok.
-    pub fn message(&self) -> String {
-        match self.status {
-            NodeStatus::Computed | NodeStatus::Cached => self.flags.join("; "),
-            _ => self.status.message().to_string(),
-        }
-    }
-
-    /// `true` when the instance computed (or was cached) with flags.
-    pub fn is_flagged(&self) -> bool {
-        self.label() == "flagged"
-    }
 }
 
 /// Execution settings.
@@ -591,49 +531,5 @@ fn failed_outcome(status: NodeStatus) -> NodeOutcome {
         tables: BTreeMap::new(),
         flags: Vec::new(),
         compute_seconds: 0.0,
-    }
-}
-
-/// A counting semaphore over bytes: a node waits until its memory estimate fits the budget.
-/// A node larger than the whole budget runs alone.
-struct MemoryBudget {
-    total: u64,
-    used: Mutex<u64>,
-    freed: Condvar,
-}
-
-struct Permit<'a> {
-    budget: &'a MemoryBudget,
-    bytes: u64,
-}
-
-impl MemoryBudget {
-    fn new(total: u64) -> Self {
-        Self {
-            total: total.max(1),
-            used: Mutex::new(0),
-            freed: Condvar::new(),
-        }
-    }
-
-    fn acquire(&self, bytes: u64) -> Permit<'_> {
-        let bytes = bytes.min(self.total);
-        let mut used = self.used.lock().unwrap_or_else(|p| p.into_inner());
-        while *used + bytes > self.total {
-            used = self.freed.wait(used).unwrap_or_else(|p| p.into_inner());
-        }
-        *used += bytes;
-        Permit {
-            budget: self,
-            bytes,
-        }
-    }
-}
-
-impl Drop for Permit<'_> {
-    fn drop(&mut self) {
-        let mut used = self.budget.used.lock().unwrap_or_else(|p| p.into_inner());
-        *used -= self.bytes;
-        self.budget.freed.notify_all();
     }
 }
