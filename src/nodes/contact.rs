@@ -16,7 +16,7 @@ use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
 use crate::contact::{
     BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
-    FieldRequest, LoadCurve, LoadStep, SolverOptions,
+    FieldRequest, LoadCurve, LoadStep, SolverOptions, MAX_TOLERANCE, MIN_TOLERANCE,
 };
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
@@ -90,10 +90,14 @@ impl ContactSpec {
         };
         let tolerance = match &self.tolerance {
             Some(p) => ctx.resolve_checked(p, "tolerance", |t| {
-                if *t > 0.0 && *t < 1.0 {
+                if (MIN_TOLERANCE..MAX_TOLERANCE).contains(t) {
                     Ok(())
                 } else {
-                    Err(String::from("is out of range: must be in (0, 1)"))
+                    Err(format!(
+                        "is out of range: must be at least {MIN_TOLERANCE:e} and below \
+                         {MAX_TOLERANCE} (the solver's residuals cannot fall below ~1e-13 in \
+                         f64 arithmetic); write e.g. 1e-6"
+                    ))
                 }
             })?,
             None => SolverOptions::default().tolerance,
