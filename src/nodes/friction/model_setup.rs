@@ -93,11 +93,13 @@ pub(super) fn model_inputs(
     let junction_shear = if model == FrictionModel::JunctionShear {
         let c = match &spec.interface_factor {
             Some(p) => ctx.resolve_checked(p, "interface_factor", |c: &f64| {
-                if c.is_finite() && *c >= 0.0 {
+                if (0.0..=1.0).contains(c) {
                     Ok(())
                 } else {
                     Err(String::from(
-                        "is out of range: the interface factor c must be >= 0 (1 for a clean metal junction)",
+                        "is out of range: the interface factor c must be in [0, 1] (1 for a \
+                         clean metal junction: a junction stronger than the softer body shears \
+                         inside that body, at c = 1)",
                     ))
                 }
             })?,

@@ -10,7 +10,7 @@ use crate::units::{Angle, Dimension, Length, Quantity};
 use super::{SurfaceSource, SurfaceTask};
 
 /// Largest grid side accepted (a 16384² f64 map is 2 GiB).
-const MAX_GRID_SIDE: usize = 16384;
+pub(super) const MAX_GRID_SIDE: usize = 16384;
 
 /// `surface: {synthetic: {...}}`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -166,12 +166,19 @@ impl SyntheticSpec {
             "correlation_length" => Some(self.correlation_length.location()),
             "hurst" => Some(self.hurst.location()),
             "sq" => Some(self.sq.location()),
+            "lx" => Some(self.size[0].location()),
+            "ly" => Some(self.size[1].location()),
             _ => None,
         }
         .unwrap_or_else(|| self.grid[0].location());
+        let field = match name {
+            "lx" => "size[0]",
+            "ly" => "size[1]",
+            other => other,
+        };
         Err(SpecError {
             location,
-            field: format!("synthetic.{name}"),
+            field: format!("synthetic.{field}"),
             message: format!("{value} {unit} is out of range: expected {expected} ({unit})"),
         })
     }
