@@ -56,7 +56,8 @@ pub struct ContactSpec {
     /// Periodic surfaces (default) or isolated ones (DC-FFT, zero padding).
     #[serde(default)]
     pub periodic: Option<Param<bool>>,
-    /// Relative tolerance on every complementarity residual and the force balance (default 1e-6).
+    /// Relative tolerance on every complementarity residual and the force balance (default 1e-6;
+    /// at least 1e-12, the solver's f64 floor, and below 1).
     #[serde(default)]
     pub tolerance: Option<Param<f64>>,
     /// Store the final step's pressure, gap, deformation and plastic-penetration maps.

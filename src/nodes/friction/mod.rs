@@ -116,7 +116,7 @@ pub struct FrictionSpec {
     /// `{a: 0.27, b: 0.35}` attributed to Brizmer, Kligerman & Etsion (2007), not confirmed.
     #[serde(default)]
     pub stick_law: Option<Box<StickLawSpec>>,
-    /// Junction shear: interface factor c ≥ 0 of the shear strength, τ_s = c·k of the softer
+    /// Junction shear: interface factor 0 ≤ c ≤ 1 of the shear strength, τ_s = c·k of the softer
     /// body (default 1, a clean metal junction; smaller for contaminated or lubricated ones).
     #[serde(default)]
     pub interface_factor: Option<Param<f64>>,

@@ -18,13 +18,13 @@ pub(super) const MAX_GRID_SIDE: usize = 16384;
 pub struct SyntheticSpec {
     /// Grid points `[nx, ny]`, each ≥ 2.
     pub grid: [Param<usize>; 2],
-    /// Physical size `[Lx, Ly]` (lengths, e.g. `[1 mm, 1 mm]`).
+    /// Physical size `[Lx, Ly]` (lengths, each 1 nm to 1 km, e.g. `[1 mm, 1 mm]`).
     pub size: [Param<Quantity<Length>>; 2],
-    /// Target RMS height Sq (length > 0); exact after normalisation.
+    /// Target RMS height Sq (length from 1 pm to the shorter side); exact after normalisation.
     pub sq: Param<Quantity<Length>>,
     /// Hurst exponent H in (0, 1]: PSD ∝ q^-(2+2H) above the roll-off.
     pub hurst: Param<f64>,
-    /// Roll-off wavelength λ_r (length > 0): the PSD is flat for wavelengths longer than this.
+    /// Roll-off wavelength λ_r (length > 0, ≤ 1 km): the PSD is flat for wavelengths longer than this.
     pub correlation_length: Param<Quantity<Length>>,
     /// Optional short-wavelength cutoff λ_s: no content at wavelengths shorter than this.
     #[serde(default)]

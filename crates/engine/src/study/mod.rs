@@ -35,7 +35,8 @@ pub const SCENARIOS_TABLE: &str = "scenarios";
 #[serde(deny_unknown_fields)]
 #[schemars(title = "asperity study", bound = "N: schemars::JsonSchema")]
 pub struct StudyFile<N> {
-    /// Study name: letters, digits, '-', '_' and '.'; results go to `results/<study>/`.
+    /// Study name: letters, digits, '-', '_' and '.', not starting with '.' or '-', at most 191
+    /// bytes; results go to `results/<study>/`.
     pub study: Located<String>,
     /// Free text describing the study.
     #[serde(default)]
