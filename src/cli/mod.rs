@@ -228,3 +228,40 @@ fn plan(
     );
     Ok(ExitCode::SUCCESS)
 }
+
+/// The text of an error and its causes, joined by ": " (as anyhow's `{:#}`), leaving out a
+/// cause whose text the message already holds: a library error that writes its cause into its
+/// own message and also returns it as `source()` would otherwise say it twice.
+pub fn error_text(error: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in error.chain() {
+        let part = cause.to_string();
+        if text.contains(&part) {
+            continue;
+        }
+        if !text.is_empty() {
+            text.push_str(": ");
+        }
+        text.push_str(&part);
+    }
+    text
+}
+
+#[cfg(test)]
+mod error_text_tests {
+    use super::error_text;
+
+    #[derive(Debug, thiserror::Error)]
+    #[error("form removal failed: {0}")]
+    struct Wrapper(#[from] std::io::Error);
+
+    #[test]
+    fn a_cause_already_in_the_message_is_said_once() {
+        let io = std::io::Error::other("missing magic");
+        let error = anyhow::Error::from(Wrapper(io)).context("cannot read scan.al3d");
+        assert_eq!(
+            error_text(&error),
+            "cannot read scan.al3d: form removal failed: missing magic"
+        );
+    }
+}

@@ -17,7 +17,7 @@ use super::surface_view::SurfaceView;
 use super::validity;
 use crate::contact::{
     BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
-    FieldRequest, LoadCurve, LoadStep, SolverOptions,
+    FieldRequest, LoadCurve, LoadStep, SolverOptions, MAX_TOLERANCE, MIN_TOLERANCE,
 };
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
@@ -58,7 +58,8 @@ pub struct ContactSpec {
     /// Periodic surfaces (default) or isolated ones (DC-FFT, zero padding).
     #[serde(default)]
     pub periodic: Option<Param<bool>>,
-    /// Relative tolerance on every complementarity residual and the force balance (default 1e-6).
+    /// Relative tolerance on every complementarity residual and the force balance (default 1e-6;
+    /// at least 1e-12, the solver's f64 floor, and below 1).
     #[serde(default)]
     pub tolerance: Option<Param<f64>>,
     /// Store the final step's pressure, gap, deformation and plastic-penetration maps.
@@ -92,10 +93,14 @@ impl ContactSpec {
         };
         let tolerance = match &self.tolerance {
             Some(p) => ctx.resolve_checked(p, "tolerance", |t| {
-                if *t > 0.0 && *t < 1.0 {
+                if (MIN_TOLERANCE..MAX_TOLERANCE).contains(t) {
                     Ok(())
                 } else {
-                    Err(String::from("is out of range: must be in (0, 1)"))
+                    Err(format!(
+                        "is out of range: must be at least {MIN_TOLERANCE:e} and below \
+                         {MAX_TOLERANCE} (the solver's residuals cannot fall below ~1e-13 in \
+                         f64 arithmetic); write e.g. 1e-6"
+                    ))
                 }
             })?,
             None => SolverOptions::default().tolerance,

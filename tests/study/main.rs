@@ -1,6 +1,7 @@
-//! The study format: broken studies, parameter references inside strings and glob axes, overrides, parser robustness, summaries, input traps of measured files.
+//! The study format: broken studies, the messages of a corpus of failures, parameter references inside strings and glob axes, overrides, parser robustness, summaries, input traps of measured files.
 
 mod input_traps;
+mod message_corpus;
 mod study_errors;
 mod study_interpolation;
 mod study_overrides;

@@ -142,6 +142,12 @@ fn substituted_strings_are_checked_like_whole_values() {
     let p = plan(&dir, &synthetic("[1, 2]", "${n} um")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(param(&p, 0, "sq_target"), Value::Float(1e-6));
     assert_eq!(param(&p, 1, "sq_target"), Value::Float(2e-6));
+    // Adjacent references are two references, like a reference followed by a digit.
+    let p = plan(&dir, &synthetic("[1, 2]", "${n}${n} um")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(param(&p, 0, "sq_target"), Value::Float(11e-6));
+    assert_eq!(param(&p, 1, "sq_target"), Value::Float(22e-6));
+    let p = plan(&dir, &synthetic("[1]", "${n}0 um")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(param(&p, 0, "sq_target"), Value::Float(10e-6));
     let cases = [
         (
             synthetic("[abc]", "${n} um"),

@@ -10,7 +10,7 @@ use crate::units::{Angle, Dimension, Length, Quantity};
 use super::{SurfaceSource, SurfaceTask};
 
 /// Largest grid side accepted (a 16384² f64 map is 2 GiB).
-const MAX_GRID_SIDE: usize = 16384;
+pub(super) const MAX_GRID_SIDE: usize = 16384;
 
 /// `surface: {synthetic: {...}}`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -18,13 +18,13 @@ const MAX_GRID_SIDE: usize = 16384;
 pub struct SyntheticSpec {
     /// Grid points `[nx, ny]`, each ≥ 2.
     pub grid: [Param<usize>; 2],
-    /// Physical size `[Lx, Ly]` (lengths, e.g. `[1 mm, 1 mm]`).
+    /// Physical size `[Lx, Ly]` (lengths, each 1 nm to 1 km, e.g. `[1 mm, 1 mm]`).
     pub size: [Param<Quantity<Length>>; 2],
-    /// Target RMS height Sq (length > 0); exact after normalisation.
+    /// Target RMS height Sq (length from 1 pm to the shorter side); exact after normalisation.
     pub sq: Param<Quantity<Length>>,
     /// Hurst exponent H in (0, 1]: PSD ∝ q^-(2+2H) above the roll-off.
     pub hurst: Param<f64>,
-    /// Roll-off wavelength λ_r (length > 0): the PSD is flat for wavelengths longer than this.
+    /// Roll-off wavelength λ_r (length > 0, ≤ 1 km): the PSD is flat for wavelengths longer than this.
     pub correlation_length: Param<Quantity<Length>>,
     /// Optional short-wavelength cutoff λ_s: no content at wavelengths shorter than this.
     #[serde(default)]
@@ -166,12 +166,19 @@ impl SyntheticSpec {
             "correlation_length" => Some(self.correlation_length.location()),
             "hurst" => Some(self.hurst.location()),
             "sq" => Some(self.sq.location()),
+            "lx" => Some(self.size[0].location()),
+            "ly" => Some(self.size[1].location()),
             _ => None,
         }
         .unwrap_or_else(|| self.grid[0].location());
+        let field = match name {
+            "lx" => "size[0]",
+            "ly" => "size[1]",
+            other => other,
+        };
         Err(SpecError {
             location,
-            field: format!("synthetic.{name}"),
+            field: format!("synthetic.{field}"),
             message: format!("{value} {unit} is out of range: expected {expected} ({unit})"),
         })
     }

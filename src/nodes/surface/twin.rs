@@ -19,6 +19,7 @@ use crate::engine::value::{Field, ParamValue};
 use std::f64::consts::PI;
 
 use crate::surface::spectral::{HurstFitOptions, ISO_ACF_THRESHOLD};
+use crate::surface::synthetic::MIN_SQ;
 use crate::surface::twins::{
     fit_twin_model, format_micrometres, measure_texture, synthetic_twin, CorrelationMethod,
     MeasuredTexture, SyntheticTwin, TextureOptions, TwinError, TwinGrid, TwinModel, TwinWarning,
@@ -28,7 +29,7 @@ use crate::units::{Dimension, Length, Quantity};
 
 use super::measured::{MeasuredFile, MeasuredSource};
 use super::preprocess::{PreprocessDefaults, PreprocessSpec, Preprocessing};
-use super::synthetic::positive_length;
+use super::synthetic::{positive_length, MAX_GRID_SIDE};
 use super::{SurfaceSource, SurfaceTask};
 
 /// `surface: {twin: {...}}`.
@@ -137,13 +138,27 @@ impl TwinSpec {
                 PreprocessDefaults::TWIN,
             )?;
         let sq = ctx.resolve(&self.sq, "twin.sq")?;
+        let grid = self.grid(ctx)?;
+        if let TwinSq::Given(v) = sq {
+            let max_sq = grid.lx.min(grid.ly);
+            if !(MIN_SQ..=max_sq).contains(&v) {
+                return Err(SpecError {
+                    location: self.sq.location(),
+                    field: String::from("twin.sq"),
+                    message: format!(
+                        "{v:e} m is out of range: expected {MIN_SQ:e} m ≤ Sq ≤ the shorter side \
+                         of the twin, {max_sq:e} m (see synthetic.sq in docs/study-format.md)"
+                    ),
+                });
+            }
+        }
         Ok(SurfaceTask {
             source: SurfaceSource::Twin(TwinSource {
                 measured,
                 preprocessing,
                 hurst_band: self.hurst_band(ctx)?,
                 sq,
-                grid: self.grid(ctx)?,
+                grid,
             }),
         })
     }
@@ -175,10 +190,12 @@ impl TwinSpec {
 
     fn grid(&self, ctx: &ResolveContext<'_>) -> Result<TwinGrid, SpecError> {
         let side = |n: &usize| {
-            if *n >= 2 {
+            if (2..=MAX_GRID_SIDE).contains(n) {
                 Ok(())
             } else {
-                Err(String::from("is out of range: grid sides must be ≥ 2"))
+                Err(format!(
+                    "is out of range: grid sides must be between 2 and {MAX_GRID_SIDE}"
+                ))
             }
         };
         let length = |p: &Param<Quantity<Length>>, field: &str| {

@@ -63,7 +63,16 @@ impl StudyError {
             .map(SourceLocation::from)
             .unwrap_or_default();
         let inner = error.without_snippet();
-        let message = match inner {
+        let message = match super::yaml_budget::breach(error) {
+            Some(breach) => super::yaml_budget::budget_message(breach),
+            None => Self::yaml_message(inner),
+        };
+        Self::at(path, source, location, "", message)
+    }
+
+    /// The message of a YAML/serde error other than a breached parser limit.
+    fn yaml_message(inner: &serde_saphyr::Error) -> String {
+        match inner {
             serde_saphyr::Error::SerdeUnknownField {
                 field, expected, ..
             } => format!(
@@ -89,8 +98,7 @@ impl StudyError {
                 "missing required key '{field}' in the mapping that ends here; see docs/study-format.md"
             ),
             other => strip_location_suffix(&other.to_string()),
-        };
-        Self::at(path, source, location, "", message)
+        }
     }
 }
 

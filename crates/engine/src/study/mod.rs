@@ -3,15 +3,18 @@
 
 mod error;
 mod file_axis;
+mod names;
 mod overrides;
 mod parameters;
 mod summary_spec;
+mod yaml_budget;
 
 pub use crate::resolve::ResolveContext;
 pub use crate::syntax::{
     did_you_mean, FromParamValue, Located, Param, RawValue, SourceLocation, SpannedName, SpecError,
 };
 pub use error::StudyError;
+pub use names::{MAX_FILE_NAME_BYTES, MAX_NAME_BYTES, NAME_AFFIX_BYTES};
 pub use overrides::{OverrideSyntaxError, ParameterOverride};
 pub use parameters::{Axis, LatinHypercube, ParameterError, ParameterSpace, Scenarios};
 pub use summary_spec::{split_metric, SummarySpec, RUN_TIME_METRIC};
@@ -32,7 +35,8 @@ pub const SCENARIOS_TABLE: &str = "scenarios";
 #[serde(deny_unknown_fields)]
 #[schemars(title = "asperity study", bound = "N: schemars::JsonSchema")]
 pub struct StudyFile<N> {
-    /// Study name: letters, digits, '-', '_' and '.'; results go to `results/<study>/`.
+    /// Study name: letters, digits, '-', '_' and '.', not starting with '.' or '-', at most 191
+    /// bytes; results go to `results/<study>/`.
     pub study: Located<String>,
     /// Free text describing the study.
     #[serde(default)]
@@ -88,19 +92,8 @@ impl<N: NodeSpec> Study<N> {
         let err = |location, context: String, message: String| {
             StudyError::at(path, &source, location, context, message)
         };
-        let name = &file.study.value;
-        if name.is_empty()
-            || !name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
-            || name.starts_with('.')
-        {
-            return Err(err(
-                file.study.location,
-                String::from("study"),
-                format!("'{name}' is not a valid study name: use letters, digits, '-', '_' and '.' (it names the results folder)"),
-            ));
-        }
+        names::check_study_name(&file.study.value)
+            .map_err(|m| err(file.study.location, String::from("study"), m))?;
         if file.nodes.is_empty() {
             let line = source
                 .lines()
@@ -113,8 +106,11 @@ impl<N: NodeSpec> Study<N> {
             ));
         }
         let order = check_graph(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?;
+        check_scenario_columns(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?;
         let mut outputs = check_outputs(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?;
-        for table in check_summaries(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))? {
+        for table in
+            summary_spec::check_summaries(&file).map_err(|(loc, ctx, msg)| err(loc, ctx, msg))?
+        {
             if !outputs.contains(&table) {
                 outputs.push(table);
             }
@@ -151,6 +147,7 @@ impl<N: NodeSpec> Study<N> {
     }
 }
 
+/// A failed static check: where, what it concerns, the message.
 type CheckError = (SourceLocation, String, String);
 
 fn check_graph<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckError> {
@@ -207,7 +204,35 @@ fn check_graph<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckErr
     }
 }
 
-fn valid_node_name(name: &str) -> bool {
+/// The parameters' columns of the scenarios table must not clash with each other or with the
+/// columns the engine writes there (`scenario`, `<node>_key`, `status`).
+fn check_scenario_columns<N: NodeSpec>(file: &StudyFile<N>) -> Result<(), CheckError> {
+    let mut columns = names::Columns::default();
+    columns.fixed("scenario", "the scenario number");
+    for node in file.nodes.keys() {
+        columns.fixed(&format!("{node}_key"), &format!("the key of node '{node}'"));
+    }
+    columns.fixed("status", "the scenario's status");
+    let declared = file.parameters.declared_names();
+    for (i, &(name, location)) in declared.iter().enumerate() {
+        // A name declared twice is the parameter expansion's error, said as such there.
+        if declared[..i].iter().any(|(n, _)| *n == name) {
+            continue;
+        }
+        columns
+            .add(name, format!("parameter '{name}'"))
+            .map_err(|m| {
+                (
+                    location,
+                    format!("parameters.{name}"),
+                    format!("{m} in scenarios.parquet; rename the parameter"),
+                )
+            })?;
+    }
+    Ok(())
+}
+
+pub(super) fn valid_node_name(name: &str) -> bool {
     let mut chars = name.chars();
     matches!(chars.next(), Some(c) if c.is_ascii_alphabetic())
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
@@ -272,94 +297,4 @@ fn check_outputs<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckE
         ));
     }
     Ok(result)
-}
-
-/// Checks the `summaries` section; returns the tables of the nodes it uses (they must be
-/// computed, so they are written too).
-fn check_summaries<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckError> {
-    let p = &file.parameters;
-    let parameters: Vec<&str> = p
-        .product
-        .keys()
-        .chain(p.zip.iter().flat_map(|g| g.value.keys()))
-        .chain(p.latin_hypercube.iter().flat_map(|l| l.value.ranges.keys()))
-        .map(String::as_str)
-        .collect();
-    let nodes: Vec<&str> = file.nodes.keys().map(String::as_str).collect();
-    let mut tables = Vec::new();
-    for (name, summary) in &file.summaries {
-        let context = format!("summaries.{name}");
-        if !valid_node_name(name) {
-            return Err((
-                summary.location,
-                context,
-                String::from("summary names start with a letter and contain only letters, digits, '_' and '-' (the table is summary_<name>)"),
-            ));
-        }
-        for by in &summary.value.by {
-            if !parameters.contains(&by.value.as_str()) {
-                return Err((
-                    by.location,
-                    format!("{context}.by"),
-                    format!(
-                        "'{}' is not a parameter{}; parameters: {}",
-                        by.value,
-                        did_you_mean(&by.value, parameters.iter().copied()),
-                        if parameters.is_empty() {
-                            String::from("none")
-                        } else {
-                            parameters.join(", ")
-                        }
-                    ),
-                ));
-            }
-        }
-        if summary.value.metrics.is_empty() {
-            return Err((
-                summary.location,
-                format!("{context}.metrics"),
-                String::from("lists no metric; write node.metric, e.g. contact.area_fraction"),
-            ));
-        }
-        for metric in &summary.value.metrics {
-            let Some((node, field)) = split_metric(&metric.value) else {
-                return Err((
-                    metric.location,
-                    format!("{context}.metrics"),
-                    format!(
-                        "'{}' is not node.metric; write e.g. contact.area_fraction",
-                        metric.value
-                    ),
-                ));
-            };
-            if field == RUN_TIME_METRIC {
-                return Err((
-                    metric.location,
-                    format!("{context}.metrics"),
-                    format!(
-                        "'{}': run times are not results (they differ between runs and would \
-                         make this table differ too); every run writes them per node instance \
-                         to timings.parquet (join on its `key` column)",
-                        metric.value
-                    ),
-                ));
-            }
-            let Some(spec) = file.nodes.get(node) else {
-                return Err((
-                    metric.location,
-                    format!("{context}.metrics"),
-                    format!(
-                        "no node '{node}'{}; nodes: {}",
-                        did_you_mean(node, nodes.iter().copied()),
-                        nodes.join(", ")
-                    ),
-                ));
-            };
-            let table = spec.value.table().to_string();
-            if !tables.contains(&table) {
-                tables.push(table);
-            }
-        }
-    }
-    Ok(tables)
 }

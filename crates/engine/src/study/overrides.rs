@@ -52,10 +52,10 @@ impl FromStr for ParameterOverride {
             )));
         }
         let raw: RawValue = serde_saphyr::from_str(text).map_err(|e| {
-            err(format!(
-                "the value is not valid YAML: {}",
-                e.without_snippet()
-            ))
+            err(match super::yaml_budget::breach(&e) {
+                Some(breach) => super::yaml_budget::budget_message(breach),
+                None => format!("the value is not valid YAML: {}", e.without_snippet()),
+            })
         })?;
         let axis = match raw {
             list @ (RawValue::List(_) | RawValue::Map(_)) => Axis(list),

@@ -96,6 +96,21 @@ pub struct Scenarios {
 pub const MAX_SCENARIOS: usize = 10_000_000;
 
 impl ParameterSpace {
+    /// Every parameter name as written, with its location, in declaration order.
+    pub fn declared_names(&self) -> Vec<(&str, SourceLocation)> {
+        let axes = self
+            .product
+            .iter()
+            .chain(self.zip.iter().flat_map(|g| g.value.iter()))
+            .chain(
+                self.latin_hypercube
+                    .iter()
+                    .flat_map(|l| l.value.ranges.iter()),
+            );
+        axes.map(|(name, axis)| (name.as_str(), axis.location))
+            .collect()
+    }
+
     /// Expands the space into scenarios (a study with no parameters has one scenario); `glob`
     /// patterns are relative to `base`, the study file's folder.
     pub fn expand(&self, base: &Path) -> Result<Scenarios, ParameterError> {

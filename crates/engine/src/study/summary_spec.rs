@@ -3,7 +3,10 @@
 
 use serde::Deserialize;
 
-use crate::syntax::Located;
+use super::names::{check_length, Columns};
+use super::{valid_node_name, CheckError, StudyFile};
+use crate::node::NodeSpec;
+use crate::syntax::{did_you_mean, Located};
 
 /// `summaries: {name: {by: [...], metrics: [...]}}` in a study file.
 #[derive(Debug, Clone, Deserialize, schemars::JsonSchema)]
@@ -27,4 +30,140 @@ pub fn split_metric(reference: &str) -> Option<(&str, &str)> {
     reference
         .split_once('.')
         .filter(|(node, metric)| !node.is_empty() && !metric.is_empty())
+}
+
+/// Checks the `summaries` section; returns the tables of the nodes it uses (they must be
+/// computed, so they are written too).
+pub(super) fn check_summaries<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckError> {
+    let p = &file.parameters;
+    let parameters: Vec<&str> = p
+        .product
+        .keys()
+        .chain(p.zip.iter().flat_map(|g| g.value.keys()))
+        .chain(p.latin_hypercube.iter().flat_map(|l| l.value.ranges.keys()))
+        .map(String::as_str)
+        .collect();
+    let nodes: Vec<&str> = file.nodes.keys().map(String::as_str).collect();
+    let mut tables = Vec::new();
+    for (name, summary) in &file.summaries {
+        let context = format!("summaries.{name}");
+        if !valid_node_name(name) {
+            return Err((
+                summary.location,
+                context,
+                String::from("summary names start with a letter and contain only letters, digits, '_' and '-' (the table is summary_<name>)"),
+            ));
+        }
+        check_length(name, "summary names").map_err(|m| (summary.location, context.clone(), m))?;
+        for by in &summary.value.by {
+            if !parameters.contains(&by.value.as_str()) {
+                return Err((
+                    by.location,
+                    format!("{context}.by"),
+                    format!(
+                        "'{}' is not a parameter{}; parameters: {}",
+                        by.value,
+                        did_you_mean(&by.value, parameters.iter().copied()),
+                        if parameters.is_empty() {
+                            String::from("none")
+                        } else {
+                            parameters.join(", ")
+                        }
+                    ),
+                ));
+            }
+        }
+        if summary.value.metrics.is_empty() {
+            return Err((
+                summary.location,
+                format!("{context}.metrics"),
+                String::from("lists no metric; write node.metric, e.g. contact.area_fraction"),
+            ));
+        }
+        for metric in &summary.value.metrics {
+            let Some((node, field)) = split_metric(&metric.value) else {
+                return Err((
+                    metric.location,
+                    format!("{context}.metrics"),
+                    format!(
+                        "'{}' is not node.metric; write e.g. contact.area_fraction",
+                        metric.value
+                    ),
+                ));
+            };
+            if field == RUN_TIME_METRIC {
+                return Err((
+                    metric.location,
+                    format!("{context}.metrics"),
+                    format!(
+                        "'{}': run times are not results (they differ between runs and would \
+                         make this table differ too); every run writes them per node instance \
+                         to timings.parquet (join on its `key` column)",
+                        metric.value
+                    ),
+                ));
+            }
+            let Some(spec) = file.nodes.get(node) else {
+                return Err((
+                    metric.location,
+                    format!("{context}.metrics"),
+                    format!(
+                        "no node '{node}'{}; nodes: {}",
+                        did_you_mean(node, nodes.iter().copied()),
+                        nodes.join(", ")
+                    ),
+                ));
+            };
+            let table = spec.value.table().to_string();
+            if !tables.contains(&table) {
+                tables.push(table);
+            }
+        }
+        check_columns(&summary.value, &context)?;
+    }
+    Ok(tables)
+}
+
+/// The columns of one summary table must be distinct: each `by` parameter and each metric once,
+/// and no parameter or metric whose columns (`<parameter>`, `scenarios`,
+/// `<node>_<metric>_n|mean|std`, with unit suffixes) clash with another's.
+fn check_columns(spec: &SummarySpec, context: &str) -> Result<(), CheckError> {
+    let mut columns = Columns::default();
+    columns.fixed("scenarios", "the number of scenarios in a group");
+    for (i, by) in spec.by.iter().enumerate() {
+        if spec.by[..i].iter().any(|b| b.value == by.value) {
+            return Err((
+                by.location,
+                format!("{context}.by"),
+                format!("'{}' is listed twice; list each parameter once", by.value),
+            ));
+        }
+        columns
+            .add(&by.value, format!("parameter '{}'", by.value))
+            .map_err(|m| (by.location, format!("{context}.by"), clash(&m)))?;
+    }
+    for (i, metric) in spec.metrics.iter().enumerate() {
+        if spec.metrics[..i].iter().any(|m| m.value == metric.value) {
+            return Err((
+                metric.location,
+                format!("{context}.metrics"),
+                format!("'{}' is listed twice; list each metric once", metric.value),
+            ));
+        }
+        let stem = metric.value.replacen('.', "_", 1);
+        for statistic in ["n", "mean", "std"] {
+            columns
+                .add(
+                    &format!("{stem}_{statistic}"),
+                    format!("metric '{}'", metric.value),
+                )
+                .map_err(|m| (metric.location, format!("{context}.metrics"), clash(&m)))?;
+        }
+    }
+    Ok(())
+}
+
+/// The message of a column clash in a summary table.
+fn clash(clause: &str) -> String {
+    format!("{clause} in the summary table; rename the parameter or leave one of them out")
 }

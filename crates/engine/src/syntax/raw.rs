@@ -19,13 +19,15 @@ pub enum RawValue {
 }
 
 impl RawValue {
-    /// The `${name}` parameter reference this value is, if any.
+    /// The `${name}` parameter reference this value is, if any: the whole text is one
+    /// reference, so its inside holds no `}` (`"${a}${b}"` is two references in a text).
     pub fn as_reference(&self) -> Option<&str> {
         match self {
             RawValue::Text(s) => s
                 .trim()
                 .strip_prefix("${")
                 .and_then(|rest| rest.strip_suffix('}'))
+                .filter(|inside| !inside.contains('}'))
                 .map(str::trim),
             _ => None,
         }

@@ -10,7 +10,7 @@
 
 use super::constrained_cg::{self, CgOutcome, CgSettings, Control};
 use super::influence::InfluenceOperator;
-use super::options::Termination;
+use super::options::{Termination, INNER_TOLERANCE_FLOOR};
 use super::work::Work;
 use super::workspace::Workspace;
 use crate::fft2::FftFailure;
@@ -75,9 +75,11 @@ impl<'a> ApproachSearch<'a> {
         // The mean pressure of an approach-controlled solve is exact only to the precision of its
         // gaps: a gap error e moves a free point's pressure by ~E*·e/dx, i.e. the mean by up to
         // p_lim·(e/h)-ish relative to p_lim, not to p̄. To resolve P(δ) = p̄ to ε·p̄ the inner
-        // solves are converged to ε·p̄/p_lim (and never looser than ε).
+        // solves are converged to ε·p̄/p_lim, never looser than ε and never tighter than the
+        // residual floor of f64 gaps (nor than ε itself, should ε be below that floor).
         let inner_tolerance = (settings.tolerance * nominal_pressure / settings.flow_pressure)
-            .clamp(1e-13, settings.tolerance);
+            .max(INNER_TOLERANCE_FLOOR.min(settings.tolerance))
+            .min(settings.tolerance);
         Self {
             nominal_pressure,
             start_approach,

@@ -18,7 +18,7 @@ pub enum ContactError {
     BadOption {
         name: &'static str,
         value: f64,
-        reason: &'static str,
+        reason: String,
     },
     #[error("load step {step}: nominal pressure must be finite and > 0 Pa, got {pressure} Pa")]
     BadNominalPressure { step: usize, pressure: f64 },
@@ -34,7 +34,7 @@ pub enum ContactError {
         pressure: f64,
         flow_pressure: f64,
     },
-    #[error("load step {step} at {pressure:e} Pa did not converge ({termination:?} after {iterations} iterations); relative residuals: separation {:.1e}, contact {:.1e}, plastic {:.1e}, force {:.1e}; try a looser `tolerance`, more load steps or a finer grid", residuals.separation, residuals.contact, residuals.plastic, residuals.force)]
+    #[error("load step {step} at {pressure:e} Pa did not converge ({termination} after {iterations} iterations); relative residuals: separation {:.1e}, contact {:.1e}, plastic {:.1e}, force {:.1e}; try a looser `tolerance`, more load steps or a finer grid", residuals.separation, residuals.contact, residuals.plastic, residuals.force)]
     NotConverged {
         step: usize,
         pressure: f64,

@@ -31,7 +31,10 @@ pub use gap::{CompositeGap, GapError, GapSource};
 pub use influence::Boundary;
 pub use load_curve::{ContactFields, LoadCurve, LoadStep};
 pub use material::{BodyElasticity, ContactMaterial, MaterialError};
-pub use options::{FieldRequest, Residuals, SolvePath, SolveStrategy, SolverOptions, Termination};
+pub use options::{
+    FieldRequest, Residuals, SolvePath, SolveStrategy, SolverOptions, Termination, MAX_TOLERANCE,
+    MIN_TOLERANCE,
+};
 pub use problem::ContactProblem;
 pub use solver::ContactSolver;
 pub use work::Work;

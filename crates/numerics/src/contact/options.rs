@@ -1,5 +1,29 @@
 //! Solver options, termination reasons and residuals.
 
+use std::fmt;
+
+use super::error::ContactError;
+
+/// Smallest relative tolerance `ε` the solver accepts.
+///
+/// Every residual is a gap error relative to the gap scale `h` (see [`Residuals`]) or a force
+/// error relative to `p̄`, so its floor is f64 rounding: the gap `g = g₀ + u − δ` sums terms of
+/// several `h`, each rounded to `ε_f64 = 2.2e-16` of itself, and the displacement `u` comes out
+/// of an FFT convolution whose rounding grows like `ε_f64 · log₂ N · max|u|/h`. That is a few
+/// `ε_f64` on small grids and up to ~1e-13 on the largest grids near saturation (`max|u|` of
+/// tens of `h`), where the approach search also converges its inner solves ten times tighter
+/// than `ε` (down to [`INNER_TOLERANCE_FLOOR`]). `ε` is kept ten times above that floor, so
+/// every accepted tolerance is reachable in f64 (measurements: `docs/study-format.md`,
+/// contact `tolerance`).
+pub const MIN_TOLERANCE: f64 = 1e-12;
+
+/// Tightest tolerance of an inner solve of the approach search: the residual floor of f64
+/// gaps on the largest grids (see [`MIN_TOLERANCE`]).
+pub const INNER_TOLERANCE_FLOOR: f64 = 1e-13;
+
+/// Tolerances are relative errors: `ε` must be below 1 (exclusive).
+pub const MAX_TOLERANCE: f64 = 1.0;
+
 /// Which fields a load step returns (each costs one `ny × nx` array per step).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct FieldRequest {
@@ -85,6 +109,31 @@ pub struct SolverOptions {
     pub fields: FieldRequest,
 }
 
+impl SolverOptions {
+    /// Checks the options the solver cannot work with: a tolerance outside
+    /// [`MIN_TOLERANCE`]`..`[`MAX_TOLERANCE`] (or not a number), no iterations.
+    pub fn check(&self) -> Result<(), ContactError> {
+        if !(MIN_TOLERANCE..MAX_TOLERANCE).contains(&self.tolerance) {
+            return Err(ContactError::BadOption {
+                name: "tolerance",
+                value: self.tolerance,
+                reason: format!(
+                    "must be at least {MIN_TOLERANCE:e} (the smallest residual the solver \
+                     resolves in f64) and below {MAX_TOLERANCE}"
+                ),
+            });
+        }
+        if self.max_iterations == 0 {
+            return Err(ContactError::BadOption {
+                name: "max_iterations",
+                value: 0.0,
+                reason: String::from("must be > 0"),
+            });
+        }
+        Ok(())
+    }
+}
+
 impl Default for SolverOptions {
     fn default() -> Self {
         Self {
@@ -113,6 +162,18 @@ pub enum Termination {
     /// A residual became NaN or infinite: the problem's numbers overflow or underflow (heights,
     /// moduli or pressures far outside physical ranges), so the iteration stops at once.
     NonFinite,
+}
+
+impl fmt::Display for Termination {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Termination::Converged => "converged",
+            Termination::MaxIterations => "iteration limit reached",
+            Termination::Stalled => "stalled",
+            Termination::ApproachSearchFailed => "approach search failed",
+            Termination::NonFinite => "a residual became NaN or infinite (numbers overflow)",
+        })
+    }
 }
 
 /// Convergence residuals of a solve, all dimensionless.

@@ -79,20 +79,7 @@ pub struct ContactSolver {
 impl ContactSolver {
     /// Plans the FFTs and builds the influence kernel.
     pub fn new(problem: ContactProblem, options: SolverOptions) -> Result<Self, ContactError> {
-        if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
-            return Err(ContactError::BadOption {
-                name: "tolerance",
-                value: options.tolerance,
-                reason: "must be finite and > 0",
-            });
-        }
-        if options.max_iterations == 0 {
-            return Err(ContactError::BadOption {
-                name: "max_iterations",
-                value: 0.0,
-                reason: "must be > 0",
-            });
-        }
+        options.check()?;
         let gap = problem.gap();
         let operator = InfluenceOperator::new(
             gap.nx(),

@@ -43,6 +43,16 @@ pub enum DifferenceScheme {
     Forward,
 }
 
+impl DifferenceScheme {
+    /// The scheme's name in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            DifferenceScheme::Central => "central",
+            DifferenceScheme::Forward => "forward",
+        }
+    }
+}
+
 /// `Sdq` and `Sdr` of one height map for one scheme and boundary treatment.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GradientStatistics {
@@ -61,7 +71,10 @@ pub struct GradientStatistics {
 /// Why gradient statistics could not be computed.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum GradientError {
-    #[error("no grid point has all the valid neighbours the {scheme:?} difference scheme needs")]
+    #[error(
+        "no grid point has all the valid neighbours the {} difference scheme needs",
+        scheme.name()
+    )]
     NoGradientPoints { scheme: DifferenceScheme },
 }
 

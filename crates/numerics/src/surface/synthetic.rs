@@ -107,6 +107,14 @@ pub struct SyntheticSurfaceSpec {
     pub seed: u64,
 }
 
+/// Smallest Sq of a synthetic surface, m: a picometre, a hundredth of an atom's diameter, below
+/// the height resolution of any topography instrument; smaller values describe no surface and
+/// only drive squared and fourth-power statistics towards underflow. The largest is the shorter
+/// side of the surface: heights beyond the lateral extent give rms slopes far above 1, outside
+/// the small-slope assumption of every contact and friction model here, and keep the heights'
+/// squares far from f64 overflow.
+pub const MIN_SQ: f64 = 1e-12;
+
 /// A synthetic-surface parameter is out of range, or the synthesis failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SyntheticError {
@@ -121,6 +129,12 @@ pub enum SyntheticError {
     TooLarge { nx: usize, ny: usize, max: usize },
     #[error("synthetic surface: no Fourier mode has power (cutoff removes the whole spectrum)")]
     NoSpectralContent,
+    #[error(
+        "synthetic surface: the heights at Sq = {sq:e} m overflow f64 (their squares exceed \
+         {max:e}); use an Sq in metres of a real surface, e.g. 1 um",
+        max = f64::MAX
+    )]
+    HeightsOverflow { sq: f64 },
     #[error("synthetic surface: {0}")]
     Fft(#[from] FftFailure),
     #[error("synthetic surface: {0}")]
@@ -153,6 +167,26 @@ fn positive_finite(
     }
 }
 
+/// Range of the sides of a synthetic surface, m: from a nanometre (a few atoms: no topography
+/// spans less) to a kilometre (beyond any surface a topography describes; also the largest
+/// roll-off wavelength). Outside it the wavenumbers `2π/L` square to values that underflow or
+/// overflow f64, and the spectrum vanishes.
+pub const LENGTH_RANGE: (f64, f64) = (1e-9, 1e3);
+
+fn in_length_range(name: &'static str, value: f64) -> Result<(), SyntheticError> {
+    let (low, high) = LENGTH_RANGE;
+    if (low..=high).contains(&value) {
+        Ok(())
+    } else {
+        Err(invalid(
+            name,
+            format!("{value:e}"),
+            format!("{low:e} m to {high:e} m"),
+            "m",
+        ))
+    }
+}
+
 impl SyntheticSurfaceSpec {
     /// Checks every parameter; the error names the parameter, its value, range and unit.
     pub fn validate(&self) -> Result<(), SyntheticError> {
@@ -172,9 +206,18 @@ impl SyntheticSurfaceSpec {
                 })
             }
         }
-        positive_finite("lx", self.lx, "m")?;
-        positive_finite("ly", self.ly, "m")?;
+        in_length_range("lx", self.lx)?;
+        in_length_range("ly", self.ly)?;
         positive_finite("sq", self.sq, "m")?;
+        let max_sq = self.lx.min(self.ly);
+        if !(MIN_SQ..=max_sq).contains(&self.sq) {
+            return Err(invalid(
+                "sq",
+                format!("{:e}", self.sq),
+                format!("{MIN_SQ:e} m ≤ Sq ≤ min(lx, ly) = {max_sq:e} m"),
+                "m",
+            ));
+        }
         if !(self.hurst > 0.0 && self.hurst <= 1.0) {
             return Err(invalid(
                 "hurst",
@@ -184,6 +227,14 @@ impl SyntheticSurfaceSpec {
             ));
         }
         positive_finite("correlation_length", self.correlation_length, "m")?;
+        if self.correlation_length > LENGTH_RANGE.1 {
+            return Err(invalid(
+                "correlation_length",
+                format!("{:e}", self.correlation_length),
+                format!("> 0 and ≤ {:e} m", LENGTH_RANGE.1),
+                "m",
+            ));
+        }
         if let Some(cutoff) = self.short_wavelength_cutoff {
             let (dx, dy) = (self.lx / self.nx as f64, self.ly / self.ny as f64);
             let (lo, hi) = (dx.min(dy), self.lx.min(self.ly));
@@ -302,6 +353,10 @@ pub fn generate_synthetic_surface(
     }
     let scale = spec.sq / rms;
     z.mapv_inplace(|v| v * scale);
+    // The heights and their mean square must be finite, or every statistic of the map is not.
+    if !z.iter().map(|v| v * v).sum::<f64>().is_finite() {
+        return Err(SyntheticError::HeightsOverflow { sq: spec.sq });
+    }
     let (dx, dy) = spec.spacing();
     Ok(HeightMap::new(z, dx, dy)?)
 }

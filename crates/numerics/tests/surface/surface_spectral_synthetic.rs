@@ -144,6 +144,15 @@ fn invalid_parameters_are_named() {
         ("lx", Box::new(|s| s.lx = -1.0)),
         ("ly", Box::new(|s| s.ly = f64::NAN)),
         ("sq", Box::new(|s| s.sq = 0.0)),
+        ("sq", Box::new(|s| s.sq = 1e-300)),
+        ("sq", Box::new(|s| s.sq = 1e302)),
+        ("sq", Box::new(|s| s.sq = 2e-3)),
+        ("lx", Box::new(|s| s.lx = 1e307)),
+        ("ly", Box::new(|s| s.ly = 1e-300)),
+        (
+            "correlation_length",
+            Box::new(|s| s.correlation_length = 1e300),
+        ),
         ("hurst", Box::new(|s| s.hurst = 0.0)),
         ("hurst", Box::new(|s| s.hurst = 1.2)),
         (

@@ -28,23 +28,25 @@ impl ParseError {
     }
 }
 
-/// A topography file could not be read.
+/// A topography file could not be read. Each message holds its cause, which is therefore not
+/// also exposed as [`std::error::Error::source`]: a printer of error chains (anyhow's `{:#}`)
+/// would repeat it ("missing magic: missing magic").
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
-    #[error("cannot read {}: {source}", path.display())]
+    #[error("cannot read {}: {cause}", path.display())]
     Io {
         path: PathBuf,
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     #[error(
         "{}: unknown topography format (checked magic bytes and extension); supported: x3p, sdf, sur, plu, dat (MetroPro), opd, di, gsf, gwy, al3d, zon, txt/csv/asc, npy",
         path.display()
     )]
     UnknownFormat { path: PathBuf },
-    #[error("{} ({format}): {source}", path.display())]
+    #[error("{} ({format}): {cause}", path.display())]
     Parse {
         path: PathBuf,
         format: &'static str,
-        source: ParseError,
+        cause: ParseError,
     },
 }

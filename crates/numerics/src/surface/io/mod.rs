@@ -178,9 +178,9 @@ pub fn detect_format(path: &Path, bytes: &[u8]) -> Option<Format> {
 
 /// Reads a topography file from disk in any supported format.
 pub fn read_topography(path: &Path) -> Result<Topography, ReadError> {
-    let io_error = |source| ReadError::Io {
+    let io_error = |cause| ReadError::Io {
         path: path.to_path_buf(),
-        source,
+        cause,
     };
     // A device or a pipe would be read forever (`/dev/zero`) or block (a FIFO).
     if std::fs::metadata(path).is_ok_and(|meta| !meta.is_file()) {
@@ -198,9 +198,9 @@ pub fn parse_topography(path: &Path, bytes: &[u8]) -> Result<Topography, ReadErr
     let format = detect_format(path, bytes).ok_or_else(|| ReadError::UnknownFormat {
         path: path.to_path_buf(),
     })?;
-    format.parse(bytes).map_err(|source| ReadError::Parse {
+    format.parse(bytes).map_err(|cause| ReadError::Parse {
         path: path.to_path_buf(),
         format: format.name(),
-        source,
+        cause,
     })
 }
