@@ -12,12 +12,11 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, Mutex};
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
-use crate::artifact::{Artifact, Table};
+use crate::artifact::Artifact;
 use crate::cache::{Cache, CacheError, CachedEntry, Manifest};
 use crate::hash::NodeKey;
 use crate::node::{ArrayStorage, NodeError};
 use crate::plan::{Plan, PlannedNode};
-use crate::value::Field;
 
 mod memory_budget;
 mod outcome;
