@@ -1,6 +1,7 @@
 //! The study format: broken studies, parameter references inside strings and glob axes, overrides, parser robustness, summaries, input traps of measured files.
 
 mod input_traps;
+mod special_files;
 mod study_errors;
 mod study_interpolation;
 mod study_overrides;
