@@ -1,11 +1,4 @@
-//! Fuzzes the SDF reader (ASCII and binary): arbitrary bytes must give `Ok` or a `ReadError`,
-//! never a panic or an allocation sized by an unchecked header.
+//! Fuzzes the ISO 25178-71 SDF (ASCII and binary) reader on arbitrary bytes (see `asperity_fuzz::read_as`).
 #![no_main]
 
-use std::path::Path;
-
-use libfuzzer_sys::fuzz_target;
-
-fuzz_target!(|data: &[u8]| {
-    let _ = asperity_numerics::surface::io::parse_topography(Path::new("fuzz.sdf"), data);
-});
+libfuzzer_sys::fuzz_target!(|data: &[u8]| asperity_fuzz::read_as("sdf", data));

@@ -1,11 +1,4 @@
-//! Fuzzes the X3P reader: arbitrary bytes must give `Ok` or a `ReadError`, never a panic,
-//! a hang or an allocation beyond the deflate-ratio bound.
+//! Fuzzes the X3P (ISO 25178-72 zip container) reader on arbitrary bytes (see `asperity_fuzz::read_as`).
 #![no_main]
 
-use std::path::Path;
-
-use libfuzzer_sys::fuzz_target;
-
-fuzz_target!(|data: &[u8]| {
-    let _ = asperity_numerics::surface::io::parse_topography(Path::new("fuzz.x3p"), data);
-});
+libfuzzer_sys::fuzz_target!(|data: &[u8]| asperity_fuzz::read_as("x3p", data));

@@ -10,7 +10,7 @@ use anyhow::{Context, Result};
 use asperity::engine::value::Field;
 use asperity::nodes::validity;
 use asperity::surface::io::{
-    detect_format, parse_topography, LineScan, ScaleSource, TopographyData,
+    detect_format, parse_topography, read_topography_bytes, LineScan, ScaleSource, TopographyData,
 };
 use asperity::surface::{amplitude_statistics, AmplitudeStatistics, Boundary, HeightMap};
 use asperity::units::Dimension;
@@ -27,8 +27,7 @@ pub struct InspectArgs {
 }
 
 pub fn inspect(args: InspectArgs) -> Result<ExitCode> {
-    let bytes = std::fs::read(&args.file)
-        .with_context(|| format!("cannot read {}", args.file.display()))?;
+    let bytes = read_topography_bytes(&args.file)?;
     let format = detect_format(&args.file, &bytes).map(|f| f.name());
     let topo = parse_topography(&args.file, &bytes)?;
     println!("file:      {}", args.file.display());

@@ -2,6 +2,7 @@
 
 mod input_traps;
 mod message_corpus;
+mod special_files;
 mod study_errors;
 mod study_interpolation;
 mod study_overrides;

@@ -16,6 +16,7 @@ pub mod node;
 pub mod npy;
 pub mod output;
 pub mod plan;
+pub mod regular_file;
 pub mod resolve;
 pub mod shard;
 pub mod study;

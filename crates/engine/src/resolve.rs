@@ -201,15 +201,6 @@ impl ResolveContext<'_> {
 pub(crate) type FileHashes = Mutex<HashMap<PathBuf, Arc<OnceLock<Result<String, String>>>>>;
 
 fn hash_file(path: &Path) -> Result<String, String> {
-    // A device or a pipe would be read forever (`/dev/zero`) or block planning (a FIFO).
-    match std::fs::metadata(path) {
-        Ok(meta) if !meta.is_file() => Err(format!(
-            "cannot read {}: not a regular file (a directory, device or pipe); give the path \
-             of a topography file",
-            path.display()
-        )),
-        _ => std::fs::read(path)
-            .map(|bytes| blake3::hash(&bytes).to_hex().to_string())
-            .map_err(|e| format!("cannot read {}: {e}", path.display())),
-    }
+    crate::regular_file::hash_regular(path)
+        .map_err(|m| format!("cannot read {}: {m}", path.display()))
 }

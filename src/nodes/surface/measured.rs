@@ -3,13 +3,14 @@
 //! node key by its content hash, never by its path or modification time.
 
 use std::path::PathBuf;
+use std::sync::{Arc, OnceLock};
 
 use serde::Deserialize;
 
 use crate::engine::node::NodeError;
 use crate::engine::study::{Param, ResolveContext, SpecError};
 use crate::engine::value::Field;
-use crate::surface::io::{read_topography, ScaleSource, TopographyData};
+use crate::surface::io::{declared_points, read_topography, ScaleSource, TopographyData};
 use crate::surface::HeightMap;
 
 use super::lateral_scale::LateralLengths;
@@ -36,6 +37,9 @@ pub(crate) struct MeasuredFile {
     content_hash: String,
     /// For the memory estimate.
     file_bytes: u64,
+    /// The point count the file's header declares (X3P), read when the estimate is first
+    /// asked for, i.e. once per instance the scheduler sees, not once per scenario.
+    declared_points: Arc<OnceLock<Option<u64>>>,
 }
 
 /// A resolved measured surface: a file and its preprocessing.
@@ -81,6 +85,7 @@ impl MeasuredFile {
             file_bytes: std::fs::metadata(&path_buf).map_or(0, |m| m.len()),
             path: path_buf,
             content_hash,
+            declared_points: Arc::default(),
         })
     }
 
@@ -94,9 +99,17 @@ impl MeasuredFile {
         &self.content_hash
     }
 
-    /// File size plus working arrays (≈ 8 f64 per point, 4 bytes per stored point assumed).
+    /// Working arrays of ≈ 8 f64 per point (64 bytes), for the larger of the point count the
+    /// header declares and the file size at 4 bytes per stored point. A compressed X3P may
+    /// declare far more points than its size suggests; the estimate then makes the scheduler
+    /// run it alone rather than beside other large nodes (and the reader refuses more than
+    /// [`crate::surface::io::MAX_POINTS`]).
     pub(super) fn memory_estimate(&self) -> u64 {
-        self.file_bytes.saturating_mul(16)
+        let declared = self
+            .declared_points
+            .get_or_init(|| declared_points(&self.path).map(|n| n as u64));
+        let from_size = self.file_bytes / 4;
+        declared.unwrap_or(0).max(from_size).saturating_mul(64)
     }
 }
 
@@ -118,6 +131,7 @@ impl MeasuredSource {
                     path: _,
                     content_hash,
                     file_bytes: _,
+                    declared_points: _,
                 },
             preprocessing,
         } = self;

@@ -72,14 +72,33 @@ pub struct Study<N> {
     pub overrides: Vec<(String, String)>,
 }
 
+/// Largest study file read, bytes. The shipped studies are under 6 KiB and a study spelling out
+/// 10⁵ parameter values is about 1 MiB; 16 MiB leaves room for generated studies, while a device,
+/// a log file or a data file named by mistake is refused at once instead of being parsed.
+pub const MAX_STUDY_FILE_BYTES: u64 = 16 << 20;
+
+/// The text of the study file `path`: a regular file of at most [`MAX_STUDY_FILE_BYTES`] in
+/// UTF-8; a FIFO, device or directory is refused before it is opened.
+fn read_study_source(path: &Path) -> Result<String, String> {
+    let bytes = crate::regular_file::read_regular(path, MAX_STUDY_FILE_BYTES, "study file")
+        .map_err(|m| format!("cannot read the study file: {m}"))?;
+    String::from_utf8(bytes).map_err(|e| {
+        format!(
+            "cannot read the study file: not UTF-8 text (invalid byte at offset {}); a study \
+             file is YAML text",
+            e.utf8_error().valid_up_to()
+        )
+    })
+}
+
 impl<N: NodeSpec> Study<N> {
     /// Reads, parses and checks a study file.
     pub fn load(path: &Path) -> Result<Self, StudyError> {
-        let source = std::fs::read_to_string(path).map_err(|e| StudyError {
+        let source = read_study_source(path).map_err(|message| StudyError {
             path: path.to_path_buf(),
             location: SourceLocation::default(),
             context: String::new(),
-            message: format!("cannot read the study file: {e}"),
+            message,
             snippet: None,
         })?;
         Self::from_source(path, source)

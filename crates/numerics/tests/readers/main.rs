@@ -10,3 +10,4 @@ mod readers_a_synthetic;
 mod readers_b;
 mod readers_b_fixtures;
 mod readers_b_robustness;
+mod readers_bounded;

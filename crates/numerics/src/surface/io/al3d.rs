@@ -16,6 +16,7 @@ use std::collections::BTreeMap;
 
 use ndarray::Array2;
 
+use super::limits::check_points;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -125,6 +126,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         )));
     }
     let data = &bytes[depth_offset..depth_offset + 4 * n_values];
+    check_points(nx, ny, "AL3D header (Cols × Rows)")?;
     let mut values = Vec::with_capacity(nx * ny);
     for row in data.chunks_exact(4 * stride) {
         values.extend(row[..4 * nx].chunks_exact(4).map(|c| {

@@ -3,6 +3,7 @@
 //! Every read names what it was reading, so a short file yields a [`ParseError::Truncated`]
 //! that says which field is missing instead of a panic.
 
+use super::limits::check_count;
 use super::ParseError;
 
 /// Byte order of multi-byte numbers.
@@ -161,7 +162,8 @@ pub(crate) fn check_block_size(
     Ok(needed)
 }
 
-/// Decodes `count` samples from `bytes` into `f64` (raw values, no scaling).
+/// Decodes `count` samples from `bytes` into `f64` (raw values, no scaling), at most
+/// [`super::MAX_POINTS`].
 pub(crate) fn decode_samples(
     bytes: &[u8],
     count: usize,
@@ -171,6 +173,7 @@ pub(crate) fn decode_samples(
 ) -> Result<Vec<f64>, ParseError> {
     let size = ty.size();
     let needed = check_block_size(count, size, bytes.len(), what)?;
+    check_count(count, what)?;
     let mut out = Vec::with_capacity(count);
     for chunk in bytes[..needed].chunks_exact(size) {
         out.push(decode_one(chunk, ty, endian));

@@ -39,6 +39,17 @@ pub enum ReadError {
         cause: std::io::Error,
     },
     #[error(
+        "cannot read {}: it is {kind}, not a regular file; give the path of a topography file",
+        path.display()
+    )]
+    NotRegular { path: PathBuf, kind: &'static str },
+    #[error(
+        "cannot read {}: {size} bytes is more than a topography file may hold ({} bytes)",
+        path.display(),
+        super::MAX_FILE_BYTES
+    )]
+    TooLarge { path: PathBuf, size: u64 },
+    #[error(
         "{}: unknown topography format (checked magic bytes and extension); supported: x3p, sdf, sur, plu, dat (MetroPro), opd, di, gsf, gwy, al3d, zon, txt/csv/asc, npy",
         path.display()
     )]

@@ -13,6 +13,7 @@ use std::collections::BTreeMap;
 
 use ndarray::Array2;
 
+use super::limits::check_points;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -109,6 +110,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
                 "GSF data of {nx} × {ny} float32 at byte {data_start}"
             ))
         })?;
+    check_points(nx, ny, "GSF header (XRes × YRes)")?;
     let values: Vec<f64> = data
         .chunks_exact(4)
         .map(|c| {

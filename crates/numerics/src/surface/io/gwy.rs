@@ -16,6 +16,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::gsf::length_unit_factor;
+use super::limits::check_points;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -305,6 +306,7 @@ pub fn parse_channel(bytes: &[u8], title: Option<&str>) -> Result<Topography, Pa
             data.len() / 8
         )));
     }
+    check_points(nx, ny, &format!("GWY data field `{name}`"))?;
     let values: Vec<f64> = data
         .chunks_exact(8)
         .map(|c| {

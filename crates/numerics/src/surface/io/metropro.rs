@@ -17,6 +17,7 @@ use std::collections::BTreeMap;
 
 use ndarray::Array2;
 
+use super::limits::check_points;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -137,6 +138,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         .checked_add(intensity_bytes)
         .ok_or_else(|| ParseError::malformed("MetroPro array offsets overflow"))?;
     let phase = field(bytes, phase_start, expected, "connected phase array")?;
+    check_points(nx, ny, "MetroPro header (cn_width × cn_height)")?;
     let heights: Vec<f64> = phase
         .chunks_exact(4)
         .map(|c| {

@@ -9,6 +9,7 @@ mod byte_cursor;
 mod error;
 pub mod gsf;
 pub mod gwy;
+mod limits;
 pub mod metropro;
 pub mod nanoscope;
 mod npy;
@@ -21,10 +22,12 @@ mod text_header;
 mod text_units;
 mod topography;
 mod x3p;
+mod x3p_checksum;
 mod x3p_xml;
 pub mod zon;
 
 pub use error::{ParseError, ReadError};
+pub use limits::MAX_POINTS;
 pub use topography::{LineScan, ScaleSource, Topography, TopographyData};
 
 use std::path::Path;
@@ -143,8 +146,14 @@ impl Format {
         }
     }
 
-    /// Parses the whole file content.
-    fn parse(self, bytes: &[u8]) -> Result<Topography, ParseError> {
+    /// The format named `name` (as [`Format::name`] spells it).
+    pub fn from_name(name: &str) -> Option<Format> {
+        Format::ALL.iter().copied().find(|f| f.name() == name)
+    }
+
+    /// Parses the whole file content with this format's reader, whatever its magic bytes say
+    /// (the fuzz targets reach each reader this way; files go through [`parse_topography`]).
+    pub fn parse(self, bytes: &[u8]) -> Result<Topography, ParseError> {
         match self {
             Format::MetroPro => metropro::parse(bytes),
             Format::Opd => opd::parse(bytes),
@@ -176,21 +185,90 @@ pub fn detect_format(path: &Path, bytes: &[u8]) -> Option<Format> {
         .find(|f| f.matches_extension(&ext))
 }
 
-/// Reads a topography file from disk in any supported format.
+/// Reads a topography file from disk in any supported format ([`read_topography_bytes`], then
+/// [`parse_topography`]).
 pub fn read_topography(path: &Path) -> Result<Topography, ReadError> {
+    let bytes = read_topography_bytes(path)?;
+    parse_topography(path, &bytes)
+}
+
+/// Largest topography file read, bytes: [`MAX_POINTS`] in the most verbose format (text, up to
+/// ~30 bytes per height) with room for headers. A larger file could not be decoded anyway.
+pub const MAX_FILE_BYTES: u64 = 4 << 30;
+
+/// The bytes of the topography file `path`: a regular file of at most [`MAX_FILE_BYTES`]. A
+/// FIFO would block, a device (`/dev/zero`) be read until memory runs out: both are refused, by
+/// their file type, before the path is opened.
+pub fn read_topography_bytes(path: &Path) -> Result<Vec<u8>, ReadError> {
     let io_error = |cause| ReadError::Io {
         path: path.to_path_buf(),
         cause,
     };
-    // A device or a pipe would be read forever (`/dev/zero`) or block (a FIFO).
-    if std::fs::metadata(path).is_ok_and(|meta| !meta.is_file()) {
-        return Err(io_error(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "not a regular file (a directory, device or pipe)",
-        )));
+    let meta = std::fs::metadata(path).map_err(io_error)?;
+    if let Some(kind) = non_regular_kind(&meta.file_type()) {
+        return Err(ReadError::NotRegular {
+            path: path.to_path_buf(),
+            kind,
+        });
     }
-    let bytes = std::fs::read(path).map_err(io_error)?;
-    parse_topography(path, &bytes)
+    let file = std::fs::File::open(path).map_err(io_error)?;
+    let too_large = |size: u64| ReadError::TooLarge {
+        path: path.to_path_buf(),
+        size,
+    };
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(too_large(meta.len()));
+    }
+    let mut bytes = Vec::with_capacity(usize::try_from(meta.len()).unwrap_or(0));
+    std::io::Read::read_to_end(
+        &mut std::io::Read::take(file, MAX_FILE_BYTES + 1),
+        &mut bytes,
+    )
+    .map_err(io_error)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
+/// What a file type is when it is not a regular file, `None` for a regular file.
+fn non_regular_kind(kind: &std::fs::FileType) -> Option<&'static str> {
+    if kind.is_file() {
+        return None;
+    }
+    if kind.is_dir() {
+        return Some("a directory");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() {
+            return Some("a FIFO (named pipe)");
+        }
+        if kind.is_char_device() || kind.is_block_device() {
+            return Some("a device");
+        }
+    }
+    Some("a special file")
+}
+
+/// The number of points the header of the file `path` declares, read without decoding the
+/// data, for the format whose file size says little about it (X3P, deflated: a 2 MB file may
+/// hold 2 GiB of heights); `None` for other formats, whose points take a fixed share of the
+/// file (only their first 4 KiB are read, to detect the format), and for a header that cannot
+/// be read. Memory estimates use it before a file is decoded.
+pub fn declared_points(path: &Path) -> Option<usize> {
+    // Opening a FIFO would block: the file type is checked first.
+    if !std::fs::metadata(path).ok()?.is_file() {
+        return None;
+    }
+    let mut head = Vec::with_capacity(4096);
+    let file = std::fs::File::open(path).ok()?;
+    std::io::Read::read_to_end(&mut std::io::Read::take(file, 4096), &mut head).ok()?;
+    match detect_format(path, &head)? {
+        Format::X3p => x3p::declared_points(&read_topography_bytes(path).ok()?),
+        _ => None,
+    }
 }
 
 /// Parses file content already in memory; `path` is used for format detection and errors only.

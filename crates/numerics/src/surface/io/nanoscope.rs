@@ -18,6 +18,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::gsf::length_unit_factor;
+use super::limits::check_points;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -170,6 +171,7 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
                 "Nanoscope channel `{name}`: {n_bytes} bytes at byte {offset}"
             ))
         })?;
+    check_points(nx, ny, &format!("Nanoscope channel `{name}`"))?;
 
     // Height per LSB from the Z scale and its sensitivity.
     let (z_key, z_scale) = image

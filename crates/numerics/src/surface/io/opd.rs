@@ -17,6 +17,7 @@ use std::collections::BTreeMap;
 
 use ndarray::Array2;
 
+use super::limits::check_points;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -152,6 +153,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let dx = pixel_mm * 1e-3;
     let dy = dx * aspect;
 
+    check_points(nx, ny, &format!("OPD array `{}`", array.name))?;
     let mut heights = Array2::<f64>::zeros((ny, nx));
     for (k, c) in values.chunks_exact(4).enumerate() {
         let v = f32::from_le_bytes([c[0], c[1], c[2], c[3]]);

@@ -17,6 +17,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
+use super::limits::check_points;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -205,6 +206,11 @@ fn parse_ascii(bytes: &[u8]) -> Result<Topography, ParseError> {
                 bytes.len()
             ))
         })?;
+    check_points(
+        header.num_points,
+        header.num_profiles,
+        "sdf header (NumPoints × NumProfiles)",
+    )?;
     let mut values = Vec::with_capacity(n);
     let mut data_closed = false;
     for line in lines {

@@ -21,11 +21,15 @@
 //! and [`Topography::height_unit`] is [`ScaleSource::Assumed`]. The caller must then supply the
 //! real values.
 //! `nan` values are missing points.
+//!
+//! Data lines are kept in one flat vector (no per-line allocation), and more than
+//! [`MAX_POINTS`] data lines or `3·MAX_POINTS` values are refused as they are read.
 
 use std::collections::BTreeMap;
 
 use ndarray::Array2;
 
+use super::limits::{check_points, MAX_POINTS};
 use super::text_header::{column_units, TextHeader};
 use super::{LineScan, ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
@@ -46,28 +50,37 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         ));
     }
     let mut header_lines: Vec<&str> = Vec::new();
-    let mut rows: Vec<Vec<f64>> = Vec::new();
+    // Data lines, flattened: `columns` values each.
+    let mut rows: Vec<f64> = Vec::new();
+    let mut columns = 0;
     let mut first_data_line = 0;
+    let mut values = Vec::new();
     for (index, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() {
             continue;
         }
-        match numeric_row(line) {
-            Some(values) => {
-                if let Some(first) = rows.first() {
-                    if values.len() != first.len() {
-                        return Err(ParseError::malformed(format!(
-                            "text: line {} has {} values, the data lines before have {}",
-                            index + 1,
-                            values.len(),
-                            first.len()
-                        )));
-                    }
-                } else {
+        match numeric_row(line, &mut values) {
+            Some(()) => {
+                if rows.is_empty() {
                     first_data_line = index + 1;
+                    columns = values.len();
+                } else if values.len() != columns {
+                    return Err(ParseError::malformed(format!(
+                        "text: line {} has {} values, the data lines before have {columns}",
+                        index + 1,
+                        values.len(),
+                    )));
                 }
-                rows.push(values);
+                if rows.len() + columns > 3 * MAX_POINTS || rows.len() / columns >= MAX_POINTS {
+                    return Err(ParseError::malformed(format!(
+                        "text: more than {MAX_POINTS} data lines or {} values at line {}; a \
+                         topography holds at most {MAX_POINTS} points",
+                        3 * MAX_POINTS,
+                        index + 1
+                    )));
+                }
+                rows.extend_from_slice(&values);
             }
             None if rows.is_empty() => header_lines.push(line),
             None => {
@@ -79,9 +92,9 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             }
         }
     }
-    let Some(columns) = rows.first().map(Vec::len) else {
+    if rows.is_empty() {
         return Err(ParseError::malformed("text: no numeric data lines"));
-    };
+    }
     let header = TextHeader::parse(&header_lines)?;
     if columns == 2 && !header.describes_matrix() {
         return line_scan(&rows, header_lines.last().copied());
@@ -94,9 +107,10 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     matrix(rows, columns, &header)
 }
 
-/// The numbers of a data line, `None` when any non-empty field is not a number.
-fn numeric_row(line: &str) -> Option<Vec<f64>> {
-    let mut out = Vec::new();
+/// The numbers of a data line into `out`, `None` when any non-empty field is not a number or
+/// there is none.
+fn numeric_row(line: &str, out: &mut Vec<f64>) -> Option<()> {
+    out.clear();
     for token in line.split(|c: char| c.is_whitespace() || c == ',' || c == ';') {
         if token.is_empty() {
             continue;
@@ -104,21 +118,22 @@ fn numeric_row(line: &str) -> Option<Vec<f64>> {
         let v: f64 = token.parse().ok()?;
         out.push(if v.is_finite() { v } else { f64::NAN });
     }
-    (!out.is_empty()).then_some(out)
+    (!out.is_empty()).then_some(())
 }
 
 fn truncate_for_message(line: &str) -> String {
     line.chars().take(60).collect()
 }
 
-fn line_scan(rows: &[Vec<f64>], column_header: Option<&str>) -> Result<Topography, ParseError> {
+/// A line scan from the flattened 2-column data `rows`.
+fn line_scan(rows: &[f64], column_header: Option<&str>) -> Result<Topography, ParseError> {
     let (x_factor, z_factor, assumed) = match column_header.and_then(column_units) {
         Some((x, z)) => (x, z, false),
         None => (1.0, 1.0, true),
     };
-    let mut x = Vec::with_capacity(rows.len());
-    let mut z = Vec::with_capacity(rows.len());
-    for (i, row) in rows.iter().enumerate() {
+    let mut x = Vec::with_capacity(rows.len() / 2);
+    let mut z = Vec::with_capacity(rows.len() / 2);
+    for (i, row) in rows.chunks_exact(2).enumerate() {
         let xi = row[0] * x_factor;
         if xi.is_nan() || x.last().is_some_and(|&prev| xi <= prev) {
             return Err(ParseError::malformed(format!(
@@ -150,21 +165,24 @@ fn line_scan(rows: &[Vec<f64>], column_header: Option<&str>) -> Result<Topograph
     })
 }
 
-/// x y z triples on a regular grid; `None` when the x, y columns do not form one.
-fn xyz_grid(rows: &[Vec<f64>]) -> Result<Option<Topography>, ParseError> {
-    let Some(xs) = regular_axis(rows.iter().map(|r| r[0])) else {
+/// x y z triples (flattened in `rows`) on a regular grid; `None` when the x, y columns do not
+/// form one.
+fn xyz_grid(rows: &[f64]) -> Result<Option<Topography>, ParseError> {
+    let triples = || rows.chunks_exact(3);
+    let Some(xs) = regular_axis(triples().map(|r| r[0])) else {
         return Ok(None);
     };
-    let Some(ys) = regular_axis(rows.iter().map(|r| r[1])) else {
+    let Some(ys) = regular_axis(triples().map(|r| r[1])) else {
         return Ok(None);
     };
     let (nx, ny) = (xs.count, ys.count);
     // A sparse list must not make us allocate a huge grid: require ≥ 1/4 of it present.
-    if nx < 2 || ny < 2 || nx.saturating_mul(ny) > rows.len().saturating_mul(4) {
+    let count = rows.len() / 3;
+    if nx < 2 || ny < 2 || nx.saturating_mul(ny) > count.saturating_mul(4).min(MAX_POINTS) {
         return Ok(None);
     }
     let mut grid = Array2::from_elem((ny, nx), f64::NAN);
-    for row in rows {
+    for row in triples() {
         let ix = ((row[0] - xs.start) / xs.step).round() as usize;
         let iy = ((row[1] - ys.start) / ys.step).round() as usize;
         if let Some(cell) = grid.get_mut([iy, ix]) {
@@ -218,12 +236,10 @@ fn regular_axis(values: impl Iterator<Item = f64>) -> Option<RegularAxis> {
     })
 }
 
-fn matrix(
-    rows: Vec<Vec<f64>>,
-    columns: usize,
-    header: &TextHeader,
-) -> Result<Topography, ParseError> {
-    let n_rows = rows.len();
+/// A matrix from the flattened data `rows` of `columns` values per line.
+fn matrix(rows: Vec<f64>, columns: usize, header: &TextHeader) -> Result<Topography, ParseError> {
+    let n_rows = rows.len() / columns;
+    check_points(columns, n_rows, "text: the matrix")?;
     if let Some((h, w)) = header.rows_columns {
         if w != columns {
             return Err(ParseError::malformed(format!(
@@ -245,7 +261,8 @@ fn matrix(
         Some(f) => (f, ScaleSource::File),
         None => (1.0, ScaleSource::Assumed),
     };
-    let values: Vec<f64> = rows.into_iter().flatten().map(|v| v * z_factor).collect();
+    let mut values = rows;
+    values.iter_mut().for_each(|v| *v *= z_factor);
     let grid = Array2::from_shape_vec((n_rows, columns), values)
         .map_err(|e| ParseError::malformed(format!("text: grid shape: {e}")))?;
     let map =

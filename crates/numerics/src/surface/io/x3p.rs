@@ -17,6 +17,11 @@
 //!   archive are then relative to that folder), `__MACOSX/` entries, a root element without
 //!   namespace, and any `Revision` text (kept in the metadata, not checked).
 //! * A profile (`FeatureType PRF`, SizeY = 1) is returned as a [`LineScan`].
+//! * Integrity: the MD5 sums the file records of `main.xml` and of its data members are checked
+//!   ([`super::x3p_checksum`]).
+//! * Bounded work: `main.xml` is read up to [`MAX_MAIN_XML_BYTES`], the matrix up to
+//!   [`MAX_POINTS`], and every member only after its declared uncompressed size matched what the
+//!   matrix needs, so a small hostile archive cannot make the reader inflate gigabytes.
 
 use std::collections::BTreeMap;
 use std::io::{Cursor, Read};
@@ -25,6 +30,8 @@ use ndarray::Array2;
 use zip::ZipArchive;
 
 use super::byte_cursor::{decode_samples, Endian, SampleType};
+use super::limits::{check_points, MAX_POINTS};
+use super::x3p_checksum::{checksum_file_sum, verify};
 use super::x3p_xml::X3pDocument;
 use super::{LineScan, ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
@@ -32,6 +39,10 @@ use crate::surface::HeightMap;
 /// Largest ratio of uncompressed to compressed size that deflate can reach (about 1032:1);
 /// any entry or matrix claiming more than this times the file size is a lie.
 const MAX_DEFLATE_RATIO: usize = 1100;
+
+/// Largest `main.xml` read: real ones are a few KiB; 64 MiB still holds an inline `DataList` of
+/// two million points.
+const MAX_MAIN_XML_BYTES: usize = 64 << 20;
 
 /// Zip local-file-header magic.
 const ZIP_MAGIC: &[u8] = b"PK\x03\x04";
@@ -44,18 +55,49 @@ pub(crate) fn matches_magic(head: &[u8]) -> bool {
             .any(|needle| head.windows(needle.len()).any(|w| w == *needle))
 }
 
-/// Parses an X3P file.
-pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+/// An opened X3P: the archive, the folder of `main.xml` (`""` or `"name/"`) and its document.
+struct Opened<'a> {
+    archive: ZipArchive<Cursor<&'a [u8]>>,
+    folder: String,
+    doc: X3pDocument,
+}
+
+/// Opens the archive and reads `main.xml`, checked against `md5checksum.hex`.
+fn open(bytes: &[u8], max_len: usize) -> Result<Opened<'_>, ParseError> {
     let mut archive = ZipArchive::new(Cursor::new(bytes)).map_err(|e| {
         ParseError::malformed(format!(
             "x3p: not a readable zip archive (truncated or corrupted?): {e}"
         ))
     })?;
-    let max_len = bytes.len().saturating_mul(MAX_DEFLATE_RATIO);
     let main_xml = find_main_xml(&archive)?;
     let folder = main_xml.trim_end_matches("main.xml").to_string();
-    let xml = read_entry(&mut archive, &main_xml, EntrySize::AtMost(max_len))?;
+    let xml_limit = max_len.min(MAX_MAIN_XML_BYTES);
+    let xml = read_entry(&mut archive, &main_xml, EntrySize::AtMost(xml_limit))?;
     let doc = X3pDocument::parse(&xml)?;
+    verify_main_xml(&mut archive, &doc, &folder, &xml, max_len)?;
+    Ok(Opened {
+        archive,
+        folder,
+        doc,
+    })
+}
+
+/// SizeX × SizeY as `main.xml` declares them, without reading the point data.
+pub(crate) fn declared_points(bytes: &[u8]) -> Option<usize> {
+    let Opened { doc, .. } = open(bytes, bytes.len().saturating_mul(MAX_DEFLATE_RATIO)).ok()?;
+    dimension(&doc, "SizeX")
+        .ok()?
+        .checked_mul(dimension(&doc, "SizeY").ok()?)
+}
+
+/// Parses an X3P file.
+pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+    let max_len = bytes.len().saturating_mul(MAX_DEFLATE_RATIO);
+    let Opened {
+        mut archive,
+        folder,
+        doc,
+    } = open(bytes, max_len)?;
 
     let feature = doc.get("Record1/FeatureType").unwrap_or("SUR").to_string();
     if feature != "SUR" && feature != "PRF" {
@@ -74,21 +116,21 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             "x3p: {nz} layers (SizeZ); only single-layer files are read"
         )));
     }
-    let n = nx
-        .checked_mul(ny)
-        .filter(|&n| n <= max_len)
-        .ok_or_else(|| {
-            ParseError::malformed(format!(
-                "x3p: matrix {nx} × {ny} cannot fit in a {} byte file",
-                bytes.len()
-            ))
-        })?;
+    let n = check_points(nx, ny, "x3p: Record3/MatrixDimension")?;
+    if n > max_len {
+        return Err(ParseError::malformed(format!(
+            "x3p: matrix {nx} × {ny} cannot fit in a {} byte file",
+            bytes.len()
+        )));
+    }
     let z_axis = HeightEncoding::from_doc(&doc)?;
 
     let mut heights: Vec<f64> = if let Some(link) = doc.get("Record3/DataLink/PointDataLink") {
         let name = format!("{folder}{link}");
         let expected = n * z_axis.sample.size();
         let raw = read_entry(&mut archive, &name, EntrySize::Exactly(expected))?;
+        let recorded = doc.get("Record3/DataLink/MD5ChecksumPointData");
+        verify(&name, &raw, recorded.unwrap_or(""), "MD5ChecksumPointData")?;
         let values = decode_samples(&raw, n, z_axis.sample, Endian::Little, "x3p point data")?;
         values.into_iter().map(|v| z_axis.to_metres(v)).collect()
     } else if let Some(list) = &doc.data_list {
@@ -109,7 +151,15 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
 
     if let Some(link) = doc.get("Record3/DataLink/ValidPointsLink") {
         let name = format!("{folder}{link}");
-        let mask = read_entry(&mut archive, &name, EntrySize::AtMost(max_len))?;
+        let mask_limit = max_len.min(MAX_POINTS.div_ceil(8));
+        let mask = read_entry(&mut archive, &name, EntrySize::AtMost(mask_limit))?;
+        let recorded = doc.get("Record3/DataLink/MD5ChecksumValidPoints");
+        verify(
+            &name,
+            &mask,
+            recorded.unwrap_or(""),
+            "MD5ChecksumValidPoints",
+        )?;
         apply_validity_mask(&mut heights, &mask, &name)?;
     }
 
@@ -141,6 +191,32 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         channel: None,
         metadata,
     })
+}
+
+/// Checks `main.xml` against the MD5 sum in the checksum member (`Record4/ChecksumFile`, by
+/// default `md5checksum.hex`), when the archive has one.
+fn verify_main_xml(
+    archive: &mut ZipArchive<Cursor<&[u8]>>,
+    doc: &X3pDocument,
+    folder: &str,
+    xml: &[u8],
+    max_len: usize,
+) -> Result<(), ParseError> {
+    let file = doc
+        .get("Record4/ChecksumFile")
+        .filter(|f| !f.is_empty())
+        .unwrap_or("md5checksum.hex");
+    let name = format!("{folder}{file}");
+    if archive.index_for_name(&name).is_none() {
+        return Ok(());
+    }
+    let content = read_entry(archive, &name, EntrySize::AtMost(max_len.min(4096)))?;
+    verify(
+        &format!("{folder}main.xml"),
+        xml,
+        &checksum_file_sum(&content),
+        &name,
+    )
 }
 
 /// How raw CZ values become heights in metres.

@@ -13,8 +13,10 @@
 //!
 //! Decay lengths (ISO 25178-2:2012, §4.2 and Sal/Str definitions, threshold `s`, default 0.2):
 //! along a direction, the lag distance at which `f` first drops to `s`, found by walking the ray
-//! in steps of `min(dx, dy)/4` with bilinear interpolation of `f` and linear interpolation of the
-//! crossing. Sal is the minimum over directions (1° steps over 180°, the ACF being point
+//! with bilinear interpolation of `f` and linear interpolation of the crossing, in steps of
+//! [`ray_step`]: `min(dx, dy)/4`, but never shorter than 1/16 of the distance `g` the ray needs to
+//! cross one grid cell, so a ray takes at most `16·max(hx, hy) + 16` steps whatever the spacings
+//! (a 1e6 m × 0.125 mm map would otherwise need ~10¹³ steps of `dy/4` along x). Sal is the minimum over directions (1° steps over 180°, the ACF being point
 //! symmetric), Str = Sal / (maximum over directions), undefined (`None`) when some direction does
 //! not decay within the lag range. The correlation lengths along x and y use the same threshold on
 //! the lag axes (grid points, linear interpolation), so `Sal ≤ min(ξx, ξy)` up to interpolation.
@@ -242,7 +244,7 @@ impl Autocorrelation {
             });
         }
         let (s, c) = angle_deg.to_radians().sin_cos();
-        let step = self.dx.min(self.dy) / 4.0;
+        let step = ray_step(self.dx, self.dy, c, s);
         let mut previous = 1.0;
         let mut k = 1usize;
         loop {
@@ -352,6 +354,17 @@ impl Autocorrelation {
     }
 }
 
+/// Step (m) of the decay search along the direction `(cos, sin)`: `min(dx, dy)/4`, or
+/// `g/16` when that is longer, where `g = min(dx/|cos|, dy/|sin|)` is the length of the ray
+/// inside one grid cell. The ACF is known only on the lag grid, so the walk ends after at most
+/// `16·max(hx, hy) + 16` steps: work bounded by the map's grid, not by the ratio of its
+/// spacings. For spacings within a factor √15 ≈ 3.9 of each other (`g ≤ √(dx² + dy²) ≤
+/// 4·min(dx, dy)`) the step is `min(dx, dy)/4` in every direction.
+fn ray_step(dx: f64, dy: f64, cos: f64, sin: f64) -> f64 {
+    let cell = (dx / cos.abs()).min(dy / sin.abs());
+    (dx.min(dy) / 4.0).max(cell / 16.0)
+}
+
 fn check_threshold(threshold: f64) -> Result<(), SpectralError> {
     if threshold > 0.0 && threshold < 1.0 {
         Ok(())
@@ -361,5 +374,54 @@ fn check_threshold(threshold: f64) -> Result<(), SpectralError> {
             value: threshold.to_string(),
             expected: "0 < s < 1 (ISO 25178-2 default 0.2)".into(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A model ACF `exp(−|τ|/ξ)` with correlation length `xi` (m) on an `n × n` periodic grid.
+    fn exponential_acf(n: usize, dx: f64, dy: f64, xi: f64) -> Autocorrelation {
+        let lag = |i: usize| i.min(n - i) as f64;
+        let periodic = Array2::from_shape_fn((n, n), |(iy, ix)| {
+            (-(lag(ix) * dx).hypot(lag(iy) * dy) / xi).exp()
+        });
+        Autocorrelation::from_periodic_lags(&periodic, dx, dy)
+    }
+
+    /// A 1e6 m × 0.125 mm map at 64² (the spacings 10¹¹ apart) decays along y within the lag
+    /// range and never along x, in a bounded number of steps.
+    #[test]
+    fn extreme_spacing_ratio_is_searched_in_bounded_time() {
+        let (dx, dy) = (1e6 / 64.0, 0.125e-3 / 64.0);
+        let acf = exponential_acf(64, dx, dy, 10.0 * dy);
+        let start = std::time::Instant::now();
+        let texture = acf.texture(ISO_ACF_THRESHOLD).unwrap();
+        assert!(start.elapsed().as_secs_f64() < 0.5, "{:?}", start.elapsed());
+        let expected = 10.0 * dy * (1.0 / ISO_ACF_THRESHOLD).ln();
+        assert!(
+            (texture.sal - expected).abs() < 0.05 * expected,
+            "{texture:?}"
+        );
+        assert_eq!(texture.fastest_decay_deg, 90.0, "{texture:?}");
+    }
+
+    /// For spacings within a factor √15 of each other the step is `min(dx, dy)/4` in every
+    /// direction, so decay lengths are those of a fixed-step walk.
+    #[test]
+    fn comparable_spacings_keep_the_quarter_cell_step() {
+        for (dx, dy) in [(1.0, 1.0), (1.0, 3.8), (2.5e-7, 1e-7)] {
+            for degree in 0..180 {
+                let (s, c) = f64::from(degree).to_radians().sin_cos();
+                assert_eq!(
+                    ray_step(dx, dy, c, s),
+                    dx.min(dy) / 4.0,
+                    "{dx} {dy} {degree}"
+                );
+            }
+        }
+        let diagonal = 4f64.atan();
+        assert!(ray_step(1.0, 4.0, diagonal.cos(), diagonal.sin()) > 0.25);
     }
 }

@@ -23,6 +23,7 @@ use ndarray::Array2;
 
 mod archive;
 
+use super::limits::{check_points, MAX_POINTS};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -33,9 +34,10 @@ const DEVICE_UUID: &str = "cbc1d39b-215f-4d56-a20e-cf8e5f570755";
 const SCAN_UUID: &str = "1d35862b-3b48-4df2-9235-833ef590b043";
 /// Status bits that mark a pixel without a valid height.
 const INVALID_STATUS_BITS: u8 = 0x03;
-/// Largest decompressed member accepted (1 GiB, ≈ 268 M height points): bounds the memory a
-/// corrupted or hostile zstd frame can make us allocate.
-const MAX_MEMBER_BYTES: u64 = 1 << 30;
+/// Largest decompressed array member accepted: 8 bytes for each of [`MAX_POINTS`] (1 GiB,
+/// room for padded rows), bounding the memory a corrupted or hostile zstd frame can make us
+/// allocate.
+const MAX_MEMBER_BYTES: u64 = MAX_POINTS as u64 * 8;
 
 /// `true` when `head` starts with a ZON magic.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -105,6 +107,7 @@ fn read_array(
         (Some(a), Some(b), Some(c), Some(d)) => (a, b, c, d),
         _ => return Err(malformed()),
     };
+    check_points(nx, ny, &format!("ZON array `{name}`"))?;
     if elem_u != element || row_u < nx * elem_u {
         return Err(malformed());
     }
