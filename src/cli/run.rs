@@ -32,7 +32,8 @@ pub struct RunArgs {
     /// Worker threads [default: all cores].
     #[arg(long, short = 'j', value_name = "N")]
     jobs: Option<usize>,
-    /// Memory budget for nodes running at once, in MiB [default: 60 % of available memory].
+    /// Memory budget for nodes running at once, in MiB [default: 60 % of available memory]; a
+    /// node whose estimate alone exceeds it fails, saying so, before it allocates.
     #[arg(long, value_name = "MIB")]
     memory_mib: Option<u64>,
     /// Compute only shard I of N (0 <= I < N) of the study's nodes, into the shared cache; no

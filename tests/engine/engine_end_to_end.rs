@@ -376,3 +376,34 @@ nodes:
     assert_eq!((again.report.cached, again.report.failed), (1, 1));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A node whose memory estimate alone exceeds the budget fails before it allocates, naming
+/// both sizes and `--memory-mib`; with a budget that holds it, it computes.
+#[test]
+fn a_node_larger_than_the_memory_budget_fails_before_it_allocates() {
+    let dir = tempdir("memory_budget");
+    let path = dir.join("study.yaml");
+    std::fs::write(&path, study_text("1 um", "[1]")).unwrap();
+    let study = Study::<TribologyNode>::load(&path).unwrap();
+    let plan = Plan::build(&study).unwrap();
+    let cache = Cache::open(&dir.join("cache")).unwrap();
+    let run_with = |memory_budget: u64| {
+        let options = ExecuteOptions {
+            tables: study.outputs.clone(),
+            memory_budget,
+            tool_version: String::from("test"),
+        };
+        execute(&plan, &cache, &options, &NoProgress).unwrap()
+    };
+    let report = run_with(1 << 10);
+    assert_eq!(report.failed, plan.nodes.len());
+    for outcome in report.outcomes.iter().flatten() {
+        let message = outcome.status.message();
+        assert!(
+            message.contains("more than the run's budget of 1 MiB")
+                && message.contains("--memory-mib"),
+            "{message}"
+        );
+    }
+    assert!(run_with(1 << 30).all_ok());
+}

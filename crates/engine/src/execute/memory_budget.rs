@@ -3,7 +3,7 @@
 use std::sync::{Condvar, Mutex};
 
 /// A counting semaphore over bytes: a node waits until its memory estimate fits the budget.
-/// A node larger than the whole budget runs alone.
+/// (A node larger than the whole budget fails before it asks: `execute`'s `over_budget`.)
 pub(super) struct MemoryBudget {
     total: u64,
     used: Mutex<u64>,
@@ -22,6 +22,11 @@ impl MemoryBudget {
             used: Mutex::new(0),
             freed: Condvar::new(),
         }
+    }
+
+    /// The whole budget, bytes.
+    pub(super) fn total(&self) -> u64 {
+        self.total
     }
 
     pub(super) fn acquire(&self, bytes: u64) -> Permit<'_> {

@@ -401,7 +401,14 @@ impl<'a> RunContext<'a> {
             inputs.push(artifact);
         }
         let input_refs: Vec<&Artifact> = inputs.iter().map(Arc::as_ref).collect();
-        let _permit = self.budget.acquire(node.task.memory_estimate());
+        let estimate = node.task.memory_estimate();
+        if estimate > self.budget.total() {
+            return (
+                Err(failed_outcome(over_budget(estimate, self.budget.total()))),
+                0.0,
+            );
+        }
+        let _permit = self.budget.acquire(estimate);
         let start = Instant::now();
         let result = catch_unwind(AssertUnwindSafe(|| node.task.compute(&input_refs)))
             .unwrap_or_else(|panic| {
@@ -521,6 +528,19 @@ impl<'a> RunContext<'a> {
             (Err(failed), _) => (failed, None),
         }
     }
+}
+
+/// The failure of a node whose memory estimate exceeds the whole budget: checked before its
+/// inputs' arrays meet its own allocations, so `--memory-mib` bounds what a run may allocate.
+fn over_budget(estimate: u64, budget: u64) -> NodeStatus {
+    let mib = |bytes: u64| bytes.div_ceil(1 << 20);
+    NodeStatus::Failed(format!(
+        "needs about {} MiB of memory, more than the run's budget of {} MiB: raise \
+         `--memory-mib` (default 60 % of the available memory) or make the node smaller (a \
+         coarser grid, fewer fields)",
+        mib(estimate),
+        mib(budget)
+    ))
 }
 
 fn failed_outcome(status: NodeStatus) -> NodeOutcome {
