@@ -15,6 +15,9 @@ use clap::Parser;
 static ALLOCATOR: huge_pages::HugePageAllocator = huge_pages::HugePageAllocator;
 
 fn main() -> ExitCode {
+    // A closed pipe ends the process as it ends every Unix filter (`asperity inspect f | head`).
+    #[cfg(unix)]
+    sigpipe::reset();
     let args = cli::Cli::parse();
     cli::init_tracing(args.verbose);
     match cli::run(args) {
