@@ -8,24 +8,25 @@
 
 use serde::Deserialize;
 
-use super::contact_view::{
-    AREA_FRACTION, COMPOSITE_HEIGHT, DEFORMATION_LOWER, DEFORMATION_UPPER, DX, DY, GAP,
-    NOMINAL_PRESSURE, PLASTIC_PENETRATION, PRESSURE,
-};
+use super::contact_view::COMPOSITE_HEIGHT;
 use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
 use super::validity;
 use crate::contact::{
     BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
-    FieldRequest, LoadCurve, LoadStep, SolverOptions, MAX_TOLERANCE, MIN_TOLERANCE,
+    FieldRequest, SolverOptions, MAX_TOLERANCE, MIN_TOLERANCE,
 };
-use crate::engine::artifact::{Artifact, Table};
+use crate::engine::artifact::Artifact;
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
 use crate::engine::study::{Param, ResolveContext, SourceLocation, SpannedName, SpecError};
 use crate::engine::value::{Field, Value};
 use crate::materials::half_space_compliance;
 use crate::surface::HeightMap;
 use crate::units::{format_number, Dimension, Pressure, Quantity};
+
+mod results;
+
+use results::{final_step_metrics, load_curve_table, store_fields};
 
 pub(crate) const KIND: &str = "contact";
 pub(crate) const TABLE: &str = "contacts";
@@ -496,113 +497,5 @@ impl ContactTask {
             spacing: (lower.dx(), lower.dy()),
             composite,
         })
-    }
-}
-
-/// The `contacts` row: the final load step, the composite modulus and the grid.
-fn final_step_metrics(last: &LoadStep, composite_modulus: f64, (dx, dy): (f64, f64)) -> Vec<Field> {
-    vec![
-        Field::float("composite_modulus", composite_modulus, Dimension::Pressure),
-        Field::float(NOMINAL_PRESSURE, last.nominal_pressure, Dimension::Pressure),
-        Field::float(AREA_FRACTION, last.area_fraction, Dimension::Dimensionless),
-        Field::float(
-            "mean_contact_pressure",
-            last.mean_contact_pressure,
-            Dimension::Pressure,
-        ),
-        Field::float("stress_ratio", last.stress_ratio, Dimension::Dimensionless),
-        Field::float(
-            "plastic_area_share",
-            last.plastic_area_share,
-            Dimension::Dimensionless,
-        ),
-        Field::float("mean_separation", last.mean_separation, Dimension::Length),
-        Field::float(
-            "max_elastic_deformation",
-            last.max_elastic_deformation,
-            Dimension::Length,
-        ),
-        Field::float("approach", last.approach, Dimension::Length),
-        Field::float(DX, dx, Dimension::Length),
-        Field::float(DY, dy, Dimension::Length),
-        Field::int("iterations", last.iterations as i64),
-        Field::int("coarse_iterations", last.coarse_iterations as i64),
-        Field::int("free_set_iterations", last.free_set_iterations as i64),
-        Field::float("residual", last.residuals.max(), Dimension::Dimensionless),
-    ]
-}
-
-/// A float column of the load curve: name, dimension and the value of a step.
-type StepColumn = (&'static str, Dimension, fn(&LoadStep) -> f64);
-
-/// The `contacts_load_curve` table: one row per load step.
-fn load_curve_table(curve: &LoadCurve) -> Table {
-    let column = |f: fn(&LoadStep) -> f64| curve.steps.iter().map(f).collect();
-    let steps: [StepColumn; 8] = [
-        ("nominal_pressure", Dimension::Pressure, |s| {
-            s.nominal_pressure
-        }),
-        ("area_fraction", Dimension::Dimensionless, |s| {
-            s.area_fraction
-        }),
-        ("mean_contact_pressure", Dimension::Pressure, |s| {
-            s.mean_contact_pressure
-        }),
-        ("stress_ratio", Dimension::Dimensionless, |s| s.stress_ratio),
-        ("plastic_area_share", Dimension::Dimensionless, |s| {
-            s.plastic_area_share
-        }),
-        ("mean_separation", Dimension::Length, |s| s.mean_separation),
-        ("max_elastic_deformation", Dimension::Length, |s| {
-            s.max_elastic_deformation
-        }),
-        ("approach", Dimension::Length, |s| s.approach),
-    ];
-    let mut t = Table::default();
-    t.push_int("step", (0..curve.steps.len() as i64).collect());
-    for (name, dimension, get) in steps {
-        t.push_float(name, dimension, column(get));
-    }
-    t.push_int(
-        "iterations",
-        curve.steps.iter().map(|s| s.iterations as i64).collect(),
-    );
-    t.push_int(
-        "coarse_iterations",
-        curve
-            .steps
-            .iter()
-            .map(|s| s.coarse_iterations as i64)
-            .collect(),
-    );
-    t.push_int(
-        "free_set_iterations",
-        curve
-            .steps
-            .iter()
-            .map(|s| s.free_set_iterations as i64)
-            .collect(),
-    );
-    t.push_float(
-        "residual",
-        Dimension::Dimensionless,
-        column(|s| s.residuals.max()),
-    );
-    t
-}
-
-/// The final step's maps under the names of [`super::contact_view`].
-fn store_fields(artifact: &mut Artifact, f: crate::contact::ContactFields) {
-    let named = [
-        (PRESSURE, f.pressure),
-        (GAP, f.gap),
-        (DEFORMATION_LOWER, f.deformation_first),
-        (DEFORMATION_UPPER, f.deformation_second),
-        (PLASTIC_PENETRATION, f.plastic_penetration),
-    ];
-    for (name, array) in named {
-        if let Some(a) = array {
-            artifact.arrays.insert(name.to_string(), a.into_dyn());
-        }
     }
 }

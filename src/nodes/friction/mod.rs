@@ -38,10 +38,12 @@ use super::material_spec::MaterialSpec;
 use super::validity;
 
 mod key;
+mod material_pair;
 mod model_setup;
 mod per_spot;
 mod per_summit;
 mod setup;
+mod spec_fields;
 mod statistical;
 
 pub(crate) const KIND: &str = "friction";

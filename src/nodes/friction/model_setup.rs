@@ -9,7 +9,8 @@ use crate::friction::full_stick::stick_factors;
 use crate::friction::{AsperityModel, FullStickOptions, StickFrictionLaw};
 use crate::units::format_number;
 
-use super::setup::{positive, resolve_choice, spec_error, MaterialPair};
+use super::material_pair::MaterialPair;
+use super::spec_fields::{positive, resolve_choice, spec_error};
 use super::{FrictionMethod, FrictionModel, FrictionSpec, JunctionShear};
 use crate::materials::half_space_compliance;
 use crate::nodes::contact::ContactTask;

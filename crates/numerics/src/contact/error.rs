@@ -2,7 +2,7 @@
 
 use super::gap::GapError;
 use super::material::MaterialError;
-use super::options::{Residuals, Termination};
+use super::options::{BadOption, Residuals, Termination};
 use crate::fft2::FftFailure;
 
 /// Why a contact problem could not be set up or solved.
@@ -14,12 +14,8 @@ pub enum ContactError {
     Gap(#[from] GapError),
     #[error(transparent)]
     Fft(#[from] FftFailure),
-    #[error("solver option {name} = {value} is invalid: {reason}")]
-    BadOption {
-        name: &'static str,
-        value: f64,
-        reason: String,
-    },
+    #[error(transparent)]
+    BadOption(#[from] BadOption),
     #[error("load step {step}: nominal pressure must be finite and > 0 Pa, got {pressure} Pa")]
     BadNominalPressure { step: usize, pressure: f64 },
     #[error("load step {step}: nominal pressures must be strictly ascending, got {pressure} Pa after {previous} Pa")]

@@ -32,8 +32,8 @@ pub use influence::Boundary;
 pub use load_curve::{ContactFields, LoadCurve, LoadStep};
 pub use material::{BodyElasticity, ContactMaterial, MaterialError};
 pub use options::{
-    FieldRequest, Residuals, SolvePath, SolveStrategy, SolverOptions, Termination, MAX_TOLERANCE,
-    MIN_TOLERANCE,
+    BadOption, FieldRequest, Residuals, SolvePath, SolveStrategy, SolverOptions, Termination,
+    MAX_TOLERANCE, MIN_TOLERANCE,
 };
 pub use problem::ContactProblem;
 pub use solver::ContactSolver;

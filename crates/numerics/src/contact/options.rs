@@ -2,8 +2,6 @@
 
 use std::fmt;
 
-use super::error::ContactError;
-
 /// Smallest relative tolerance `ε` the solver accepts.
 ///
 /// Every residual is a gap error relative to the gap scale `h` (see [`Residuals`]) or a force
@@ -109,12 +107,21 @@ pub struct SolverOptions {
     pub fields: FieldRequest,
 }
 
+/// A solver option the solver cannot work with (see [`SolverOptions::check`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("solver option {name} = {value} is invalid: {reason}")]
+pub struct BadOption {
+    pub name: &'static str,
+    pub value: f64,
+    pub reason: String,
+}
+
 impl SolverOptions {
     /// Checks the options the solver cannot work with: a tolerance outside
     /// [`MIN_TOLERANCE`]`..`[`MAX_TOLERANCE`] (or not a number), no iterations.
-    pub fn check(&self) -> Result<(), ContactError> {
+    pub fn check(&self) -> Result<(), BadOption> {
         if !(MIN_TOLERANCE..MAX_TOLERANCE).contains(&self.tolerance) {
-            return Err(ContactError::BadOption {
+            return Err(BadOption {
                 name: "tolerance",
                 value: self.tolerance,
                 reason: format!(
@@ -124,7 +131,7 @@ impl SolverOptions {
             });
         }
         if self.max_iterations == 0 {
-            return Err(ContactError::BadOption {
+            return Err(BadOption {
                 name: "max_iterations",
                 value: 0.0,
                 reason: String::from("must be > 0"),

@@ -40,6 +40,7 @@ pub mod material;
 pub mod model_laws;
 pub mod model_options;
 pub mod net_load_grid;
+mod paraboloid_fit;
 pub mod per_spot;
 pub mod per_summit;
 pub(crate) mod quadrature;

@@ -4,8 +4,8 @@
 //! contacts by both solution paths.
 
 use asperity_numerics::contact::{
-    Boundary, CompositeGap, ContactError, ContactMaterial, ContactProblem, ContactSolver,
-    SolveStrategy, SolverOptions, MIN_TOLERANCE,
+    BadOption, Boundary, CompositeGap, ContactError, ContactMaterial, ContactProblem,
+    ContactSolver, SolveStrategy, SolverOptions, MIN_TOLERANCE,
 };
 use asperity_numerics::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
 
@@ -44,7 +44,7 @@ fn tolerances_the_solver_cannot_reach_are_refused_with_a_typed_error() {
     for tolerance in [1e-16, 1e-300, 0.0, -1e-6, 1.0, f64::NAN, f64::INFINITY] {
         for strategy in strategies {
             match ContactSolver::new(problem(32), options(tolerance, strategy)) {
-                Err(ContactError::BadOption { name, reason, .. }) => {
+                Err(ContactError::BadOption(BadOption { name, reason, .. })) => {
                     assert_eq!(name, "tolerance");
                     assert!(reason.contains("1e-12"), "{reason}");
                 }

@@ -85,6 +85,8 @@ use super::work::Work;
 use super::workspace::{ContactStats, FreeStats, Workspace};
 use crate::fft2::FftFailure;
 
+mod step;
+
 /// The conjugation restarts (`β = 0`) when the points that entered the free set in the last step
 /// (from zero pressure or from saturation) exceed this fraction of it. Polonsky & Keer restart at
 /// every entry; on rough surfaces a few points enter in almost every step until the very end, so
@@ -511,61 +513,6 @@ impl<'a> ConstrainedCg<'a> {
         Ok(())
     }
 
-    /// The CG step `τ` along the conjugate direction, or the projected-gradient step when the CG
-    /// step is undefined (module docs).
-    fn step_length(
-        &mut self,
-        m: &Measurement,
-        beta: f64,
-        z_mean: Option<f64>,
-    ) -> Result<Step, FftFailure> {
-        let load_control = self.load_control();
-        let mut w_ready = false;
-        let cg_step = if load_control && m.free_count <= 1.0 {
-            // Under load control `δ` is the mean of `g` on the free set, so on a free set of one
-            // point (the rigid-plastic start) `t = g − δ` vanishes: no direction to transform.
-            None
-        } else {
-            let [gt, t_sum, t_abs] = match z_mean {
-                Some(z_mean) => {
-                    self.ws
-                        .preconditioned_direction(beta, z_mean, self.offset, m.delta)
-                }
-                None => self.ws.direction(beta, self.offset, m.delta),
-            };
-            // `tᵀ K t = Σ_F t (K t)`: `t` vanishes off the free set.
-            let mut rt = self.ws.start_direction_transform(self.op)?;
-            if load_control
-                && m.free_count > 0.0
-                && t_sum.abs() > MEAN_FREE_DIRECTION * t_abs
-                && !self.heavily_corrected
-            {
-                self.op.finish_apply(&mut self.ws.w)?;
-                w_ready = true;
-                rt -= self.ws.free_w_sum() * t_sum / m.free_count;
-            }
-            (rt > 0.0 && gt > 0.0 && (gt / rt).is_finite()).then_some(gt / rt)
-        };
-        let tau = match cg_step {
-            Some(tau) => tau,
-            None => {
-                // The projected-gradient step replaces `t`; `reset` restarts the conjugation.
-                let e2 = self.ws.entry_direction(self.offset, m.delta);
-                let ek = self.op.start_apply(&self.ws.t)?;
-                if ek > 0.0 && e2 > 0.0 && (e2 / ek).is_finite() {
-                    e2 / ek
-                } else {
-                    self.settings.default_step
-                }
-            }
-        };
-        Ok(Step {
-            tau,
-            breakdown: cg_step.is_none(),
-            w_ready,
-        })
-    }
-
     /// Under load control, restores the load after a corrected step (or once the round-off drift
     /// of linear steps reaches a tenth of the force tolerance) and watches the fall-backs for a
     /// cycle. Returns whether `p` is still the linear step's, so `u` may follow by linearity.
@@ -594,14 +541,4 @@ impl<'a> ConstrainedCg<'a> {
         }
         false
     }
-}
-
-/// The step chosen by [`ConstrainedCg::step_length`].
-struct Step {
-    tau: f64,
-    /// The CG step was undefined and the projected-gradient step was taken.
-    breakdown: bool,
-    /// `w = K t` is in real space (the load-control term needed it), so `u` can be updated
-    /// without another inverse transform.
-    w_ready: bool,
 }

@@ -1,0 +1,123 @@
+//! What a contact writes: the row of its final load step, the load-curve table and the maps of
+//! the final step (under the names of `contact_view`).
+
+use super::super::contact_view::{
+    AREA_FRACTION, DEFORMATION_LOWER, DEFORMATION_UPPER, DX, DY, GAP, NOMINAL_PRESSURE,
+    PLASTIC_PENETRATION, PRESSURE,
+};
+use crate::contact::{LoadCurve, LoadStep};
+use crate::engine::artifact::{Artifact, Table};
+use crate::engine::value::Field;
+use crate::units::Dimension;
+
+/// The `contacts` row: the final load step, the composite modulus and the grid.
+pub(super) fn final_step_metrics(
+    last: &LoadStep,
+    composite_modulus: f64,
+    (dx, dy): (f64, f64),
+) -> Vec<Field> {
+    vec![
+        Field::float("composite_modulus", composite_modulus, Dimension::Pressure),
+        Field::float(NOMINAL_PRESSURE, last.nominal_pressure, Dimension::Pressure),
+        Field::float(AREA_FRACTION, last.area_fraction, Dimension::Dimensionless),
+        Field::float(
+            "mean_contact_pressure",
+            last.mean_contact_pressure,
+            Dimension::Pressure,
+        ),
+        Field::float("stress_ratio", last.stress_ratio, Dimension::Dimensionless),
+        Field::float(
+            "plastic_area_share",
+            last.plastic_area_share,
+            Dimension::Dimensionless,
+        ),
+        Field::float("mean_separation", last.mean_separation, Dimension::Length),
+        Field::float(
+            "max_elastic_deformation",
+            last.max_elastic_deformation,
+            Dimension::Length,
+        ),
+        Field::float("approach", last.approach, Dimension::Length),
+        Field::float(DX, dx, Dimension::Length),
+        Field::float(DY, dy, Dimension::Length),
+        Field::int("iterations", last.iterations as i64),
+        Field::int("coarse_iterations", last.coarse_iterations as i64),
+        Field::int("free_set_iterations", last.free_set_iterations as i64),
+        Field::float("residual", last.residuals.max(), Dimension::Dimensionless),
+    ]
+}
+
+/// A float column of the load curve: name, dimension and the value of a step.
+type StepColumn = (&'static str, Dimension, fn(&LoadStep) -> f64);
+
+/// The `contacts_load_curve` table: one row per load step.
+pub(super) fn load_curve_table(curve: &LoadCurve) -> Table {
+    let column = |f: fn(&LoadStep) -> f64| curve.steps.iter().map(f).collect();
+    let steps: [StepColumn; 8] = [
+        ("nominal_pressure", Dimension::Pressure, |s| {
+            s.nominal_pressure
+        }),
+        ("area_fraction", Dimension::Dimensionless, |s| {
+            s.area_fraction
+        }),
+        ("mean_contact_pressure", Dimension::Pressure, |s| {
+            s.mean_contact_pressure
+        }),
+        ("stress_ratio", Dimension::Dimensionless, |s| s.stress_ratio),
+        ("plastic_area_share", Dimension::Dimensionless, |s| {
+            s.plastic_area_share
+        }),
+        ("mean_separation", Dimension::Length, |s| s.mean_separation),
+        ("max_elastic_deformation", Dimension::Length, |s| {
+            s.max_elastic_deformation
+        }),
+        ("approach", Dimension::Length, |s| s.approach),
+    ];
+    let mut t = Table::default();
+    t.push_int("step", (0..curve.steps.len() as i64).collect());
+    for (name, dimension, get) in steps {
+        t.push_float(name, dimension, column(get));
+    }
+    t.push_int(
+        "iterations",
+        curve.steps.iter().map(|s| s.iterations as i64).collect(),
+    );
+    t.push_int(
+        "coarse_iterations",
+        curve
+            .steps
+            .iter()
+            .map(|s| s.coarse_iterations as i64)
+            .collect(),
+    );
+    t.push_int(
+        "free_set_iterations",
+        curve
+            .steps
+            .iter()
+            .map(|s| s.free_set_iterations as i64)
+            .collect(),
+    );
+    t.push_float(
+        "residual",
+        Dimension::Dimensionless,
+        column(|s| s.residuals.max()),
+    );
+    t
+}
+
+/// The final step's maps under the names of [`crate::nodes::contact_view`].
+pub(super) fn store_fields(artifact: &mut Artifact, f: crate::contact::ContactFields) {
+    let named = [
+        (PRESSURE, f.pressure),
+        (GAP, f.gap),
+        (DEFORMATION_LOWER, f.deformation_first),
+        (DEFORMATION_UPPER, f.deformation_second),
+        (PLASTIC_PENETRATION, f.plastic_penetration),
+    ];
+    for (name, array) in named {
+        if let Some(a) = array {
+            artifact.arrays.insert(name.to_string(), a.into_dyn());
+        }
+    }
+}
