@@ -13,17 +13,20 @@ use asperity::engine::study::Study;
 use asperity::nodes::TribologyNode;
 use polars::prelude::{ParquetReader, SerReader};
 
-/// Two surfaces: `tall` has an Sq larger than its 20 µm map (flagged), `fine` is ordinary.
+/// Two contacts: on a 4 × 4 grid (flagged: it resolves no contact spot) and on a 16 × 16 one
+/// (ordinary), each on its own surface.
 const STUDY: &str = r#"
 study: flagged
 parameters:
   product:
-    sq: [30 um, 0.1 um]
+    n: [4, 16]
 nodes:
   s:
     surface:
-      synthetic: {grid: [16, 16], size: [20 um, 20 um], sq: "${sq}", hurst: 0.8,
+      synthetic: {grid: ["${n}", "${n}"], size: [20 um, 20 um], sq: 0.1 um, hurst: 0.8,
                   correlation_length: 5 um, seed: 1}
+  c:
+    contact: {lower: s, lower_material: s235jr, nominal_pressures: [20 MPa]}
 "#;
 
 fn scratch(name: &str) -> PathBuf {
@@ -79,13 +82,13 @@ fn same_bytes(a: &Path, b: &Path, table: &str) -> bool {
 fn a_flagged_row_keeps_its_numbers_says_why_and_reads_back_from_the_cache() {
     let dir = scratch("rows");
     let (plan, first) = run(&dir, "out1");
-    assert_eq!((first.computed, first.flagged, first.failed), (2, 1, 0));
+    assert_eq!((first.computed, first.flagged, first.failed), (4, 1, 0));
     assert!(first.all_ok(), "flagged rows are not failures");
-    let surfaces = dir.join("out1/surfaces.parquet");
-    assert_eq!(texts(&surfaces, "status"), ["flagged", "ok"]);
-    let message = texts(&surfaces, "message");
+    let contacts = dir.join("out1/contacts.parquet");
+    assert_eq!(texts(&contacts, "status"), ["flagged", "ok"]);
+    let message = texts(&contacts, "message");
     assert!(
-        message[0].contains("exceeds the map's larger side"),
+        message[0].contains("resolves no contact spot"),
         "{}",
         message[0]
     );
@@ -96,16 +99,17 @@ fn a_flagged_row_keeps_its_numbers_says_why_and_reads_back_from_the_cache() {
     );
     assert_eq!(
         texts(&dir.join("out1/timings.parquet"), "status"),
-        ["flagged", "ok"]
+        ["ok", "flagged", "ok", "ok"]
     );
 
     // From the cache: the same flags, the same bytes.
     let (_, second) = run(&dir, "out2");
-    assert_eq!((second.cached, second.flagged), (2, 1));
+    assert_eq!((second.cached, second.flagged), (4, 1));
     for table in [
-        "surfaces.parquet",
+        "contacts.parquet",
+        "contacts_load_curve.parquet",
         "scenarios.parquet",
-        "surfaces_summits.parquet",
+        "surfaces.parquet",
     ] {
         assert!(
             same_bytes(&dir.join("out1"), &dir.join("out2"), table),
@@ -117,18 +121,19 @@ fn a_flagged_row_keeps_its_numbers_says_why_and_reads_back_from_the_cache() {
     // unflagged entry's manifest has no `flags` field, as entries written before flags existed.
     let cache = Cache::open(&dir.join("cache")).unwrap();
     for node in &plan.nodes {
-        let entry = cache.entry_dir("surface", &node.key);
+        let kind = node.task.kind();
+        let entry = cache.entry_dir(kind, &node.key);
         let manifest = without_summary(&entry);
         let flagged = manifest.contains("\"flags\"");
-        let loaded = cache.load("surface", &node.key, false).unwrap().unwrap();
+        let loaded = cache.load(kind, &node.key, false).unwrap().unwrap();
         assert_eq!(flagged, !loaded.artifact.flags.is_empty());
     }
     let (_, third) = run(&dir, "out3");
-    assert_eq!((third.cached, third.flagged), (2, 1));
+    assert_eq!((third.cached, third.flagged), (4, 1));
     assert!(same_bytes(
         &dir.join("out1"),
         &dir.join("out3"),
-        "surfaces.parquet"
+        "contacts.parquet"
     ));
     let _ = std::fs::remove_dir_all(&dir);
 }
