@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Runs every reader fuzz target for a number of executions each, then the study target for a
+# wall-clock time, one target at a time, and prints a Markdown table (target, runs, seconds,
+# crashes, peak RSS). Not part of `cargo test` or CI. Needs the nightly toolchain and
+# cargo-fuzz (`cargo install cargo-fuzz`); see fuzz/README.md.
+#
+#   scripts/fuzz-campaign.sh [RUNS_PER_READER] [STUDY_SECONDS] [TARGET...]
+#
+# Defaults: 1000000 runs per reader target, 3600 s for `study`, every target. Seeds: the
+# fixtures in tests/data and the shared instrument files of each format (inputs above 64 KiB are
+# truncated by libFuzzer's -max_len, which keeps each execution short).
+set -euo pipefail
+cd "$(dirname "$0")/../fuzz"
+runs=${1:-1000000}
+study_seconds=${2:-3600}
+shift 2 2>/dev/null || shift $#
+readers=(al3d gsf gwy metropro nanoscope npy opd plu sdf sur text x3p zon topography)
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=("${readers[@]}" study)
+shared=../../shared/data/topography
+log_dir=target/fuzz-logs
+mkdir -p "$log_dir"
+echo "| target | runs | seconds | crashes | peak RSS (MB) |"
+echo "|---|---:|---:|---:|---:|"
+for t in "${targets[@]}"; do
+  corpus=corpus/$t
+  seeds=target/seeds/$t
+  mkdir -p "$corpus" "$seeds"
+  if [ "$t" = study ]; then
+    cp ../studies/*.yaml ../tests/studies/bad/*.yaml "$seeds"/ 2>/dev/null || true
+    limit=(-max_total_time="$study_seconds")
+    features=(--features study)
+  else
+    cp ../tests/data/* "$seeds"/ 2>/dev/null || true
+    if [ -d "$shared" ]; then find "$shared" -type f ! -name '*.md' ! -name '*.json' -size -8M -exec cp {} "$seeds"/ \; ; fi
+    limit=(-runs="$runs")
+    features=()
+  fi
+  start=$(date +%s)
+  status=0
+  cargo +nightly fuzz run "${features[@]}" "$t" "$corpus" "$seeds" -- \
+    "${limit[@]}" -max_len=65536 -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
+    > "$log_dir/$t.log" 2>&1 || status=$?
+  seconds=$(( $(date +%s) - start ))
+  done_runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log_dir/$t.log" | grep -o '[0-9]*$' | tail -1)
+  rss=$(grep -o 'stat::peak_rss_mb: *[0-9]*' "$log_dir/$t.log" | grep -o '[0-9]*$' | tail -1)
+  crashes=$(ls "artifacts/$t" 2>/dev/null | wc -l)
+  [ "$status" -eq 0 ] || crashes="$crashes (exit $status, see $log_dir/$t.log)"
+  echo "| $t | ${done_runs:-?} | $seconds | $crashes | ${rss:-?} |"
+done
