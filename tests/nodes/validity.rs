@@ -132,10 +132,8 @@ fn an_interface_factor_above_one_is_refused_at_validate() {
 
 #[test]
 fn a_sub_picometre_sq_fails_at_the_surface_with_its_cause() {
-    let (plan, report) = run(
-        &BASE.replace("sq: 0.05 um", "sq: 1e-300 m"),
-        "validity-tiny",
-    );
+    let dir = scratch("tiny");
+    let (plan, report) = run(&base_on_checkerboard(&dir, 1e-300), "validity-tiny");
     let m = failure(named(&plan, &report.outcomes, "lower"));
     assert!(
         m.contains("`sq_m` = 0 is outside ≥ 1e-12 m") && m.contains("underflow"),
@@ -222,6 +220,26 @@ fn height_file(dir: &Path, value: &str) -> String {
     path.display().to_string()
 }
 
+/// `BASE` with its lower surface read from a 64 × 64 checkerboard of 2 × 2 blocks of heights
+/// ±`a` m (Sq = `a` exactly, slopes that central differences see) on the same 0.125 mm square: a measured file is the way such heights still arrive,
+/// since `validate` refuses a synthetic Sq outside [1 pm, the shorter side].
+fn base_on_checkerboard(dir: &Path, a: f64) -> String {
+    let mut text = String::from("# Width: 1.25e-4 m\n# Height: 1.25e-4 m\n# Value units: m\n");
+    for iy in 0..64 {
+        let row: Vec<String> = (0..64)
+            .map(|ix| format!("{:e}", if (ix / 2 + iy / 2) % 2 == 0 { a } else { -a }))
+            .collect();
+        text.push_str(&row.join("\t"));
+        text.push('\n');
+    }
+    let path = dir.join("checkerboard.txt");
+    std::fs::write(&path, text).unwrap();
+    BASE.replace(
+        "synthetic: {grid: [64, 64], size: [0.125 mm, 0.125 mm], sq: 0.05 um, hurst: 0.8,\n                  correlation_length: 40 um, seed: 1}",
+        &format!("file: {{path: \"{}\"}}", path.display()),
+    )
+}
+
 fn scratch(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("asperity-validity-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -265,7 +283,8 @@ fn an_absurd_spacing_fails_the_surface_before_its_statistics() {
 
 #[test]
 fn heights_beyond_the_field_of_view_flag_the_surface() {
-    let (plan, report) = run(&BASE.replace("sq: 0.05 um", "sq: 0.2 mm"), "validity-tall");
+    let dir = scratch("tall");
+    let (plan, report) = run(&base_on_checkerboard(&dir, 2e-4), "validity-tall");
     let surface = named(&plan, &report.outcomes, "lower");
     assert_eq!(surface.label(), "flagged");
     assert!(
@@ -351,8 +370,8 @@ fn run_prints_each_flag_and_exits_zero() {
     let dir = scratch("cli");
     let study = dir.join("tall.yaml");
     // Surface and contact only: the statistical friction of so tall a surface fails (exit 2).
-    let text = BASE.split("  stick:").next().unwrap();
-    std::fs::write(&study, text.replace("sq: 0.05 um", "sq: 0.2 mm")).unwrap();
+    let text = base_on_checkerboard(&dir, 2e-4);
+    std::fs::write(&study, text.split("  stick:").next().unwrap()).unwrap();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_asperity"))
         .args(["run", "--quiet", "--cache"])
         .arg(dir.join("cache"))
