@@ -37,7 +37,7 @@ pub fn inspect(args: InspectArgs) -> Result<ExitCode> {
     }
     match &topo.data {
         TopographyData::Areal(map) => describe_map(map, topo.spacing, topo.height_unit)?,
-        TopographyData::Line(line) => describe_line(line),
+        TopographyData::Line(line) => describe_line(line)?,
     }
     for (k, v) in &topo.metadata {
         println!("  {k}: {v}");
@@ -153,7 +153,7 @@ fn check_values(map: &HeightMap, spacing: ScaleSource, a: &AmplitudeStatistics) 
     Ok(())
 }
 
-fn describe_line(line: &LineScan) {
+fn describe_line(line: &LineScan) -> Result<()> {
     let valid: Vec<f64> = line.z.iter().copied().filter(|z| !z.is_nan()).collect();
     println!("kind:      line scan (profile)");
     println!(
@@ -168,8 +168,13 @@ fn describe_line(line: &LineScan) {
         let mean = valid.iter().sum::<f64>() / valid.len() as f64;
         let rq =
             (valid.iter().map(|z| (z - mean).powi(2)).sum::<f64>() / valid.len() as f64).sqrt();
+        let field = [Field::float("sq", rq, Dimension::Length)];
+        validity::check_fields(validity::SURFACE, &field).map_err(|e| {
+            anyhow::anyhow!("this profile's values are not physically possible (its Rq as Sq): {e}")
+        })?;
         println!("Rq (point average, no levelling) = {rq:.9e} m");
     }
+    Ok(())
 }
 
 fn write_png(map: &HeightMap, out: &Path) -> Result<()> {

@@ -393,3 +393,55 @@ fn run_prints_each_flag_and_exits_zero() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn statistical_friction_on_a_grid_too_coarse_for_summit_statistics_fails() {
+    let text = BASE.replace("grid: [64, 64]", "grid: [4, 4]");
+    let (plan, report) = run(&text, "validity-coarse-moments");
+    let m = failure(named(&plan, &report.outcomes, "stick"));
+    assert!(
+        m.contains("too coarse for summit statistics") && m.contains("4×4"),
+        "{m}"
+    );
+}
+
+#[test]
+fn heights_of_a_kilometre_fail_the_surface_and_inspect() {
+    let dir = scratch("km");
+    let (plan, report) = run(&base_on_checkerboard(&dir, 2e3), "validity-km");
+    let m = failure(named(&plan, &report.outcomes, "lower"));
+    assert!(m.contains("kilometre"), "{m}");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_asperity"))
+        .arg("inspect")
+        .arg(dir.join("checkerboard.txt"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("kilometre"));
+}
+
+#[test]
+fn inspect_refuses_a_profile_whose_rq_overflows() {
+    let dir = scratch("profile");
+    let path = dir.join("profile.txt");
+    let rows: Vec<String> = (0..32)
+        .map(|i| {
+            let z = if i == 9 { 1e308 } else { 1e-6 * (i % 5) as f64 };
+            format!("{:e} {z:e}", i as f64 * 1e-6)
+        })
+        .collect();
+    std::fs::write(&path, rows.join("\n") + "\n").unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_asperity"))
+        .arg("inspect")
+        .arg(&path)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(!out.status.success(), "{stdout}");
+    assert!(!stdout.contains("inf"), "{stdout}");
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("not physically possible"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

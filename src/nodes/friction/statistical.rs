@@ -28,7 +28,9 @@ use super::{
 };
 
 fn moments(surface: &Artifact, role: &str) -> Result<SpectralMoments, NodeError> {
-    let (m0, m2, m4) = SurfaceView::of(surface, role)?.moments.ok_or_else(|| {
+    let view = SurfaceView::of(surface, role)?;
+    crate::nodes::validity::cross::moments_grid(view.nx, view.ny).map_err(NodeError::new)?;
+    let (m0, m2, m4) = view.moments.ok_or_else(|| {
         NodeError::new(format!(
             "{role} surface has no spectral moments (maps with missing points have none: fill \
              them with `fill_missing: true`)"

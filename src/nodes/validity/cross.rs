@@ -87,6 +87,13 @@ pub const CHECKS: &[CrossCheck] = &[
         outcome: "fails",
         why: "τ_s = c·k: a junction stronger than the softer body's shear strength k would shear inside that body",
     },
+    CrossCheck {
+        kind: "friction",
+        columns: "grid of the surfaces (statistical method)",
+        rule: "≥ 8 points a side",
+        outcome: "failed",
+        why: "the spectral moments m2, m4 are finite differences of the heights: a coarser grid gives summit statistics of a few differences, not of a surface",
+    },
 ];
 
 /// Surface: Sq against the larger side of the map; a flag when the heights exceed the field of
@@ -191,6 +198,19 @@ pub fn friction_grid(nx: usize, ny: usize) -> Result<(), String> {
     Err(format!(
         "the contact's {nx}×{ny} grid is too coarse to resolve a contact spot or a summit's \
          8-neighbourhood (at least {MIN_GRID} points a side): use a finer grid"
+    ))
+}
+
+/// Statistical friction from surfaces: the spectral moments m2, m4 (finite differences of the
+/// heights) describe summits only on a grid of at least [`MIN_GRID`] points a side.
+pub fn moments_grid(nx: usize, ny: usize) -> Result<(), String> {
+    if nx.min(ny) >= MIN_GRID {
+        return Ok(());
+    }
+    Err(format!(
+        "the surface's {nx}×{ny} grid is too coarse for summit statistics: its slopes and \
+         curvatures (spectral moments m2, m4) come from a few differences (at least {MIN_GRID} \
+         points a side): use a finer grid or give `roughness` explicitly"
     ))
 }
 

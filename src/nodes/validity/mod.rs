@@ -100,6 +100,11 @@ pub const MIN_SQ: f64 = 1e-12;
 /// metres is a damaged or mis-scaled file.
 pub const MAX_SPACING: f64 = 1.0;
 
+/// Largest height statistic (m): instruments measure heights of nanometres to millimetres, the
+/// largest shipped example (a synthetic ISO 5436 sample) spans 1.9 m; a kilometre is a damaged
+/// file (bytes of another format read as floats) or a wrong height unit.
+pub const MAX_HEIGHT: f64 = 1e3;
+
 /// The column rules of every kind.
 pub const RULES: &[ColumnRule] = &[
     ColumnRule {
@@ -126,6 +131,14 @@ pub const RULES: &[ColumnRule] = &[
         severity: Severity::Fail,
         why: "an Sq below a picometre (an atom is about 1e-10 m) is no measurable roughness and \
               its spectral moments underflow: check the height unit or `sq`",
+    },
+    ColumnRule {
+        kind: SURFACE,
+        columns: &["sq", "sa", "sp", "sv", "sz"],
+        range: Range::AtMost(MAX_HEIGHT),
+        severity: Severity::Fail,
+        why: "no surface topography spans a kilometre in height: the file is damaged (e.g. \
+              another format's bytes read as heights) or its height unit is wrong",
     },
     ColumnRule {
         kind: SURFACE,
