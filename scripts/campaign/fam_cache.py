@@ -164,7 +164,8 @@ def fresh(path):
 
 
 class CacheFamily:
-    """Family 3: fault, `cache verify` (detected?), rerun (same bytes?), verify, `cache gc`, verify."""
+    """Family 3: fault, `cache verify` (detected?), rerun (same bytes?), verify, the repairs
+    (`cache verify --delete`, `cache gc`), verify."""
 
     name = "cache"
 
@@ -192,9 +193,12 @@ class CacheFamily:
         v1 = b.cache_cmd(cache, "verify")
         r = b.run(out, cache)
         v2 = b.cache_cmd(cache, "verify")
+        # The documented repairs: `verify --delete` removes corrupt entries, `gc` repairs the
+        # folder structure (docs/scale-out.md).
+        delete = b.cache_cmd(cache, "verify", "--delete")
         gc = b.cache_cmd(cache, "gc", b.study)
         v3 = b.cache_cmd(cache, "verify")
-        procs = [v1, r, v2, gc, v3]
+        procs = [v1, r, v2, delete, gc, v3]
         case.procs += procs
         case.flags |= message_flags([p.stderr for p in procs])
         specials = [process_outcome(p) for p in procs]
@@ -213,7 +217,7 @@ class CacheFamily:
             case.notes.append("cache verify passed the damaged cache")
         if not case.extra["verify_after_gc"]:
             case.flags.add("still_corrupt")
-            case.notes.append("cache verify fails after the rerun and `cache gc`: " + first_words(v3.stderr + v3.stdout))
+            case.notes.append("cache verify fails after the rerun, `cache verify --delete` and `cache gc`: " + first_words(v3.stderr + v3.stdout))
         return case
 
 
