@@ -80,14 +80,21 @@ fn verify_finds_structural_damage_and_gc_repairs_it() {
     let kind = cache.join("entries/surface");
     std::fs::write(kind.join("notes.txt"), b"x").unwrap();
     std::fs::create_dir(kind.join("zz")).unwrap();
-    // Stray temporaries: an old unknown file, a folder of a writer that no longer runs; a fresh
-    // unknown file is within the grace period and left alone.
+    // Stray temporaries: unknown files (old or fresh: no writer makes such names), a folder of a
+    // writer that no longer runs; a folder of a writer that still runs (this test) is left alone.
     let tmp = cache.join("tmp");
     std::fs::write(tmp.join("stray.txt"), b"x").unwrap();
     age(&tmp.join("stray.txt"), 2);
     let dead = tmp.join(format!("{}.{}.4294967.1", "ab".repeat(32), hostname()));
     std::fs::create_dir(&dead).unwrap();
     std::fs::write(tmp.join("fresh.txt"), b"x").unwrap();
+    let live = tmp.join(format!(
+        "{}.{}.{}.1",
+        "cd".repeat(32),
+        hostname(),
+        std::process::id()
+    ));
+    std::fs::create_dir(&live).unwrap();
 
     let verify = cache_cmd(&["verify"], &cache);
     let text = String::from_utf8_lossy(&verify.stdout).to_string();
@@ -102,6 +109,7 @@ fn verify_finds_structural_damage_and_gc_repairs_it() {
         ),
         (kind.join("zz"), "is not a prefix folder"),
         (tmp.join("stray.txt"), "stray temporary"),
+        (tmp.join("fresh.txt"), "stray temporary"),
         (dead.clone(), "which no longer runs"),
     ] {
         let line = format!("DAMAGED {} ", path.display());
@@ -111,14 +119,14 @@ fn verify_finds_structural_damage_and_gc_repairs_it() {
             "missing '{line}… {problem}' in\n{text}"
         );
     }
-    assert!(!text.contains("fresh.txt"), "{text}");
-    assert!(text.contains("7 structural damage(s)"), "{text}");
+    assert!(!text.contains(&live.display().to_string()), "{text}");
+    assert!(text.contains("8 structural damage(s)"), "{text}");
 
     let dry = ok(&cache_cmd(&["gc", "--dry-run"], &cache));
-    assert!(dry.contains("7 repairable"), "{dry}");
+    assert!(dry.contains("8 repairable"), "{dry}");
     assert!(as_file.is_file(), "a dry run repaired");
     let gc = ok(&cache_cmd(&["gc"], &cache));
-    assert!(gc.contains("7 structural damage(s), 7 repaired"), "{gc}");
+    assert!(gc.contains("8 structural damage(s), 8 repaired"), "{gc}");
     assert!(
         gc.contains(&format!("damaged: {} is a link", payload.display()))
             && gc.contains(&format!("removed the entry {}", payload_entry.display())),
@@ -126,7 +134,7 @@ fn verify_finds_structural_damage_and_gc_repairs_it() {
     );
     // Removing links never touched what they point to.
     assert!(copy.join("manifest.json").is_file() && foreign.is_file());
-    assert!(tmp.join("fresh.txt").is_file());
+    assert!(live.is_dir() && !tmp.join("fresh.txt").exists());
     let after = ok(&cache_cmd(&["verify"], &cache));
     assert!(
         after.contains("2 entries verified, 0 corrupt, 0 structural"),

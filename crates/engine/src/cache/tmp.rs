@@ -2,8 +2,8 @@
 //!
 //! A writer names its temporary folders after itself (`<key>.<host>.<pid>.<nanos>`, or
 //! `discarded.<key>.<host>.<pid>` for an entry being removed), so whether it still runs can be
-//! told on its own host; for another host's and for names asperity does not make only the age
-//! tells.
+//! told on its own host; for another host's only the age tells. No writer makes other names, so
+//! anything else in `tmp/` is stray at once.
 
 use std::fs;
 use std::path::Path;
@@ -12,14 +12,9 @@ use std::time::Duration;
 /// How old a temporary directory of another host must be before it is considered abandoned.
 pub(crate) const FOREIGN_TMP_MAX_AGE: Duration = Duration::from_secs(24 * 3600);
 
-/// How long something in `tmp/` under a name asperity does not make is left alone: a writer of
-/// another version may still be using it (a writer of this version names its folders by host and
-/// process, so whether it still runs is known).
-pub(crate) const UNKNOWN_TMP_GRACE: Duration = Duration::from_secs(3600);
-
 /// Why `entry` of `tmp/` is stale (left by a writer that died), or `None` while it may still be
 /// in use: a folder of this host's writer whose process no longer runs; another host's older than
-/// a day ([`FOREIGN_TMP_MAX_AGE`]); anything else older than [`UNKNOWN_TMP_GRACE`].
+/// a day ([`FOREIGN_TMP_MAX_AGE`]); anything under a name no writer makes.
 pub(crate) fn stale_tmp(entry: &fs::DirEntry) -> Option<String> {
     let name = entry.file_name().to_string_lossy().to_string();
     let age = entry
@@ -34,12 +29,10 @@ pub(crate) fn stale_tmp(entry: &fs::DirEntry) -> Option<String> {
             .then(|| format!("left by process {pid} of this host, which no longer runs")),
         Some((host, _)) => (age > FOREIGN_TMP_MAX_AGE)
             .then(|| format!("left by a writer on host '{host}' {} h ago", hours(age))),
-        None => (age > UNKNOWN_TMP_GRACE).then(|| {
-            format!(
-                "not a temporary folder of asperity, {} min old",
-                age.as_secs() / 60
-            )
-        }),
+        None => Some(format!(
+            "not a temporary folder of asperity (no writer's host and process in its name), {} min old",
+            age.as_secs() / 60
+        )),
     }
 }
 
