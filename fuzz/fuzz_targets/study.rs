@@ -21,7 +21,7 @@ fuzz_target!(|data: &[u8]| {
         if study
             .file
             .parameters
-            .expand()
+            .expand(study.dir())
             .is_ok_and(|s| s.rows.len() <= 10_000)
         {
             let _ = Plan::build(&study);
