@@ -5,25 +5,13 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
+use super::architecture::rust_files;
+
 /// The source folders of the three crates.
 const CRATES: [&str; 3] = ["crates/numerics/src", "crates/engine/src", "src"];
 
 /// Longest source file, in lines (tests included: a file is read whole).
 const MAX_FILE_LINES: usize = 600;
-
-fn rust_files(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            out.extend(rust_files(&path));
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
-    out.sort();
-    out
-}
 
 /// The code of a file without its test module and comment lines.
 fn code_lines(text: &str) -> impl Iterator<Item = &str> {

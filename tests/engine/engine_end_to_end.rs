@@ -215,7 +215,7 @@ fn corrupted_payload_is_detected_discarded_and_recomputed() {
 
 /// Makes the entry in `entry` one written before summaries: no `summary.bin` and a manifest
 /// (with its checksum) that does not list it. Returns the manifest's path.
-fn without_summary(entry: &Path) -> PathBuf {
+pub(crate) fn without_summary(entry: &Path) -> PathBuf {
     std::fs::remove_file(entry.join("summary.bin")).unwrap();
     let path = entry.join("manifest.json");
     let mut manifest: serde_json::Value =

@@ -11,6 +11,8 @@ use asperity::engine::output::{OutputMetadata, ResultSet};
 use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::nodes::TribologyNode;
+
+use super::engine_end_to_end::without_summary;
 use polars::prelude::{ParquetReader, SerReader};
 
 /// Two contacts: on a 4 × 4 grid (flagged: it resolves no contact spot) and on a 16 × 16 one
@@ -123,7 +125,7 @@ fn a_flagged_row_keeps_its_numbers_says_why_and_reads_back_from_the_cache() {
     for node in &plan.nodes {
         let kind = node.task.kind();
         let entry = cache.entry_dir(kind, &node.key);
-        let manifest = without_summary(&entry);
+        let manifest = std::fs::read_to_string(without_summary(&entry)).unwrap();
         let flagged = manifest.contains("\"flags\"");
         let loaded = cache.load(kind, &node.key, false).unwrap().unwrap();
         assert_eq!(flagged, !loaded.artifact.flags.is_empty());
@@ -136,23 +138,4 @@ fn a_flagged_row_keeps_its_numbers_says_why_and_reads_back_from_the_cache() {
         "contacts.parquet"
     ));
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// Makes `entry` one written before summaries (no `summary.bin`, a manifest that does not list
-/// it, with its checksum). Returns the manifest's text.
-fn without_summary(entry: &Path) -> String {
-    std::fs::remove_file(entry.join("summary.bin")).unwrap();
-    let path = entry.join("manifest.json");
-    let mut manifest: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
-    let payloads = manifest["payloads"].as_array_mut().unwrap();
-    payloads.retain(|p| p["file"] != "summary.bin");
-    let bytes = serde_json::to_vec_pretty(&manifest).unwrap();
-    std::fs::write(&path, &bytes).unwrap();
-    std::fs::write(
-        entry.join("manifest.blake3"),
-        blake3::hash(&bytes).to_hex().to_string(),
-    )
-    .unwrap();
-    String::from_utf8(bytes).unwrap()
 }
