@@ -8,13 +8,19 @@
 pub mod al3d;
 mod byte_cursor;
 mod error;
+mod frt;
 pub mod gsf;
 pub mod gwy;
 mod limits;
 pub mod metropro;
+mod mi;
 pub mod nanoscope;
+mod nid;
+mod nms;
 mod npy;
 pub mod opd;
+mod opdx;
+mod opdx_items;
 mod plu;
 mod reader;
 mod sdf;
@@ -53,7 +59,12 @@ pub const READERS: &[Reader] = &[
     sdf::READER,
     sur::READER,
     npy::READER,
+    nid::READER,
+    mi::READER,
+    frt::READER,
+    opdx::READER,
     plu::READER,
+    nms::READER,
     text::READER,
 ];
 
