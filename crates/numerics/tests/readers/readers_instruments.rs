@@ -222,3 +222,87 @@ fn opdx_profile_reproduces_reference_and_its_text_export() {
         assert!((a - b).abs() <= 1e-7 * b.abs(), "point {i}: {a:e} vs {b:e}");
     }
 }
+
+/// Items of a synthetic OPDx file (layout of `surface/io/opdx_items.rs`).
+mod opdx_bytes {
+    pub fn name(s: &str) -> Vec<u8> {
+        [&(s.len() as u32).to_le_bytes()[..], s.as_bytes()].concat()
+    }
+    fn varlen(n: usize) -> Vec<u8> {
+        [&[4u8][..], &(n as u32).to_le_bytes()].concat()
+    }
+    pub fn item(n: &str, kind: u8, payload: &[u8]) -> Vec<u8> {
+        [name(n), vec![kind], payload.to_vec()].concat()
+    }
+    pub fn container(n: &str, items: &[Vec<u8>]) -> Vec<u8> {
+        let body = [items.concat(), item("", 0x7f, &[0xff, 0xff])].concat();
+        item(n, 0x7d, &[varlen(body.len()), body].concat())
+    }
+    pub fn text(n: &str, value: &str) -> Vec<u8> {
+        item(
+            n,
+            0x12,
+            &[varlen(value.len()), value.as_bytes().to_vec()].concat(),
+        )
+    }
+    pub fn quantity(n: &str, value: f64, unit: &str, symbol: &str) -> Vec<u8> {
+        let body = [value.to_le_bytes().to_vec(), name(unit), name(symbol)].concat();
+        item(n, 0x13, &[varlen(body.len()), body].concat())
+    }
+    pub fn matrix(n: &str, rows: u32, columns: u32, data: &[f32]) -> Vec<u8> {
+        let values: Vec<u8> = data.iter().flat_map(|v| v.to_le_bytes()).collect();
+        let body = [
+            name("Matrix"),
+            7u32.to_le_bytes().to_vec(),
+            name("float"),
+            varlen(8 + values.len()),
+            rows.to_le_bytes().to_vec(),
+            columns.to_le_bytes().to_vec(),
+            values,
+        ]
+        .concat();
+        item(n, 0x00, &body)
+    }
+}
+
+#[test]
+fn opdx_height_map_is_read_with_its_extents_scale_and_missing_points() {
+    use opdx_bytes::{container, item, matrix, quantity, text};
+    let map = container(
+        "Height",
+        &[
+            item("Dimension1Points", 0x07, &2u32.to_le_bytes()),
+            item("Dimension2Points", 0x07, &3u32.to_le_bytes()),
+            quantity("Dimension1Extent", 20.0, "Micrometer", "µm"),
+            quantity("Dimension2Extent", 0.03, "Millimeter", "mm"),
+            quantity("DataScale", 0.5, "Nanometer", "nm"),
+            matrix("Matrix", 2, 3, &[1.0, 2.0, 3.0, 4.0, 5.0, f32::NAN]),
+        ],
+    );
+    let bytes = [
+        b"VCA DATA\x01\x00\x00\x55".to_vec(),
+        container("2D_Data", &[map]),
+        container(
+            "MetaData",
+            &[
+                text("DataKind", "Surface Height"),
+                text("PrimaryData2D", "Height"),
+            ],
+        ),
+        item("", 0x7f, &[]),
+    ]
+    .concat();
+    let path = Path::new("map.opdx");
+    let t = parse_topography(path, &bytes).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(t.channels, ["Height"]);
+    let TopographyData::Areal(m) = &t.data else {
+        panic!("a map")
+    };
+    assert_eq!((m.nx(), m.ny()), (3, 2));
+    assert_rel("dx", m.dx(), 10.0 * UM, 1e-12);
+    assert_rel("dy", m.dy(), 10.0 * UM, 1e-12);
+    assert_rel("z[1, 0]", m.heights()[[1, 0]], 2e-9, 1e-12);
+    assert_eq!(m.missing_count(), 1);
+    let err = parse_topography_channel(path, &bytes, Some("Phase")).unwrap_err();
+    assert!(err.to_string().contains("`Height`"), "{err}");
+}

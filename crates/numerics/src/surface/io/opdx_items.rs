@@ -114,22 +114,7 @@ fn read_item(
             c.seek(end, what)?;
             return Ok(true);
         }
-        0x01 => Item::Int(i64::from(c.u8(what)?)),
-        0x04 => Item::Int(i64::from(c.u16(le, what)? as i16)),
-        0x05 => Item::Int(i64::from(c.u16(le, what)?)),
-        0x06 => Item::Int(i64::from(c.i32(le, what)?)),
-        0x07 => Item::Int(i64::from(c.u32(le, what)?)),
-        0x0a | 0x0b => {
-            let raw = c.take(8, what)?;
-            let v = u64::from_le_bytes(raw.try_into().unwrap_or_default());
-            Item::Int(if kind == 0x0a {
-                v as i64
-            } else {
-                i64::try_from(v).unwrap_or(i64::MAX)
-            })
-        }
-        0x0c => Item::Float(f64::from(c.f32(le, what)?)),
-        0x0d => Item::Float(c.f64(le, what)?),
+        0x01 | 0x04..=0x07 | 0x0a..=0x0d => scalar(c, kind, what)?,
         0x12 => {
             let len = varlen(c, what)?;
             Item::Text(String::from_utf8_lossy(c.take(len, what)?).into_owned())
@@ -189,6 +174,29 @@ fn read_item(
     };
     out.insert(path, item);
     Ok(true)
+}
+
+/// A boolean, integer or floating-point item of type `kind`.
+fn scalar(c: &mut ByteCursor<'_>, kind: u8, what: &str) -> Result<Item, ParseError> {
+    let le = Endian::Little;
+    Ok(match kind {
+        0x01 => Item::Int(i64::from(c.u8(what)?)),
+        0x04 => Item::Int(i64::from(c.u16(le, what)? as i16)),
+        0x05 => Item::Int(i64::from(c.u16(le, what)?)),
+        0x06 => Item::Int(i64::from(c.i32(le, what)?)),
+        0x07 => Item::Int(i64::from(c.u32(le, what)?)),
+        0x0a | 0x0b => {
+            let raw = c.take(8, what)?;
+            let v = u64::from_le_bytes(raw.try_into().unwrap_or_default());
+            Item::Int(if kind == 0x0a {
+                v as i64
+            } else {
+                i64::try_from(v).unwrap_or(i64::MAX)
+            })
+        }
+        0x0c => Item::Float(f64::from(c.f32(le, what)?)),
+        _ => Item::Float(c.f64(le, what)?),
+    })
 }
 
 /// The symbol of a quantity, empty when the quantity ends before it.
