@@ -265,8 +265,9 @@ impl TwinSource {
         fields
     }
 
-    /// Measures, fits and generates; returns the twin and its extra metrics.
-    pub(super) fn generate(&self) -> Result<(HeightMap, Vec<Field>), NodeError> {
+    /// Measures, fits and generates; returns the twin, its extra metrics and the sentences that
+    /// flag its row (a file's height unit assumed).
+    pub(super) fn generate(&self) -> Result<(HeightMap, Vec<Field>, Vec<String>), NodeError> {
         let options = TextureOptions {
             hurst: HurstFitOptions {
                 q_min: self.hurst_band.map(|[_, long]| 2.0 * PI / long),
@@ -276,9 +277,12 @@ impl TwinSource {
             ..TextureOptions::default()
         };
         let mut textures = Vec::with_capacity(self.measured.len());
+        let mut flags = Vec::new();
         for file in &self.measured {
             let source = MeasuredSource::new(file.clone(), self.preprocessing);
-            let map = source.load()?;
+            let loaded = source.load()?;
+            flags.extend(loaded.flag);
+            let map = loaded.map;
             let texture = measure_texture(&map, &options).map_err(|e| texture_error(&e, file))?;
             check_hurst(&texture, &map, self.hurst_band, file)?;
             textures.push(texture);
@@ -292,7 +296,7 @@ impl TwinSource {
         let twin = synthetic_twin(&model, sq, &self.grid, ISO_ACF_THRESHOLD)
             .map_err(|e| generation_error(&e))?;
         let metrics = twin_metrics(&textures, &model, &twin);
-        Ok((twin.surface, metrics))
+        Ok((twin.surface, metrics, flags))
     }
 
     /// Memory of the largest step (measured files are read one at a time).
