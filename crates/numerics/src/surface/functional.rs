@@ -8,10 +8,12 @@
 //!   curve. Discretely the heights sorted in descending order, `z₍₁₎ ≥ … ≥ z₍N₎`, each carry the
 //!   share `1/N`, and `Smc` interpolates linearly between the points' mid-ratios `(k − ½)/N`
 //!   (held constant outside them).
-//! * **Equivalent straight line** (ISO 13565-2 §4.2): among the secants of the curve spanning
-//!   ΔMr = 40 % (`m = round(0.4 N)` points), the one of least gradient, `z₍k₎ − z₍k+m₎` minimal
-//!   (the first one on ties). `Sk` = its height difference between `mr = 0` and `mr = 100 %`;
-//!   its heights there are `c_top` and `c_bottom`.
+//! * **Equivalent straight line** (ISO 13565-2 §4.2, ISO 25178-2 Annex B): the central region
+//!   is the 40 % of the curve where the secant spanning ΔMr = 40 % (`m = round(0.4 N)` points)
+//!   has the least gradient, `z₍k₎ − z₍k+m₎` minimal (the first one on ties); the line is the
+//!   least-squares fit (in height) of the curve's points `k … k+m` in that region. `Sk` = its
+//!   height difference between `mr = 0` and `mr = 100 %`; its heights there are `c_top` and
+//!   `c_bottom`.
 //! * `Smr1 = Smr` strictly above `c_top` (the peaks above the core), `Smr2 = Smr(c_bottom)`
 //!   (the curve's last ratio at or above the core's bottom).
 //! * `Spk = 2 A1 / Smr1`, `A1 = (1/N) Σ (z − c_top)⁺` (the triangle of equal area over the
@@ -169,7 +171,7 @@ impl MaterialRatioCurve {
     pub fn equivalent_line(&self) -> (f64, f64) {
         let n = self.heights.len();
         let m = ((EQUIVALENT_LINE_SPAN * n as f64).round() as usize).clamp(1, n - 1);
-        let (k, drop) = (0..n - m)
+        let (k, _) = (0..n - m)
             .map(|k| (k, self.heights[k] - self.heights[k + m]))
             .fold((0, f64::INFINITY), |best, (k, d)| {
                 if d < best.1 {
@@ -178,10 +180,26 @@ impl MaterialRatioCurve {
                     best
                 }
             });
-        let slope = -drop * n as f64 / m as f64;
-        let mr_k = (k as f64 + 0.5) / n as f64;
-        let top = self.heights[k] - slope * mr_k;
+        let (top, slope) = self.least_squares_line(k, k + m);
         (top, top + slope)
+    }
+
+    /// `(c(0), dc/dmr)` of the least-squares line through the curve points `first ..= last` at
+    /// their mid-ratios. Heights are taken from the first point's and the line through the
+    /// centroid, so the sums stay well conditioned and a flat region gives its height exactly.
+    fn least_squares_line(&self, first: usize, last: usize) -> (f64, f64) {
+        let n = self.heights.len() as f64;
+        let base = self.heights[first];
+        let points = || (first..=last).map(|k| ((k as f64 + 0.5) / n, self.heights[k] - base));
+        let count = (last - first + 1) as f64;
+        let (mr_sum, z_sum) = points().fold((0.0, 0.0), |(a, b), (mr, z)| (a + mr, b + z));
+        let (mr_mean, z_mean) = (mr_sum / count, z_sum / count);
+        let (sxy, sxx) = points().fold((0.0, 0.0), |(sxy, sxx), (mr, z)| {
+            let d = mr - mr_mean;
+            (sxy + d * (z - z_mean), sxx + d * d)
+        });
+        let slope = if sxx > 0.0 { sxy / sxx } else { 0.0 };
+        (base + (z_mean - slope * mr_mean), slope)
     }
 
     /// `points` samples `(mr, Smc(mr))` at `mr = i/(points − 1)`, for a table or figure.

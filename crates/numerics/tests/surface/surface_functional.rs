@@ -99,8 +99,9 @@ fn height_at_ratio(mr: f64) -> f64 {
 
 /// The parameters of heights N(0, 1), from the curve Smc(mr) = Q⁻¹(mr):
 /// * the curve is point-symmetric about (50 %, 0) and its gradient smallest there, so the 40 %
-///   secant of least gradient spans [30 %, 70 %]: gradient g = 2 Q⁻¹(0.3)/0.4, c_top = g/2 =
-///   −c_bottom, Sk = g;
+///   secant of least gradient spans [30 %, 70 %]; the least-squares line over it passes through
+///   (50 %, 0) with the gradient g = ∫(mr − ½) Q⁻¹(mr) dmr / ∫(mr − ½)² dmr over [0.3, 0.7]
+///   (Simpson's rule, 400 intervals), so c_top = −g/2 = −c_bottom and Sk = −g;
 /// * Smr1 = Q(c_top), Smr2 = 1 − Smr1; with E[(Z − t)⁺] = φ(t) − t Q(t),
 ///   Spk = Svk = 2 E[(Z − c_top)⁺]/Smr1;
 /// * Sxp = Q⁻¹(0.025) − Q⁻¹(0.5) = Q⁻¹(0.025);
@@ -108,7 +109,7 @@ fn height_at_ratio(mr: f64) -> f64 {
 fn gaussian_expectation() -> FunctionalParameters {
     let above = |t: f64| density(t) - t * upper_tail(t);
     let below = |t: f64| density(t) + t * (1.0 - upper_tail(t));
-    let sk = 2.0 * height_at_ratio(0.3) / 0.4;
+    let sk = -least_squares_gradient(0.3, 0.7);
     let top = sk / 2.0;
     let smr1 = upper_tail(top);
     let tail = 2.0 * above(top) / smr1;
@@ -129,6 +130,28 @@ fn gaussian_expectation() -> FunctionalParameters {
     }
 }
 
+/// The gradient of the least-squares line through Q⁻¹ over [a, b] (Simpson's rule).
+fn least_squares_gradient(a: f64, b: f64) -> f64 {
+    let intervals = 400;
+    let h = (b - a) / intervals as f64;
+    let centre = 0.5 * (a + b);
+    let covariance: f64 = (0..=intervals)
+        .map(|i| {
+            let mr = a + i as f64 * h;
+            let weight = match i {
+                0 => 1.0,
+                i if i == intervals => 1.0,
+                i if i % 2 == 1 => 4.0,
+                _ => 2.0,
+            };
+            weight * (mr - centre) * height_at_ratio(mr)
+        })
+        .sum::<f64>()
+        * h
+        / 3.0;
+    covariance / ((b - a).powi(3) / 12.0)
+}
+
 /// 2¹⁸ independent N(0, 1) heights (Box–Muller on ChaCha8), scaled by `sigma`.
 fn gaussian_heights(sigma: f64, seed: u64) -> HeightMap {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -140,15 +163,17 @@ fn gaussian_heights(sigma: f64, seed: u64) -> HeightMap {
     map_of(z)
 }
 
-/// Gaussian heights of standard deviation σ give σ times [`gaussian_expectation`] within 3 %
-/// (relative; 0.2 % absolute for the ratios). Why 3 %: with N = 2¹⁸ independent heights a
-/// quantile at ratio p has the standard error √(p(1−p)/N)/φ(Q⁻¹(p)): 0.26 % of σ at 30 % (Sk:
-/// 0.35 % relative), 0.5 % of σ at 2.5 % (Sxp: 0.27 %); Smr1 ≈ 9.5 % has the standard error
-/// √(Smr1(1−Smr1)/N) = 0.06 % absolute (0.6 % relative, which Spk, Svk inherit), and the volumes
-/// are means (≤ 0.5 % relative for Vvv ≈ 0.11 σ). 3 % is five or more standard errors of every
-/// parameter, and the parameters are compared in units of the sample's own standard deviation so
-/// that its 0.14 % error does not add. A wrong window (e.g. the secant at 0–40 %), a missing
-/// factor 2 in Spk or a swapped p/q moves a parameter by far more.
+/// Gaussian heights of standard deviation σ give σ times [`gaussian_expectation`] within the
+/// sampling error of N = 2¹⁸ independent heights. A quantile at ratio p has the standard error
+/// √(p(1−p)/N)/φ(Q⁻¹(p)): 0.26 % of σ at 30 % and 70 % (Sk: ≈ 0.35 % relative; tolerance 1 %,
+/// which the secant's Sk, 1.9 % higher than the least-squares line's, exceeds), 0.5 % of σ at
+/// 2.5 % (Sxp: 0.27 %; tolerance 1.5 %); Smr1 ≈ 9.9 % has the standard error
+/// √(Smr1(1−Smr1)/N) = 0.06 % absolute (0.6 % relative, which Spk and Svk inherit), and a volume
+/// moves by the ratio times the quantile's error (Vmp ≈ 0.047 σ: 0.7 % relative). Tolerance 3 %
+/// for those, 0.2 % absolute for Smr1, Smr2: four or more standard errors each. The parameters
+/// are compared in units of the sample's own standard deviation, so that its 0.14 % error does
+/// not add. A wrong window (e.g. 0–40 %), a missing factor 2 in Spk or a swapped p/q moves a
+/// parameter far more. (Measured with seed 7: Sk 0.12 %, Spk 0.68 %, Vmp 0.87 %.)
 #[test]
 fn gaussian_heights_match_the_normal_distribution_within_sampling_error() {
     let sigma = 1.5e-6;
@@ -158,25 +183,34 @@ fn gaussian_heights_match_the_normal_distribution_within_sampling_error() {
     let s = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / z.len() as f64).sqrt();
     let p = functional_parameters(&map, FunctionalOptions::default()).unwrap();
     let e = gaussian_expectation();
-    let relative = |actual: f64, expected: f64, what: &str| {
+    let relative = |actual: f64, expected: f64, tolerance: f64, what: &str| {
         let err = (actual / s - expected).abs() / expected;
-        assert!(err <= 0.03, "{what}: {:.5} σ, expected {expected:.5} σ ({err:.4})", actual / s);
+        assert!(
+            err <= tolerance,
+            "{what}: {:.5} σ, expected {expected:.5} σ ({err:.4} > {tolerance})",
+            actual / s
+        );
     };
-    relative(p.sk, e.sk, "Sk");
-    relative(p.spk, e.spk, "Spk");
-    relative(p.svk, e.svk, "Svk");
-    relative(p.sxp, e.sxp, "Sxp");
-    relative(p.vmp, e.vmp, "Vmp");
-    relative(p.vmc, e.vmc, "Vmc");
-    relative(p.vvc, e.vvc, "Vvc");
-    relative(p.vvv, e.vvv, "Vvv");
+    relative(p.sk, e.sk, 0.01, "Sk");
+    relative(p.sxp, e.sxp, 0.015, "Sxp");
+    for (actual, expected, what) in [
+        (p.spk, e.spk, "Spk"),
+        (p.svk, e.svk, "Svk"),
+        (p.vmp, e.vmp, "Vmp"),
+        (p.vmc, e.vmc, "Vmc"),
+        (p.vvc, e.vvc, "Vvc"),
+        (p.vvv, e.vvv, "Vvv"),
+    ] {
+        relative(actual, expected, 0.03, what);
+    }
     close(p.smr1, e.smr1, 2e-3, "Smr1");
     close(p.smr2, e.smr2, 2e-3, "Smr2");
-    // The expectation itself against values computed by hand from tables of the normal
-    // distribution (Q⁻¹(0.3) = 0.5244, Q(1.3110) = 0.0949, Q⁻¹(0.025) = 1.9600).
-    close(e.sk, 2.622_003, 1e-5, "Gaussian Sk/σ");
-    close(e.smr1, 0.094_93, 1e-4, "Gaussian Smr1");
+    // The expectation itself: the least-squares gradient lies between the curve's gradients at
+    // the region's centre (√(2π) = 2.5066) and at its ends (1/φ(0.5244) = 2.8758), below the
+    // secant's 2 Q⁻¹(0.3)/0.4 = 2.6220; Sxp = Q⁻¹(0.025) = 1.9600 from tables.
+    assert!(e.sk > 2.5066 && e.sk < 2.6220, "Gaussian Sk/σ = {}", e.sk);
     close(e.sxp, 1.959_964, 1e-5, "Gaussian Sxp/σ");
+    eprintln!("Gaussian expectation (σ = 1): {e:?}");
 }
 
 #[test]
