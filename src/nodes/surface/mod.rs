@@ -19,6 +19,7 @@ mod metrics;
 mod preprocess;
 mod synthetic;
 mod twin;
+mod twin_band;
 
 pub use measured::FileSpec;
 pub use synthetic::{AnisotropySpec, SyntheticSpec};
@@ -38,7 +39,8 @@ pub(crate) const HEIGHT_UNIT_SOURCE: &str = "height_unit_source";
 /// computed statistics change, so stale cache entries are never reused (8: the validity rules
 /// fail impossible values and flag heights beyond the field of view; 9: the ISO 25178-2
 /// functional and volume parameters and the material ratio table, `height_unit_source` instead
-/// of `height_unit_from_file`, a flag when a file's height unit is assumed).
+/// of `height_unit_from_file`, a flag when a file's height unit is assumed; a twin without
+/// `hurst_band` finds its band per file and reports it).
 pub const SURFACE_KIND_VERSION: u32 = 9;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
