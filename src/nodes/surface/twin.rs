@@ -30,7 +30,7 @@ use crate::units::{Dimension, Length, Quantity};
 use super::measured::{MeasuredFile, MeasuredSource};
 use super::preprocess::{PreprocessDefaults, PreprocessSpec, Preprocessing};
 use super::synthetic::{positive_length, MAX_GRID_SIDE};
-use super::twin_band::{band_fields, band_of};
+use super::twin_band::{band_fields, band_of, HurstBand};
 use super::{SurfaceSource, SurfaceTask};
 
 /// `surface: {twin: {...}}`.
@@ -49,9 +49,10 @@ pub struct TwinSpec {
     /// map) over which the PSD is a power law (R² ≥ 0.95, every log bin within max(0.1 decade,
     /// 3 standard errors) of the line, at least 0.5 decade, falling faster than noise: H > 0).
     /// Give it to
-    /// override the search; a given band must give 0 < H ≤ 1.5.
+    /// override the search (`auto`: search, e.g. in a parameter axis beside given bands); a
+    /// given band must give 0 < H ≤ 1.5.
     #[serde(default)]
-    pub hurst_band: Option<[Param<Quantity<Length>>; 2]>,
+    pub hurst_band: Option<Param<HurstBand>>,
     /// Target Sq of the twin (length > 0), or `measured`: the geometric mean Sq of the
     /// preprocessed files (the twin of one file at that file's Sq).
     pub sq: Param<TwinSq>,
@@ -167,20 +168,17 @@ impl TwinSpec {
         })
     }
 
-    /// `[λ_short, λ_long]`, both > 0, ascending.
+    /// `[λ_short, λ_long]`, both > 0, ascending; `None` for `auto` or no field.
     fn hurst_band(&self, ctx: &ResolveContext<'_>) -> Result<Option<[f64; 2]>, SpecError> {
-        let Some([short_param, long]) = &self.hurst_band else {
+        let Some(param) = &self.hurst_band else {
             return Ok(None);
         };
-        let short = ctx
-            .resolve_checked(short_param, "twin.hurst_band[0]", positive_length)?
-            .si();
-        let long = ctx
-            .resolve_checked(long, "twin.hurst_band[1]", positive_length)?
-            .si();
+        let HurstBand::Given([short, long]) = ctx.resolve(param, "twin.hurst_band")? else {
+            return Ok(None);
+        };
         if short >= long {
             return Err(SpecError {
-                location: short_param.location(),
+                location: param.location(),
                 field: String::from("twin.hurst_band"),
                 message: format!(
                     "[{}, {}] must ascend: [shortest, longest wavelength]",

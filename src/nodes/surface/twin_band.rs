@@ -18,15 +18,65 @@
 use std::f64::consts::PI;
 
 use crate::engine::node::NodeError;
-use crate::engine::value::Field;
+use crate::engine::study::FromParamValue;
+use crate::engine::value::{Field, ParamValue};
 use crate::surface::spectral::{
     find_power_law_band, radial_psd, BandCriteria, BandFit, BandSearchError, Window,
 };
 use crate::surface::twins::format_micrometres;
 use crate::surface::HeightMap;
-use crate::units::Dimension;
+use crate::units::{Dimension, Length, Quantity};
 
 use super::preprocess::Preprocessing;
+
+/// `hurst_band` as written: `[λ_short, λ_long]`, or `auto` (the search, as when it is left out;
+/// a parameter axis can then mix both).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum HurstBand {
+    Auto,
+    /// m, as written (the order is checked where the field's location is known).
+    Given([f64; 2]),
+}
+
+impl FromParamValue for HurstBand {
+    fn from_param(value: &ParamValue) -> Result<Self, String> {
+        match value {
+            ParamValue::Text(t) if t == "auto" => Ok(Self::Auto),
+            ParamValue::List(items) if items.len() == 2 => {
+                let length = |v: &ParamValue| {
+                    let si = Quantity::<Length>::from_param(v)?.si();
+                    if si > 0.0 && si.is_finite() {
+                        Ok(si)
+                    } else {
+                        Err(format!("{v} is out of range: lengths must be > 0 m"))
+                    }
+                };
+                Ok(Self::Given([length(&items[0])?, length(&items[1])?]))
+            }
+            other => Err(format!(
+                "expected `auto` or two lengths [short, long], e.g. [0.6 um, 2.4 um], got {other}"
+            )),
+        }
+    }
+}
+
+impl schemars::JsonSchema for HurstBand {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "HurstBand".into()
+    }
+
+    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let length = generator.subschema_for::<Quantity<Length>>();
+        schemars::json_schema!({
+            "description": "`auto` (search the widest power-law band) or [λ_short, λ_long].",
+            "anyOf": [
+                {"const": "auto"},
+                {"type": "array", "items": length, "minItems": 2, "maxItems": 2},
+                {"type": "string"}
+            ]
+        })
+    }
+}
 
 /// Shortest wavelength of a found band, pixels (Nyquist's).
 pub(crate) const MIN_BAND_PIXELS: f64 = 2.0;
