@@ -18,13 +18,7 @@ use super::table::ResultTable;
 pub const MAX_CURVES: usize = 7;
 
 /// The surfaces table's columns quoted under each figure.
-const QUOTED: [&str; 5] = [
-    "sk_m",
-    "spk_m",
-    "svk_m",
-    "smr1_percent",
-    "smr2_percent",
-];
+const QUOTED: [&str; 5] = ["sk_m", "spk_m", "svk_m", "smr1_percent", "smr2_percent"];
 
 /// The section, or `None` without the table or without a surface node whose rows it holds.
 pub fn material_ratio_section(

@@ -95,9 +95,9 @@ pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Re
 
     let surfaces = tables.iter().find(|t| t.kind == "surface");
     match (surfaces, ResultTable::read(dir, "surfaces_material_ratio")?) {
-        (Some(surfaces), Some(curve)) => sections.extend(
-            material_ratio::material_ratio_section(&scenarios, surfaces, &curve),
-        ),
+        (Some(surfaces), Some(curve)) => sections.extend(material_ratio::material_ratio_section(
+            &scenarios, surfaces, &curve,
+        )),
         _ => skipped.push(String::from(
             "material ratio curves: they need surfaces.parquet and \
              surfaces_material_ratio.parquet",

@@ -160,17 +160,28 @@ fn a_file_without_height_unit_is_flagged_unless_the_study_gives_it() {
     let assumed = surface_outcome(&dir, "path: s.npy, pixel_size: 0.5 um");
     assert_eq!(assumed.label(), "flagged");
     let flag = assumed.flags.join("; ");
-    for part in ["s.npy", "stores no height unit", "read as metres", "height_unit: um"] {
+    for part in [
+        "s.npy",
+        "stores no height unit",
+        "read as metres",
+        "height_unit: um",
+    ] {
         assert!(flag.contains(part), "'{part}' not in: {flag}");
     }
     assert_eq!(text(&assumed, "height_unit_source"), "assumed");
     let sq_assumed = float(&assumed, "sq");
     for unit in ["um", "1 um", "1000 nm"] {
-        let o = surface_outcome(&dir, &format!("path: s.npy, pixel_size: 0.5 um, height_unit: {unit}"));
+        let o = surface_outcome(
+            &dir,
+            &format!("path: s.npy, pixel_size: 0.5 um, height_unit: {unit}"),
+        );
         assert_eq!(o.label(), "ok", "{unit}: {:?} {:?}", o.status, o.flags);
         assert_eq!(text(&o, "height_unit_source"), "study");
         let sq = float(&o, "sq");
-        assert!((sq / sq_assumed - 1e-6).abs() < 1e-15, "{unit}: Sq {sq:e} vs {sq_assumed:e} m");
+        assert!(
+            (sq / sq_assumed - 1e-6).abs() < 1e-15,
+            "{unit}: Sq {sq:e} vs {sq_assumed:e} m"
+        );
     }
     let bad = plan_error(&dir, "path: s.npy, pixel_size: 0.5 um, height_unit: 1 MPa");
     assert!(bad.contains("height_unit"), "{bad}");

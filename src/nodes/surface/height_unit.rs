@@ -93,9 +93,8 @@ pub(crate) fn apply_height_unit(
         ))),
         (ScaleSource::Assumed, Some(unit)) => {
             let (dx, dy) = (map.dx(), map.dy());
-            let scaled = HeightMap::new(map.into_heights() * unit, dx, dy).map_err(|e| {
-                NodeError::new(format!("{}: `height_unit`: {e}", path.display()))
-            })?;
+            let scaled = HeightMap::new(map.into_heights() * unit, dx, dy)
+                .map_err(|e| NodeError::new(format!("{}: `height_unit`: {e}", path.display())))?;
             Ok((scaled, HeightUnitSource::Study, None))
         }
         (ScaleSource::Assumed, None) => Ok((

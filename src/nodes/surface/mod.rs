@@ -93,7 +93,12 @@ impl SurfaceTask {
                 .map_err(|e| NodeError::new(e.to_string())),
             SurfaceSource::Measured(m) => m.load().map(|p| {
                 let source = Field::text(HEIGHT_UNIT_SOURCE, p.height_unit_source.name());
-                (p.map, Boundary::Open, vec![source], p.flag.into_iter().collect())
+                (
+                    p.map,
+                    Boundary::Open,
+                    vec![source],
+                    p.flag.into_iter().collect(),
+                )
             }),
             SurfaceSource::Twin(t) => t
                 .generate()

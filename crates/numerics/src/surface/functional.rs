@@ -173,13 +173,16 @@ impl MaterialRatioCurve {
         let m = ((EQUIVALENT_LINE_SPAN * n as f64).round() as usize).clamp(1, n - 1);
         let (k, _) = (0..n - m)
             .map(|k| (k, self.heights[k] - self.heights[k + m]))
-            .fold((0, f64::INFINITY), |best, (k, d)| {
-                if d < best.1 {
-                    (k, d)
-                } else {
-                    best
-                }
-            });
+            .fold(
+                (0, f64::INFINITY),
+                |best, (k, d)| {
+                    if d < best.1 {
+                        (k, d)
+                    } else {
+                        best
+                    }
+                },
+            );
         let (top, slope) = self.least_squares_line(k, k + m);
         (top, top + slope)
     }

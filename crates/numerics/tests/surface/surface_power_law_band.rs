@@ -54,16 +54,25 @@ fn a_curved_spectrum_has_no_band_and_the_error_names_the_best_one() {
     match find_power_law_band(&psd, 1e5, 4e6, BandCriteria::default()) {
         Err(BandSearchError::NoPowerLaw { best, .. }) => {
             assert!(best.decades() >= 0.5, "{best:?}");
-            assert!(best.max_residual_ratio > 1.0 || best.r_squared < 0.95, "{best:?}");
+            assert!(
+                best.max_residual_ratio > 1.0 || best.r_squared < 0.95,
+                "{best:?}"
+            );
             let text = find_power_law_band(&psd, 1e5, 4e6, BandCriteria::default())
                 .unwrap_err()
                 .to_string();
-            assert!(text.contains("the best one") && text.contains("R²"), "{text}");
+            assert!(
+                text.contains("the best one") && text.contains("R²"),
+                "{text}"
+            );
         }
         other => panic!("expected no band, got {other:?}"),
     }
     let narrow = find_power_law_band(&psd, 1e5, 2e5, BandCriteria::default());
-    assert!(matches!(narrow, Err(BandSearchError::TooNarrow { .. })), "{narrow:?}");
+    assert!(
+        matches!(narrow, Err(BandSearchError::TooNarrow { .. })),
+        "{narrow:?}"
+    );
 }
 
 /// A white-noise spectrum (H = −1) is no power-law band however straight.

@@ -241,7 +241,11 @@ fn fit_bins(bins: &[Bin], criteria: &BandCriteria) -> BandFit {
         q_min: bins[0].q_first,
         q_max: bins[bins.len() - 1].q_last,
         hurst: -slope / 2.0 - 1.0,
-        r_squared: if syy > 0.0 { sxy * sxy / (sxx * syy) } else { 1.0 },
+        r_squared: if syy > 0.0 {
+            sxy * sxy / (sxx * syy)
+        } else {
+            1.0
+        },
         max_residual_decades,
         max_residual_ratio,
     }
