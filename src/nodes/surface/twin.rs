@@ -280,13 +280,12 @@ impl TwinSource {
             let map = loaded.map;
             // An ACF that does not decay is the more basic fault (and names its fix): report
             // it rather than the band search's failure.
-            let band = band_of(&map, self.hurst_band, &self.preprocessing, file.path())
-                .map_err(|band_error| {
-                    match measure_texture(&map, &TextureOptions::default()) {
-                        Err(e @ TwinError::NoDecay { .. }) => texture_error(&e, file),
-                        _ => band_error,
-                    }
-                })?;
+            let band = band_of(&map, self.hurst_band, &self.preprocessing, file.path()).map_err(
+                |band_error| match measure_texture(&map, &TextureOptions::default()) {
+                    Err(e @ TwinError::NoDecay { .. }) => texture_error(&e, file),
+                    _ => band_error,
+                },
+            )?;
             let [short, long] = band.band;
             let options = TextureOptions {
                 hurst: HurstFitOptions {
