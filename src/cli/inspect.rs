@@ -13,7 +13,10 @@ use asperity::surface::io::{
     detect_format, parse_topography_channel, read_topography_bytes, LineScan, ScaleSource,
     Topography, TopographyData, METADATA_INSTRUMENT, METADATA_VENDOR,
 };
-use asperity::surface::{amplitude_statistics, AmplitudeStatistics, Boundary, HeightMap};
+use asperity::surface::{
+    amplitude_statistics, functional_parameters, AmplitudeStatistics, Boundary, FunctionalOptions,
+    FunctionalParameters, HeightMap,
+};
 use asperity::units::Dimension;
 
 /// Arguments of `asperity inspect`.
@@ -117,6 +120,7 @@ fn describe_map(map: &HeightMap, spacing: ScaleSource, height_unit: ScaleSource)
     }
     let a = amplitude_statistics(map, Boundary::Open)?;
     check_values(map, spacing, &a)?;
+    let functional = functional_parameters(map, FunctionalOptions::default())?;
     println!(
         "missing:   {} of {} points ({:.3} %)",
         a.missing_count,
@@ -132,6 +136,7 @@ fn describe_map(map: &HeightMap, spacing: ScaleSource, height_unit: ScaleSource)
     let opt = |v: Option<f64>| v.map_or(String::from("undefined"), |v| format!("{v:.7}"));
     println!("  Ssk = {}", opt(a.ssk));
     println!("  Sku = {}", opt(a.sku));
+    print_functional(&functional);
     if spacing == ScaleSource::Assumed {
         println!("  Sdq, Sdr: need the spacing");
         return Ok(());
@@ -143,6 +148,21 @@ fn describe_map(map: &HeightMap, spacing: ScaleSource, height_unit: ScaleSource)
             .map_or(String::from("undefined"), |v| format!("{v:.5}"))
     );
     Ok(())
+}
+
+/// The ISO 25178-2 functional and volume parameters at the default material ratios.
+fn print_functional(f: &FunctionalParameters) {
+    println!("functional parameters (material ratio curve; volumes at p = 10 %, q = 80 %):");
+    println!("  Sk  = {:.9e} m", f.sk);
+    println!("  Spk = {:.9e} m", f.spk);
+    println!("  Svk = {:.9e} m", f.svk);
+    println!("  Smr1 = {:.5} %", 100.0 * f.smr1);
+    println!("  Smr2 = {:.5} %", 100.0 * f.smr2);
+    println!("  Sxp = {:.9e} m (p = 2.5 %, q = 50 %)", f.sxp);
+    println!("  Vmp = {:.9e} m^3/m^2", f.vmp);
+    println!("  Vmc = {:.9e} m^3/m^2", f.vmc);
+    println!("  Vvc = {:.9e} m^3/m^2", f.vvc);
+    println!("  Vvv = {:.9e} m^3/m^2", f.vvv);
 }
 
 /// The surface node's validity rules on what `inspect` prints: an impossible value (a spacing

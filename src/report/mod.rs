@@ -5,7 +5,8 @@
 //! sample standard deviation over the replicate axes ([`scenarios`] explains how they are
 //! found), one series per combination of the other swept parameters, and with two or more
 //! friction nodes one figure per swept parameter comparing their μ_s; (b) load curves from
-//! `contacts_load_curve`; (c) height and contact-pressure maps of chosen scenarios from
+//! `contacts_load_curve`; the material ratio curves of the surfaces from
+//! `surfaces_material_ratio`; (c) height and contact-pressure maps of chosen scenarios from
 //! verified cache entries. Missing tables, entries or fields are listed on the page, not
 //! errors. This module knows the tribology table and column names but never prints.
 
@@ -16,6 +17,7 @@ mod figure;
 mod html;
 mod map_figure;
 mod maps;
+mod material_ratio;
 mod metrics;
 mod quantity;
 mod scenarios;
@@ -88,6 +90,17 @@ pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Re
         }),
         _ => skipped.push(String::from(
             "load curves: they need contacts.parquet and contacts_load_curve.parquet",
+        )),
+    }
+
+    let surfaces = tables.iter().find(|t| t.kind == "surface");
+    match (surfaces, ResultTable::read(dir, "surfaces_material_ratio")?) {
+        (Some(surfaces), Some(curve)) => sections.extend(material_ratio::material_ratio_section(
+            &scenarios, surfaces, &curve,
+        )),
+        _ => skipped.push(String::from(
+            "material ratio curves: they need surfaces.parquet and \
+             surfaces_material_ratio.parquet",
         )),
     }
 

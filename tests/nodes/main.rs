@@ -8,5 +8,6 @@ mod friction_high_plasticity;
 mod friction_node;
 #[path = "../nodes_common/mod.rs"]
 mod nodes_common;
+mod surface_functional_node;
 mod surface_node;
 mod validity;

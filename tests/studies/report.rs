@@ -128,10 +128,19 @@ fn the_report_is_one_self_contained_page_with_trends_load_curves_and_maps() {
     ] {
         assert!(!html.contains(external), "the page references '{external}'");
     }
-    // 3 trends (A_t,rel, θ and the requested mean separation against Sq), 2 load curves, 5 maps: the default picks the first
-    // seed of both Sq grades, i.e. two lower surfaces, the shared upper surface once and two
-    // pressure maps.
-    assert_eq!(html.matches("<svg").count(), 10);
+    // 3 trends (A_t,rel, θ and the requested mean separation against Sq), 2 load curves, 2
+    // material ratio figures (the surface nodes `lower` and `upper`), 5 maps: the default picks
+    // the first seed of both Sq grades, i.e. two lower surfaces, the shared upper surface once
+    // and two pressure maps.
+    assert_eq!(html.matches("<svg").count(), 12);
+    assert!(html.contains("Material ratio curve — surface &#39;lower&#39;"));
+    let curve = value_rows(&html, "Material ratio curve — surface &#39;lower&#39;");
+    assert_eq!(curve[0][0], "scenario 0", "{curve:?}");
+    assert_eq!(
+        curve[0].len(),
+        6,
+        "series and Sk, Spk, Svk, Smr1, Smr2: {curve:?}"
+    );
     for label in [
         "Sq (µm)",
         "A_t,rel (true area fraction)",
@@ -228,8 +237,8 @@ fn a_friction_table_is_plotted_and_replicate_axes_can_be_named() {
     assert_eq!(rows[0][3], "0.007071");
     assert_eq!(
         html.matches("<svg").count(),
-        5,
-        "3 trends and 2 load curves"
+        7,
+        "3 trends, 2 load curves and 2 material ratio curves"
     );
 
     // Naming Sq the replicate axis makes seed the swept parameter.

@@ -133,7 +133,7 @@ fn a_file_without_lateral_calibration_needs_pixel_size_or_size() {
         assert_eq!(o.status, NodeStatus::Computed, "{:?}", o.status);
         assert_eq!(float(&o, "dx"), 0.5e-6);
         assert_eq!(float(&o, "dy"), 0.5e-6);
-        assert_eq!(metric(&o, "height_unit_from_file"), &Value::Bool(false));
+        assert_eq!(text(&o, "height_unit_source"), "assumed");
         assert_eq!(text(&o, "lateral_scale_warning"), "");
         let o = surface_outcome(&dir, &format!("path: {file}, size: [32 um, 16 um]"));
         assert_eq!((float(&o, "dx"), float(&o, "dy")), (1e-6, 0.5e-6));
@@ -146,6 +146,47 @@ fn a_file_without_lateral_calibration_needs_pixel_size_or_size() {
     assert!(bad.contains("list of two"), "{bad}");
     let negative = plan_error(&dir, "path: s.npy, pixel_size: -1 um");
     assert!(negative.contains("must be > 0 m"), "{negative}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A file without a height unit (npy, a bare CSV matrix) is read as metres only with a flag
+/// naming `height_unit`; `height_unit` scales its values (a unit name or the length of one stored
+/// value) and the row says where the unit came from; a unit that is no length is a plan error.
+#[test]
+fn a_file_without_height_unit_is_flagged_unless_the_study_gives_it() {
+    let dir = scratch("height-unit");
+    let microns: Vec<f64> = rough(32).iter().map(|z| z * 1e6).collect();
+    write_npy(&dir.join("s.npy"), 32, &microns);
+    let assumed = surface_outcome(&dir, "path: s.npy, pixel_size: 0.5 um");
+    assert_eq!(assumed.label(), "flagged");
+    let flag = assumed.flags.join("; ");
+    for part in [
+        "s.npy",
+        "stores no height unit",
+        "read as metres",
+        "height_unit: um",
+    ] {
+        assert!(flag.contains(part), "'{part}' not in: {flag}");
+    }
+    assert_eq!(text(&assumed, "height_unit_source"), "assumed");
+    let sq_assumed = float(&assumed, "sq");
+    for unit in ["um", "1 um", "1000 nm"] {
+        let o = surface_outcome(
+            &dir,
+            &format!("path: s.npy, pixel_size: 0.5 um, height_unit: {unit}"),
+        );
+        assert_eq!(o.label(), "ok", "{unit}: {:?} {:?}", o.status, o.flags);
+        assert_eq!(text(&o, "height_unit_source"), "study");
+        let sq = float(&o, "sq");
+        assert!(
+            (sq / sq_assumed - 1e-6).abs() < 1e-15,
+            "{unit}: Sq {sq:e} vs {sq_assumed:e} m"
+        );
+    }
+    let bad = plan_error(&dir, "path: s.npy, pixel_size: 0.5 um, height_unit: 1 MPa");
+    assert!(bad.contains("height_unit"), "{bad}");
+    let negative = plan_error(&dir, "path: s.npy, pixel_size: 0.5 um, height_unit: -1 um");
+    assert!(negative.contains("> 0 m"), "{negative}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -162,7 +203,13 @@ fn a_given_spacing_must_agree_with_the_file_unless_overridden() {
     std::fs::write(dir.join("g.txt"), body).unwrap();
     let o = surface_outcome(&dir, "path: g.txt");
     assert_eq!(float(&o, "dx"), 1e-6);
-    assert_eq!(metric(&o, "height_unit_from_file"), &Value::Bool(true));
+    assert_eq!(text(&o, "height_unit_source"), "file");
+    let refused = surface_outcome(&dir, "path: g.txt, height_unit: nm");
+    let refused = failure(&refused);
+    assert!(
+        refused.contains("states its own height unit") && refused.contains("g.txt"),
+        "{refused}"
+    );
     let o = surface_outcome(&dir, "path: g.txt, pixel_size: 1.0000001 um");
     assert_eq!(
         o.status,

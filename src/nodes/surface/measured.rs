@@ -10,11 +10,13 @@ use serde::Deserialize;
 use crate::engine::node::NodeError;
 use crate::engine::study::{Param, ResolveContext, SpecError};
 use crate::engine::value::Field;
-use crate::surface::io::{declared_points, read_topography_channel, ScaleSource, TopographyData};
+use crate::surface::io::{declared_points, read_topography_channel, TopographyData};
 use crate::surface::HeightMap;
 
 use super::lateral_scale::LateralLengths;
-use super::preprocess::{with_preprocessing_fields, PreprocessDefaults, Preprocessing};
+use super::preprocess::{
+    with_preprocessing_fields, PreprocessDefaults, Preprocessed, Preprocessing,
+};
 use super::{SurfaceSource, SurfaceTask};
 use crate::units::{Length, Quantity};
 
@@ -160,17 +162,12 @@ impl MeasuredSource {
         fields
     }
 
-    /// Reads and preprocesses the surface.
-    pub(super) fn load(&self) -> Result<HeightMap, NodeError> {
-        self.load_with_scale_report().map(|(map, _)| map)
-    }
-
-    /// Reads and preprocesses the surface; also returns `height_unit_from_file` (the lateral
+    /// Reads and preprocesses the surface, saying where its height unit came from (the lateral
     /// scale's check needs the surface statistics: [`super::lateral_scale::lateral_scale_warning`]).
-    pub(super) fn load_with_scale_report(&self) -> Result<(HeightMap, Vec<Field>), NodeError> {
+    pub(super) fn load(&self) -> Result<Preprocessed, NodeError> {
         let topography = read_topography_channel(&self.file.path, self.file.channel.as_deref())
             .map_err(|e| NodeError::new(format!("reading: {e}")))?;
-        let height_unit_from_file = topography.height_unit == ScaleSource::File;
+        let scale = [topography.spacing, topography.height_unit];
         let map = match topography.data {
             TopographyData::Areal(map) => map,
             TopographyData::Line(_) => {
@@ -180,14 +177,9 @@ impl MeasuredSource {
                 )))
             }
         };
-        let map = self
-            .preprocessing
-            .apply(map, topography.spacing, &self.file.path)?;
-        check_not_degenerate(&map, &self.file.path)?;
-        Ok((
-            map,
-            vec![Field::bool("height_unit_from_file", height_unit_from_file)],
-        ))
+        let preprocessed = self.preprocessing.apply(map, scale, &self.file.path)?;
+        check_not_degenerate(&preprocessed.map, &self.file.path)?;
+        Ok(preprocessed)
     }
 
     pub(super) fn memory_estimate(&self) -> u64 {

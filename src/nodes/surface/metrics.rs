@@ -11,6 +11,8 @@
 //! * Greenwood–Williamson summit statistics (η, R, σ_s, y_s, β) from the isotropic profile moments
 //!   (Nayak/McCool, `friction::SummitStatistics`); omitted when α ≤ 0.8968, where they are undefined.
 //! * Identified summits (8-neighbour maxima): count, density, mean radius, and one row each.
+//! * ISO 25178-2 functional and volume parameters (Sk, Spk, Svk, Smr1, Smr2, Sxp, Vmp, Vmc, Vvc,
+//!   Vvv at the default ratios) over valid points, and the material ratio curve every 1 %.
 
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -26,8 +28,14 @@ use crate::surface::spectral::{
     spectral_moments, spectral_moments_of, texture_direction_of, AcfBoundary, HurstFitOptions,
     MomentMethod, Window, ISO_ACF_THRESHOLD,
 };
-use crate::surface::{amplitude_statistics, find_summits, Boundary, HeightMap, SummitOptions};
+use crate::surface::{
+    amplitude_statistics, find_summits, functional_parameters_of, Boundary, FunctionalOptions,
+    HeightMap, MaterialRatioCurve, SummitOptions,
+};
 use crate::units::Dimension;
+
+/// The long table of the material ratio curve (`surfaces_material_ratio`).
+pub(crate) const MATERIAL_RATIO_TABLE: &str = "material_ratio";
 
 /// Below this coefficient of determination the PSD band is not a power law: no Hurst exponent.
 const MIN_HURST_FIT_R_SQUARED: f64 = 0.9;
@@ -89,6 +97,7 @@ pub(super) fn surface_report(
     // An overflowed or underflowed amplitude is the cause of whatever the spectra would report.
     validity::check_fields(validity::SURFACE, &metrics)?;
     let mut tables = BTreeMap::new();
+    functional_metrics(map, &mut metrics, &mut tables)?;
     if a.missing_count == 0 && a.sq > 0.0 {
         spectral_metrics(map, boundary, &mut metrics, &mut tables)?;
     }
@@ -191,6 +200,46 @@ fn spectral_metrics(
     psd_table.push_float("q_rad_per_m", Dimension::Dimensionless, psd.q);
     psd_table.push_float("c_m4", Dimension::Dimensionless, psd.c);
     tables.insert(String::from("psd"), psd_table);
+    Ok(())
+}
+
+/// Samples of the material ratio curve in the `material_ratio` table: every 1 %.
+const MATERIAL_RATIO_SAMPLES: usize = 101;
+
+/// The ISO 25178-2 functional and volume parameters at the standard's default ratios
+/// (`surface::functional_parameters`) and the material ratio curve, over the valid points.
+fn functional_metrics(
+    map: &HeightMap,
+    metrics: &mut Vec<Field>,
+    tables: &mut BTreeMap<String, Table>,
+) -> Result<(), NodeError> {
+    let fail = |e: &dyn std::fmt::Display| NodeError::new(format!("material ratio curve: {e}"));
+    let curve = MaterialRatioCurve::of(map).map_err(|e| fail(&e))?;
+    let f = functional_parameters_of(&curve, FunctionalOptions::default()).map_err(|e| fail(&e))?;
+    metrics.extend([
+        len("sk", f.sk),
+        len("spk", f.spk),
+        len("svk", f.svk),
+        num("smr1_percent", 100.0 * f.smr1),
+        num("smr2_percent", 100.0 * f.smr2),
+        len("sxp", f.sxp),
+    ]);
+    // Volumes per unit area, m³/m²: named with their unit, as ISO writes them (ml/m² = µm).
+    metrics.extend([
+        num("vmp_m3_per_m2", f.vmp),
+        num("vmc_m3_per_m2", f.vmc),
+        num("vvc_m3_per_m2", f.vvc),
+        num("vvv_m3_per_m2", f.vvv),
+    ]);
+    let (mr, height) = curve.sampled(MATERIAL_RATIO_SAMPLES);
+    let mut t = Table::default();
+    t.push_float(
+        "material_ratio_percent",
+        Dimension::Dimensionless,
+        mr.iter().map(|r| 100.0 * r).collect(),
+    );
+    t.push_float("height", Dimension::Length, height);
+    tables.insert(String::from(MATERIAL_RATIO_TABLE), t);
     Ok(())
 }
 

@@ -12,12 +12,14 @@ use crate::nodes::validity;
 use crate::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
 use crate::surface::{Boundary, HeightMap};
 
+mod height_unit;
 mod lateral_scale;
 mod measured;
 mod metrics;
 mod preprocess;
 mod synthetic;
 mod twin;
+mod twin_band;
 
 pub use measured::FileSpec;
 pub use synthetic::{AnisotropySpec, SyntheticSpec};
@@ -29,11 +31,17 @@ use twin::TwinSource;
 
 pub(crate) const KIND: &str = "surface";
 pub(crate) const TABLE: &str = "surfaces";
+/// The column that says where a file surface's height unit came from (`file`, `study`,
+/// `assumed`).
+pub(crate) const HEIGHT_UNIT_SOURCE: &str = "height_unit_source";
 
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
 /// computed statistics change, so stale cache entries are never reused (8: the validity rules
-/// fail impossible values and flag heights beyond the field of view).
-pub const SURFACE_KIND_VERSION: u32 = 8;
+/// fail impossible values and flag heights beyond the field of view; 9: the ISO 25178-2
+/// functional and volume parameters and the material ratio table, `height_unit_source` instead
+/// of `height_unit_from_file`, a flag when a file's height unit is assumed; a twin without
+/// `hurst_band` finds its band per file and reports it).
+pub const SURFACE_KIND_VERSION: u32 = 9;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
 /// cache but regenerated when a dependant needs their heights.
@@ -76,18 +84,25 @@ pub(crate) enum SurfaceSource {
 
 impl SurfaceTask {
     /// Generates or reads the heights; says whether the map is periodic and adds any metrics of
-    /// the source itself (a twin's fitted statistics).
-    fn heights(&self) -> Result<(HeightMap, Boundary, Vec<Field>), NodeError> {
+    /// the source itself (a twin's fitted statistics, where a file's height unit came from) and
+    /// the sentences that flag its row (a height unit assumed).
+    fn heights(&self) -> Result<(HeightMap, Boundary, Vec<Field>, Vec<String>), NodeError> {
         match &self.source {
             SurfaceSource::Synthetic(spec) => generate_synthetic_surface(spec)
-                .map(|m| (m, Boundary::Periodic, Vec::new()))
+                .map(|m| (m, Boundary::Periodic, Vec::new(), Vec::new()))
                 .map_err(|e| NodeError::new(e.to_string())),
-            SurfaceSource::Measured(m) => m
-                .load_with_scale_report()
-                .map(|(map, report)| (map, Boundary::Open, report)),
+            SurfaceSource::Measured(m) => m.load().map(|p| {
+                let source = Field::text(HEIGHT_UNIT_SOURCE, p.height_unit_source.name());
+                (
+                    p.map,
+                    Boundary::Open,
+                    vec![source],
+                    p.flag.into_iter().collect(),
+                )
+            }),
             SurfaceSource::Twin(t) => t
                 .generate()
-                .map(|(map, extra)| (map, Boundary::Periodic, extra)),
+                .map(|(map, extra, flags)| (map, Boundary::Periodic, extra, flags)),
         }
     }
 }
@@ -142,7 +157,7 @@ impl NodeTask for SurfaceTask {
     /// The heights' statistics, checked by [`validity`]: the spacing before any statistic is
     /// computed, every value after.
     fn compute(&self, _inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
-        let (map, boundary, source_metrics) = self.heights()?;
+        let (map, boundary, source_metrics, source_flags) = self.heights()?;
         validity::check_fields(KIND, &metrics::spacing_fields(&map))?;
         let mut report = metrics::surface_report(&map, boundary)?;
         report.metrics.extend(source_metrics);
@@ -162,7 +177,7 @@ impl NodeTask for SurfaceTask {
             metrics: report.metrics,
             arrays: [(String::from(HEIGHTS), heights)].into_iter().collect(),
             tables: report.tables,
-            flags: flags.into_iter().collect(),
+            flags: source_flags.into_iter().chain(flags).collect(),
         };
         validity::check_artifact(KIND, &mut artifact)?;
         Ok(artifact)

@@ -3,7 +3,8 @@
 //! ([`PreprocessSpec`]), one resolution with its checks, one resolved form ([`Preprocessing`])
 //! with its key fields, and one application ([`Preprocessing::apply`]).
 //!
-//! The lateral scale comes first: the file's calibration, or `pixel_size`/`size` for a file
+//! The height unit comes first (the file's, or `height_unit` for a file without one, see
+//! [`super::height_unit`]), then the lateral scale: the file's calibration, or `pixel_size`/`size` for a file
 //! without one (see [`super::lateral_scale`]; nothing is guessed). Then, in this order, each
 //! optional: crop (pixel window) → decimate (keep every n-th point) → form removal
 //! (least-squares polynomial of the given degree; 1 = plane) → S-filter (Gaussian low-pass,
@@ -24,6 +25,7 @@ use crate::surface::{
 };
 use crate::units::{Dimension, Length, Quantity};
 
+use super::height_unit::{apply_height_unit, HeightUnit, HeightUnitSource};
 use super::lateral_scale::{
     apply_lateral_calibration, calibration_fields, LateralCalibration, LateralLengths,
 };
@@ -56,6 +58,12 @@ macro_rules! with_preprocessing_fields {
         /// Use `pixel_size`/`size` although the file's own calibration differs. Default: false.
         #[serde(default)]
         pub override_file_spacing: Option<Box<Param<bool>>>,
+        /// Height unit of a file that stores none (npy, a bare text/CSV matrix): a length unit
+        /// (`um`, `nm`, `m`) or the length one stored value stands for (`0.1 nm`). Without it
+        /// such a file is read as metres and its row is flagged; a file that states its unit
+        /// refuses it.
+        #[serde(default)]
+        pub height_unit: Option<Box<Param<super::height_unit::HeightUnit>>>,
         /// Pixel window `[ix0, iy0, nx, ny]`.
         #[serde(default)]
         pub crop: Option<[Param<usize>; 4]>,
@@ -83,6 +91,7 @@ macro_rules! with_preprocessing_fields {
                     pixel_size: &self.pixel_size,
                     size: &self.size,
                     override_file_spacing: &self.override_file_spacing,
+                    height_unit: &self.height_unit,
                     crop: &self.crop,
                     decimate: &self.decimate,
                     form_degree: &self.form_degree,
@@ -109,6 +118,7 @@ pub(crate) struct PreprocessFields<'a> {
     pub(super) pixel_size: &'a Option<Box<Param<LateralLengths>>>,
     pub(super) size: &'a Option<Box<Param<LateralLengths>>>,
     pub(super) override_file_spacing: &'a Option<Box<Param<bool>>>,
+    pub(super) height_unit: &'a Option<Box<Param<HeightUnit>>>,
     pub(super) crop: &'a Option<[Param<usize>; 4]>,
     pub(super) decimate: &'a Option<[Param<usize>; 2]>,
     pub(super) form_degree: &'a Option<Param<usize>>,
@@ -122,6 +132,8 @@ pub(crate) struct PreprocessFields<'a> {
 pub(crate) struct Preprocessing {
     pub lateral: Option<LateralCalibration>,
     pub override_file_spacing: bool,
+    /// m per stored height value, for a file without a height unit.
+    pub height_unit: Option<f64>,
     pub crop: Option<[usize; 4]>,
     pub decimate: Option<[usize; 2]>,
     pub form_degree: Option<usize>,
@@ -162,6 +174,12 @@ impl PreprocessFields<'_> {
         defaults: PreprocessDefaults,
     ) -> Result<Preprocessing, SpecError> {
         let (lateral, override_file_spacing) = self.lateral_calibration(ctx, at, prefix)?;
+        let height_unit = self
+            .height_unit
+            .as_ref()
+            .map(|p| ctx.resolve(p, &format!("{prefix}.height_unit")))
+            .transpose()?
+            .map(|HeightUnit(u)| u);
         let crop = self.crop_window(ctx, prefix)?;
         let decimate = self.decimation(ctx, prefix)?;
         let form_degree = match self.form_degree {
@@ -186,6 +204,7 @@ impl PreprocessFields<'_> {
         Ok(Preprocessing {
             lateral,
             override_file_spacing,
+            height_unit,
             crop,
             decimate,
             form_degree,
@@ -321,6 +340,7 @@ impl Preprocessing {
         let Self {
             lateral,
             override_file_spacing,
+            height_unit,
             crop,
             decimate,
             form_degree,
@@ -332,6 +352,9 @@ impl Preprocessing {
         if let Some(given) = lateral {
             fields.extend(calibration_fields(given));
             fields.push(Field::bool("override_file_spacing", override_file_spacing));
+        }
+        if let Some(unit) = height_unit {
+            fields.push(Field::float("height_unit", unit, Dimension::Length));
         }
         if let Some(c) = crop {
             for (name, x) in ["crop_ix0", "crop_iy0", "crop_nx", "crop_ny"].iter().zip(c) {
@@ -354,15 +377,18 @@ impl Preprocessing {
         fields
     }
 
-    /// The lateral calibration and every step, in order, on the map read from `path` with the
-    /// spacing `spacing` says the file gave.
+    /// The height unit, the lateral calibration and every step, in order, on the map read from
+    /// `path` with the spacing and height unit `scale` says the file gave (`[spacing, height
+    /// unit]`); also where the height unit came from and, when it was assumed, the flag.
     pub(crate) fn apply(
         &self,
         map: HeightMap,
-        spacing: ScaleSource,
+        [spacing, height_unit]: [ScaleSource; 2],
         path: &Path,
-    ) -> Result<HeightMap, NodeError> {
+    ) -> Result<Preprocessed, NodeError> {
         let fail = |step: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{step}: {e}"));
+        let (map, height_unit_source, flag) =
+            apply_height_unit(map, height_unit, self.height_unit, path)?;
         let mut map = apply_lateral_calibration(
             map,
             spacing,
@@ -392,6 +418,18 @@ impl Preprocessing {
                 .map_err(|e| fail("filling missing points", &e))?
                 .surface;
         }
-        Ok(map)
+        Ok(Preprocessed {
+            map,
+            height_unit_source,
+            flag,
+        })
     }
+}
+
+/// A preprocessed map and where its height unit came from.
+pub(crate) struct Preprocessed {
+    pub map: HeightMap,
+    pub height_unit_source: HeightUnitSource,
+    /// The sentence that flags the row when the height unit was assumed.
+    pub flag: Option<String>,
 }

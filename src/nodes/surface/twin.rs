@@ -30,6 +30,7 @@ use crate::units::{Dimension, Length, Quantity};
 use super::measured::{MeasuredFile, MeasuredSource};
 use super::preprocess::{PreprocessDefaults, PreprocessSpec, Preprocessing};
 use super::synthetic::{positive_length, MAX_GRID_SIDE};
+use super::twin_band::{band_fields, band_of, HurstBand};
 use super::{SurfaceSource, SurfaceTask};
 
 /// `surface: {twin: {...}}`.
@@ -43,11 +44,15 @@ pub struct TwinSpec {
     /// `form_degree: 1` (a plane) and `fill_missing: true`.
     #[serde(default)]
     pub preprocess: Option<Box<PreprocessSpec>>,
-    /// Wavelength band `[λ_short, λ_long]` of the Hurst fit to the files' PSD (default: 4 to 16
-    /// pixels). Place it where the spectrum falls as a power law: above the S-filter and the
-    /// instrument's noise, below the L-filter.
+    /// Wavelength band `[λ_short, λ_long]` of the Hurst fit to the files' PSD. Default: found per
+    /// file, the widest band between the S-filter (or 2 pixels) and the L-filter (or half the
+    /// map) over which the PSD is a power law (R² ≥ 0.95, every log bin within max(0.1 decade,
+    /// 3 standard errors) of the line, at least 0.5 decade, falling faster than noise: H > 0).
+    /// Give it to
+    /// override the search (`auto`: search, e.g. in a parameter axis beside given bands); a
+    /// given band must give 0 < H ≤ 1.5.
     #[serde(default)]
-    pub hurst_band: Option<[Param<Quantity<Length>>; 2]>,
+    pub hurst_band: Option<Param<HurstBand>>,
     /// Target Sq of the twin (length > 0), or `measured`: the geometric mean Sq of the
     /// preprocessed files (the twin of one file at that file's Sq).
     pub sq: Param<TwinSq>,
@@ -104,7 +109,7 @@ impl schemars::JsonSchema for TwinSq {
 pub(crate) struct TwinSource {
     measured: Vec<MeasuredFile>,
     preprocessing: Preprocessing,
-    /// `[λ_short, λ_long]` of the Hurst fit (m); `None`: 4 to 16 pixels.
+    /// `[λ_short, λ_long]` of the Hurst fit (m); `None`: found per file ([`band_of`]).
     hurst_band: Option<[f64; 2]>,
     sq: TwinSq,
     grid: TwinGrid,
@@ -163,20 +168,17 @@ impl TwinSpec {
         })
     }
 
-    /// `[λ_short, λ_long]`, both > 0, ascending.
+    /// `[λ_short, λ_long]`, both > 0, ascending; `None` for `auto` or no field.
     fn hurst_band(&self, ctx: &ResolveContext<'_>) -> Result<Option<[f64; 2]>, SpecError> {
-        let Some([short_param, long]) = &self.hurst_band else {
+        let Some(param) = &self.hurst_band else {
             return Ok(None);
         };
-        let short = ctx
-            .resolve_checked(short_param, "twin.hurst_band[0]", positive_length)?
-            .si();
-        let long = ctx
-            .resolve_checked(long, "twin.hurst_band[1]", positive_length)?
-            .si();
+        let HurstBand::Given([short, long]) = ctx.resolve(param, "twin.hurst_band")? else {
+            return Ok(None);
+        };
         if short >= long {
             return Err(SpecError {
-                location: short_param.location(),
+                location: param.location(),
                 field: String::from("twin.hurst_band"),
                 message: format!(
                     "[{}, {}] must ascend: [shortest, longest wavelength]",
@@ -265,23 +267,40 @@ impl TwinSource {
         fields
     }
 
-    /// Measures, fits and generates; returns the twin and its extra metrics.
-    pub(super) fn generate(&self) -> Result<(HeightMap, Vec<Field>), NodeError> {
-        let options = TextureOptions {
-            hurst: HurstFitOptions {
-                q_min: self.hurst_band.map(|[_, long]| 2.0 * PI / long),
-                q_max: self.hurst_band.map(|[short, _]| 2.0 * PI / short),
-                ..HurstFitOptions::default()
-            },
-            ..TextureOptions::default()
-        };
+    /// Measures, fits and generates; returns the twin, its extra metrics and the sentences that
+    /// flag its row (a file's height unit assumed).
+    pub(super) fn generate(&self) -> Result<(HeightMap, Vec<Field>, Vec<String>), NodeError> {
         let mut textures = Vec::with_capacity(self.measured.len());
+        let mut bands = Vec::with_capacity(self.measured.len());
+        let mut flags = Vec::new();
         for file in &self.measured {
             let source = MeasuredSource::new(file.clone(), self.preprocessing);
-            let map = source.load()?;
+            let loaded = source.load()?;
+            flags.extend(loaded.flag);
+            let map = loaded.map;
+            // An ACF that does not decay is the more basic fault (and names its fix): report
+            // it rather than the band search's failure.
+            let band = band_of(&map, self.hurst_band, &self.preprocessing, file.path()).map_err(
+                |band_error| match measure_texture(&map, &TextureOptions::default()) {
+                    Err(e @ TwinError::NoDecay { .. }) => texture_error(&e, file),
+                    _ => band_error,
+                },
+            )?;
+            let [short, long] = band.band;
+            let options = TextureOptions {
+                hurst: HurstFitOptions {
+                    q_min: Some(2.0 * PI / long),
+                    q_max: Some(2.0 * PI / short),
+                    ..HurstFitOptions::default()
+                },
+                ..TextureOptions::default()
+            };
             let texture = measure_texture(&map, &options).map_err(|e| texture_error(&e, file))?;
-            check_hurst(&texture, &map, self.hurst_band, file)?;
+            if band.found.is_none() {
+                check_hurst(&texture, band.band, file)?;
+            }
             textures.push(texture);
+            bands.push(band);
         }
         let model =
             fit_twin_model(&textures).map_err(|e| NodeError::new(format!("twin fit: {e}")))?;
@@ -291,8 +310,18 @@ impl TwinSource {
         };
         let twin = synthetic_twin(&model, sq, &self.grid, ISO_ACF_THRESHOLD)
             .map_err(|e| generation_error(&e))?;
-        let metrics = twin_metrics(&textures, &model, &twin);
-        Ok((twin.surface, metrics))
+        let mut metrics = twin_metrics(&textures, &model, &twin);
+        let names: Vec<String> = self
+            .measured
+            .iter()
+            .map(|f| {
+                f.path()
+                    .file_name()
+                    .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+            })
+            .collect();
+        metrics.extend(band_fields(&bands, self.hurst_band.is_some(), &names));
+        Ok((twin.surface, metrics, flags))
     }
 
     /// Memory of the largest step (measured files are read one at a time).
@@ -330,19 +359,17 @@ fn texture_error(e: &TwinError, file: &MeasuredFile) -> NodeError {
     }
 }
 
-/// A measured Hurst exponent outside (0, 1.5] means the fitted band is not self-affine (noise
-/// flattens the spectrum, or a filter steepens it): the node fails naming the band and the fix.
+/// A measured Hurst exponent outside (0, 1.5] over a band the study gave means that band is not
+/// self-affine (noise flattens the spectrum, or a filter steepens it): the node fails naming the
+/// band and the fix. (A found band has passed the search's own criterion instead.)
 fn check_hurst(
     texture: &MeasuredTexture,
-    map: &HeightMap,
-    band: Option<[f64; 2]>,
+    [short, long]: [f64; 2],
     file: &MeasuredFile,
 ) -> Result<(), NodeError> {
     if texture.hurst > 0.0 && texture.hurst <= 1.5 {
         return Ok(());
     }
-    let pixel = map.dx().min(map.dy());
-    let [short, long] = band.unwrap_or([4.0 * pixel, 16.0 * pixel]);
     Err(NodeError::new(format!(
         "measuring {}: the PSD between the wavelengths {} and {} falls with a Hurst exponent of \
          {:.2} (R² {:.2}), outside (0, 1.5]: the surface is not self-affine in that band; set \

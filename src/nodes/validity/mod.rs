@@ -149,6 +149,30 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: SURFACE,
+        columns: &[
+            "sk",
+            "spk",
+            "svk",
+            "sxp",
+            "vmp_m3_per_m2",
+            "vmc_m3_per_m2",
+            "vvc_m3_per_m2",
+            "vvv_m3_per_m2",
+        ],
+        range: Range::AtLeast(0.0),
+        severity: Severity::Fail,
+        why: "heights and volumes of the material ratio curve, which never rises, are never \
+              negative",
+    },
+    ColumnRule {
+        kind: SURFACE,
+        columns: &["smr1_percent", "smr2_percent"],
+        range: Range::Between(0.0, 100.0),
+        severity: Severity::Fail,
+        why: "a material ratio is a share of the valid points",
+    },
+    ColumnRule {
+        kind: SURFACE,
         columns: &["str", "hurst_fit_r_squared"],
         range: Range::Between(0.0, 1.0),
         severity: Severity::Fail,

@@ -4,6 +4,7 @@ mod amplitude;
 mod fill;
 mod filter;
 mod form;
+mod functional;
 mod gradient;
 mod height_map;
 pub mod io;
@@ -18,6 +19,10 @@ pub use filter::{
 };
 pub use form::{
     remove_plane, remove_polynomial_form, FormError, FormRemoval, LegendreTerm, MAX_FORM_DEGREE,
+};
+pub use functional::{
+    functional_parameters, functional_parameters_of, FunctionalError, FunctionalOptions,
+    FunctionalParameters, MaterialRatioCurve, EQUIVALENT_LINE_SPAN,
 };
 pub use gradient::{
     gradient_statistics, Boundary, DifferenceScheme, GradientError, GradientStatistics,

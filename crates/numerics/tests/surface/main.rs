@@ -3,6 +3,8 @@
 #[path = "../common/mod.rs"]
 mod common;
 mod surface_amplitude;
+mod surface_functional;
+mod surface_power_law_band;
 mod surface_spectral_statistics;
 mod surface_spectral_synthetic;
 mod surface_spectral_twins;

@@ -7,6 +7,7 @@ pub mod direction;
 pub mod error;
 pub mod hurst;
 pub mod moments;
+pub mod power_law_band;
 pub mod psd;
 
 pub use crate::fft2::FftFailure;
@@ -19,6 +20,9 @@ pub use error::SpectralError;
 pub use hurst::{fit_power_law, hurst_exponent, hurst_exponent_of, HurstFit, HurstFitOptions};
 pub use moments::{
     spectral_moments, spectral_moments_of, MomentMethod, ProfileMoments, SpectralMoments,
+};
+pub use power_law_band::{
+    find_power_law_band, BandCriteria, BandFit, BandSearchError, BINS_PER_DECADE, MIN_BINS,
 };
 pub use psd::{
     periodogram, profile_psd, radial_psd, radial_psd_of, Axis, Periodogram, PsdTable, Window,
