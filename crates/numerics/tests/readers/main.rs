@@ -11,3 +11,4 @@ mod readers_b;
 mod readers_b_fixtures;
 mod readers_b_robustness;
 mod readers_bounded;
+mod readers_more;

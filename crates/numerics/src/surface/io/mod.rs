@@ -5,22 +5,28 @@
 //! file extension, and wraps every failure in a [`ReadError`] that names the file.
 
 pub mod al3d;
+pub mod bcrf;
 mod byte_cursor;
 mod error;
 pub mod gsf;
 pub mod gwy;
+pub mod hfm;
+pub mod ibw;
 mod limits;
 pub mod metropro;
 pub mod nanoscope;
 mod npy;
 pub mod opd;
 mod plu;
+pub mod ps_tiff;
 mod sdf;
 mod sur;
 mod text;
 mod text_header;
 mod text_units;
+pub mod tmd;
 mod topography;
+pub mod wsxm;
 mod x3p;
 mod x3p_checksum;
 mod x3p_xml;
@@ -63,6 +69,18 @@ pub enum Format {
     Npy,
     /// Sensofar `.plu` (float32 µm heights; 1 000 001 µm = not measured).
     Plu,
+    /// TrueMap `.tmd` (float32, millimetres).
+    Tmd,
+    /// Image Metrology SPIP BCR-STM / BCRF (`.bcr`, `.bcrf`).
+    Bcrf,
+    /// Igor Pro binary wave `.ibw` (Asylum Research); one channel per layer.
+    Ibw,
+    /// Park Systems TIFF (data in the private tags 50432–50435).
+    ParkTiff,
+    /// Nanotec WSxM image (`.top`, `.stp`, …).
+    Wsxm,
+    /// `X;Y;valid` profile text `.hfm` (a line scan).
+    Hfm,
     /// Text/CSV: a matrix grid (header styles `h= w=` / `pixel size=` /
     /// `height conversion factor (-> m)=`, or Gwyddion `# Width:` / `# Value units:`), x y z
     /// triples, or a 2-column line scan (returned as [`TopographyData::Line`]). Without a
@@ -86,6 +104,12 @@ impl Format {
         Format::Sur,
         Format::Npy,
         Format::Plu,
+        Format::Tmd,
+        Format::Bcrf,
+        Format::Ibw,
+        Format::ParkTiff,
+        Format::Wsxm,
+        Format::Hfm,
         Format::Text,
     ];
 
@@ -104,6 +128,12 @@ impl Format {
             Format::Sur => "sur",
             Format::Npy => "npy",
             Format::Plu => "plu",
+            Format::Tmd => "tmd",
+            Format::Bcrf => "bcrf",
+            Format::Ibw => "ibw",
+            Format::ParkTiff => "park-tiff",
+            Format::Wsxm => "wsxm",
+            Format::Hfm => "hfm",
             Format::Text => "text",
         }
     }
@@ -123,6 +153,12 @@ impl Format {
             Format::Sur => sur::matches_magic(head),
             Format::Npy => npy::matches_magic(head),
             Format::Plu => false,
+            Format::Tmd => tmd::matches_magic(head),
+            Format::Bcrf => bcrf::matches_magic(head),
+            Format::Ibw => ibw::matches_magic(head),
+            Format::ParkTiff => ps_tiff::matches_magic(head),
+            Format::Wsxm => wsxm::matches_magic(head),
+            Format::Hfm => hfm::matches_magic(head),
             Format::Text => false,
         }
     }
@@ -142,6 +178,12 @@ impl Format {
             Format::Sur => ext == "sur",
             Format::Npy => ext == "npy",
             Format::Plu => ext == "plu",
+            Format::Tmd => ext == "tmd",
+            Format::Bcrf => matches!(ext, "bcr" | "bcrf"),
+            Format::Ibw => ext == "ibw",
+            Format::ParkTiff => matches!(ext, "tif" | "tiff"),
+            Format::Wsxm => matches!(ext, "top" | "stp"),
+            Format::Hfm => ext == "hfm",
             Format::Text => text::EXTENSIONS.contains(&ext),
         }
     }
@@ -167,6 +209,12 @@ impl Format {
             Format::Sur => sur::parse(bytes),
             Format::Npy => npy::parse(bytes),
             Format::Plu => plu::parse(bytes),
+            Format::Tmd => tmd::parse(bytes),
+            Format::Bcrf => bcrf::parse(bytes),
+            Format::Ibw => ibw::parse(bytes),
+            Format::ParkTiff => ps_tiff::parse(bytes),
+            Format::Wsxm => wsxm::parse(bytes),
+            Format::Hfm => hfm::parse(bytes),
             Format::Text => text::parse(bytes),
         }
     }
