@@ -250,3 +250,126 @@ fn hfm_is_a_uniform_line_scan() {
     );
     assert_eq!(t.spacing, ScaleSource::File);
 }
+
+#[test]
+fn xy_text_line_scans_reproduce_reference() {
+    // computed (per point, file units): Sq; x range; the files state no unit except xy-2.
+    let cases: [(&str, usize, f64, f64, f64); 4] = [
+        (
+            "xyz/xy-1.txt",
+            132,
+            187.19043100000002,
+            3.1268353808541143,
+            1.0,
+        ),
+        (
+            "xyz/xy-2.txt",
+            24,
+            29.210271999999996,
+            4.001670015695005,
+            UM,
+        ),
+        ("xyz/xy-3.txt", 11, 9.0, 0.2874797872880344, 1.0),
+        ("xyz/xy-4.txt", 10001, 0.9956130, 0.008641846268974015, 1.0),
+    ];
+    for (file, n, range, want_sq, unit) in cases {
+        let Some(t) = read(file, "text") else {
+            return;
+        };
+        let TopographyData::Line(line) = &t.data else {
+            panic!("{file} must be a line scan")
+        };
+        assert_eq!(line.x.len(), n, "{file}: points");
+        assert_rel(
+            &format!("{file} x range"),
+            line.x[n - 1] - line.x[0],
+            range * unit,
+        );
+        assert_rel(
+            &format!("{file} Sq"),
+            sq(line.z.iter().copied()),
+            want_sq * unit,
+        );
+        let source = if unit == 1.0 {
+            ScaleSource::Assumed
+        } else {
+            ScaleSource::File
+        };
+        assert_eq!(t.height_unit, source, "{file}: height unit");
+    }
+}
+
+#[test]
+fn xy_count_line_is_metadata_not_data() {
+    // xy-2 has a `µm µm` unit line and a count line `23` above its 24 data rows.
+    let Some(t) = read("xyz/xy-2.txt", "text") else {
+        return;
+    };
+    assert_eq!(
+        t.metadata.get("declared_points").map(String::as_str),
+        Some("23")
+    );
+}
+
+#[test]
+fn xyz_point_lists_reproduce_reference() {
+    // ASSERTED: 4 × 4, uniform; computed Sq (xyz-2: 14 valid points of 16).
+    for (file, want_sq, missing) in [
+        ("xyz/xyz-1.txt", 0.33071891388307384, 0),
+        ("xyz/xyz-2.txt", 0.4948716593053935, 2),
+    ] {
+        let Some(t) = read(file, "text") else {
+            return;
+        };
+        let m = areal(&t);
+        assert_eq!((m.nx(), m.ny()), (4, 4), "{file}");
+        assert_eq!(m.size(), (4.0, 4.0), "{file}");
+        assert_eq!(m.missing_count(), missing, "{file}");
+        assert_rel(
+            &format!("{file} Sq"),
+            sq(m.heights().iter().copied()),
+            want_sq,
+        );
+    }
+}
+
+#[test]
+fn scattered_xyz_points_are_refused_with_how_to_resample() {
+    use asperity_numerics::surface::io::{parse_topography, ReadError};
+    let text = "0 0 1\n1 0 2\n2.5 0 3\n0 1 1\n1 1 2\n2.5 1 3\n0 2 4\n1 2 5\n2 2 6\n";
+    let err = parse_topography(std::path::Path::new("scan.xyz"), text.as_bytes()).unwrap_err();
+    let ReadError::Parse { cause, .. } = &err else {
+        panic!("{err}")
+    };
+    assert!(matches!(cause, ParseError::Unsupported { .. }), "{err}");
+    let message = err.to_string();
+    assert!(
+        message.contains("scan.xyz")
+            && message.contains("regular grid")
+            && message.contains("resample"),
+        "{message}"
+    );
+}
+
+#[test]
+fn netcdf_reproduces_reference() {
+    // computed (nm): 5 × 10, 5 × 10 nm, Sq 5.744562646538029; every x profile is constant.
+    let Some(t) = check(&Areal {
+        file: "nc/nc-1.nc",
+        format: "netcdf",
+        grid: (5, 10),
+        size: (5.0 * NM, 10.0 * NM),
+        sq: 5.744562646538029 * NM,
+        channel: None,
+    }) else {
+        return;
+    };
+    let m = areal(&t);
+    assert!(m
+        .heights()
+        .rows()
+        .into_iter()
+        .all(|r| r.iter().all(|&z| z == r[0])));
+    assert_eq!(m.heights()[[0, 0]], 9.0 * NM);
+    assert_eq!(t.height_unit, ScaleSource::File);
+}

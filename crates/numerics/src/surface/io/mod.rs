@@ -15,6 +15,7 @@ pub mod ibw;
 mod limits;
 pub mod metropro;
 pub mod nanoscope;
+pub mod netcdf;
 mod npy;
 pub mod opd;
 mod plu;
@@ -30,6 +31,7 @@ pub mod wsxm;
 mod x3p;
 mod x3p_checksum;
 mod x3p_xml;
+mod xyz;
 pub mod zon;
 
 pub use error::{ParseError, ReadError};
@@ -81,6 +83,8 @@ pub enum Format {
     Wsxm,
     /// `X;Y;valid` profile text `.hfm` (a line scan).
     Hfm,
+    /// netCDF classic / 64-bit offset with a `heights(x, y)` variable (SurfaceTopography layout).
+    NetCdf,
     /// Text/CSV: a matrix grid (header styles `h= w=` / `pixel size=` /
     /// `height conversion factor (-> m)=`, or Gwyddion `# Width:` / `# Value units:`), x y z
     /// triples, or a 2-column line scan (returned as [`TopographyData::Line`]). Without a
@@ -110,6 +114,7 @@ impl Format {
         Format::ParkTiff,
         Format::Wsxm,
         Format::Hfm,
+        Format::NetCdf,
         Format::Text,
     ];
 
@@ -134,6 +139,7 @@ impl Format {
             Format::ParkTiff => "park-tiff",
             Format::Wsxm => "wsxm",
             Format::Hfm => "hfm",
+            Format::NetCdf => "netcdf",
             Format::Text => "text",
         }
     }
@@ -159,6 +165,7 @@ impl Format {
             Format::ParkTiff => ps_tiff::matches_magic(head),
             Format::Wsxm => wsxm::matches_magic(head),
             Format::Hfm => hfm::matches_magic(head),
+            Format::NetCdf => netcdf::matches_magic(head),
             Format::Text => false,
         }
     }
@@ -184,6 +191,7 @@ impl Format {
             Format::ParkTiff => matches!(ext, "tif" | "tiff"),
             Format::Wsxm => matches!(ext, "top" | "stp"),
             Format::Hfm => ext == "hfm",
+            Format::NetCdf => ext == "nc",
             Format::Text => text::EXTENSIONS.contains(&ext),
         }
     }
@@ -215,6 +223,7 @@ impl Format {
             Format::ParkTiff => ps_tiff::parse(bytes),
             Format::Wsxm => wsxm::parse(bytes),
             Format::Hfm => hfm::parse(bytes),
+            Format::NetCdf => netcdf::parse(bytes),
             Format::Text => text::parse(bytes),
         }
     }
