@@ -6,9 +6,9 @@ use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
 
-const EXTENSIONS: [&str; 14] = [
+const EXTENSIONS: [&str; 23] = [
     "dat", "opd", "spm", "gsf", "gwy", "al3d", "zon", "x3p", "sdf", "sur", "npy", "plu", "txt",
-    "csv",
+    "csv", "tmd", "bcrf", "ibw", "tiff", "top", "stp", "hfm", "nc", "h5",
 ];
 
 fuzz_target!(|data: &[u8]| {

@@ -8,7 +8,7 @@
 use crate::common;
 
 use asperity_numerics::surface::io::{
-    detect_format, ibw, read_topography, ParseError, ScaleSource, Topography, TopographyData,
+    detect_format, hdf5, ibw, read_topography, ParseError, ScaleSource, Topography, TopographyData,
 };
 use asperity_numerics::surface::HeightMap;
 
@@ -372,4 +372,33 @@ fn netcdf_reproduces_reference() {
         .all(|r| r.iter().all(|&z| z == r[0])));
     assert_eq!(m.heights()[[0, 0]], 9.0 * NM);
     assert_eq!(t.height_unit, ScaleSource::File);
+}
+
+#[test]
+fn hdf5_datasets_are_channels() {
+    // ASSERTED: 2 channels, 256 × 256 and 640 × 480; computed Sq of dataset1 0.033215426493512654
+    // (no unit, no size: 1 m per pixel assumed).
+    let Some(t) = check(&Areal {
+        file: "h5/multiple_data_sets.h5",
+        format: "hdf5",
+        grid: (256, 256),
+        size: (256.0, 256.0),
+        sq: 0.033215426493512654,
+        channel: Some("dataset1"),
+    }) else {
+        return;
+    };
+    assert_eq!(t.spacing, ScaleSource::Assumed);
+    assert_eq!(t.height_unit, ScaleSource::Assumed);
+    let dir = common::data_dir().expect("checked above");
+    let bytes = std::fs::read(dir.join("h5/multiple_data_sets.h5")).expect("read");
+    let names = hdf5::channel_names(&bytes).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(names, ["dataset1", "dataset2"]);
+    let second = hdf5::parse_channel(&bytes, Some("dataset2")).unwrap_or_else(|e| panic!("{e}"));
+    let m = areal(&second);
+    assert_eq!((m.nx(), m.ny()), (640, 480));
+    let err = hdf5::parse_channel(&bytes, Some("dataset3"))
+        .map(|_| ())
+        .unwrap_err();
+    assert!(err.to_string().contains("dataset2"), "{err}");
 }

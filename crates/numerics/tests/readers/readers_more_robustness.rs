@@ -11,7 +11,7 @@ use std::time::Instant;
 use asperity_numerics::surface::io::{parse_topography, ReadError, TopographyData};
 
 /// Binary files: every cut inside them must fail.
-const BINARY: [&str; 8] = [
+const BINARY: [&str; 9] = [
     "tmd/tmd-1.tmd",
     "bcrf/bcrf-1.bcrf",
     "ibw/spot_1-1000nm.ibw",
@@ -20,6 +20,7 @@ const BINARY: [&str; 8] = [
     "wsxm/top-1.top",
     "wsxm/stp-1.stp",
     "nc/nc-1.nc",
+    "h5/multiple_data_sets.h5",
 ];
 
 fn load(dir: &Path, file: &str) -> (PathBuf, Vec<u8>) {
@@ -179,6 +180,13 @@ fn headers_claiming_a_billion_points_are_errors() {
     small[0x18..0x1C].copy_from_slice(&HUGE.to_be_bytes());
     small[0x24..0x28].copy_from_slice(&HUGE.to_be_bytes());
     refused_fast("huge.nc", &small, "points");
+
+    let (_, h5) = load(&dir, "h5/multiple_data_sets.h5");
+    let mut small = h5.clone();
+    // The dimensions in dataset1's dataspace message (object header at 800).
+    small[832..840].copy_from_slice(&u64::from(HUGE).to_le_bytes());
+    small[840..848].copy_from_slice(&u64::from(HUGE).to_le_bytes());
+    refused_fast("huge.h5", &small, "points");
 
     let (_, tiff) = load(&dir, "ps-tiff/example_ps.tiff");
     let mut small = tiff.clone();

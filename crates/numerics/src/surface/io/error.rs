@@ -50,7 +50,7 @@ pub enum ReadError {
     )]
     TooLarge { path: PathBuf, size: u64 },
     #[error(
-        "{}: unknown topography format (checked magic bytes and extension); supported: x3p, sdf, sur, plu, dat (MetroPro), opd, di, gsf, gwy, al3d, zon, txt/csv/asc, npy",
+        "{}: unknown topography format (checked magic bytes and extension); supported: x3p, sdf, sur, plu, dat (MetroPro), opd, di, gsf, gwy, al3d, zon, txt/csv/asc, npy, tmd, bcr/bcrf, ibw, tiff (Park Systems), top/stp (WSxM), hfm, nc (netCDF classic), h5 (HDF5)",
         path.display()
     )]
     UnknownFormat { path: PathBuf },

@@ -10,6 +10,7 @@ mod byte_cursor;
 mod error;
 pub mod gsf;
 pub mod gwy;
+pub mod hdf5;
 pub mod hfm;
 pub mod ibw;
 mod limits;
@@ -85,6 +86,9 @@ pub enum Format {
     Hfm,
     /// netCDF classic / 64-bit offset with a `heights(x, y)` variable (SurfaceTopography layout).
     NetCdf,
+    /// HDF5 (superblock 0/1, contiguous datasets): each 2-D dataset of the root group is a
+    /// channel; no spacing or unit in the file ([`ScaleSource::Assumed`]).
+    Hdf5,
     /// Text/CSV: a matrix grid (header styles `h= w=` / `pixel size=` /
     /// `height conversion factor (-> m)=`, or Gwyddion `# Width:` / `# Value units:`), x y z
     /// triples, or a 2-column line scan (returned as [`TopographyData::Line`]). Without a
@@ -115,6 +119,7 @@ impl Format {
         Format::Wsxm,
         Format::Hfm,
         Format::NetCdf,
+        Format::Hdf5,
         Format::Text,
     ];
 
@@ -140,6 +145,7 @@ impl Format {
             Format::Wsxm => "wsxm",
             Format::Hfm => "hfm",
             Format::NetCdf => "netcdf",
+            Format::Hdf5 => "hdf5",
             Format::Text => "text",
         }
     }
@@ -166,6 +172,7 @@ impl Format {
             Format::Wsxm => wsxm::matches_magic(head),
             Format::Hfm => hfm::matches_magic(head),
             Format::NetCdf => netcdf::matches_magic(head),
+            Format::Hdf5 => hdf5::matches_magic(head),
             Format::Text => false,
         }
     }
@@ -192,6 +199,7 @@ impl Format {
             Format::Wsxm => matches!(ext, "top" | "stp"),
             Format::Hfm => ext == "hfm",
             Format::NetCdf => ext == "nc",
+            Format::Hdf5 => matches!(ext, "h5" | "hdf5" | "hdf"),
             Format::Text => text::EXTENSIONS.contains(&ext),
         }
     }
@@ -224,6 +232,7 @@ impl Format {
             Format::Wsxm => wsxm::parse(bytes),
             Format::Hfm => hfm::parse(bytes),
             Format::NetCdf => netcdf::parse(bytes),
+            Format::Hdf5 => hdf5::parse(bytes),
             Format::Text => text::parse(bytes),
         }
     }
