@@ -13,3 +13,4 @@ mod readers_b_robustness;
 mod readers_bounded;
 mod readers_more;
 mod readers_more_robustness;
+mod registry;

@@ -22,6 +22,7 @@ use ndarray::Array2;
 
 use super::byte_cursor::{decode_samples, Endian, SampleType};
 use super::limits::check_points;
+use super::reader::{Parser, Reader};
 use super::text_units::length_unit_to_metres;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
@@ -48,6 +49,15 @@ fn encoding_of(head: &[u8]) -> Option<Encoding> {
         None
     }
 }
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "bcrf",
+    description: "Image Metrology SPIP BCR-STM / BCRF `.bcr`, `.bcrf`",
+    extensions: &["bcr", "bcrf"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` when `head` starts with a BCR-STM / BCRF `fileformat` line.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -189,6 +199,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: None,
+        channels: Vec::new(),
         metadata,
     })
 }

@@ -25,6 +25,7 @@ use ndarray::Array2;
 
 use super::byte_cursor::{decode_samples, ByteCursor, Endian, SampleType};
 use super::limits::check_points;
+use super::reader::{pick_channel, Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -34,6 +35,15 @@ const MAX_DEPTH: usize = 16;
 const MAX_MEMBERS: usize = 4096;
 const MAX_MESSAGES: usize = 4096;
 const MAX_CONTINUATIONS: usize = 64;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "hdf5",
+    description: "HDF5 `.h5` (contiguous 2-D datasets, one channel each; no unit or spacing)",
+    extensions: &["h5", "hdf5", "hdf"],
+    magic: Some(matches_magic),
+    parser: Parser::Channels(parse_channel),
+};
 
 /// `true` when `head` starts with the HDF5 signature (at offset 0; user blocks are not read).
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -349,20 +359,11 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     parse_channel(bytes, None)
 }
 
-/// Parses the dataset named `channel` (the first 2-D one for `None`).
+/// Parses the dataset named `channel` (ASCII case ignored; the first 2-D one for `None`).
 pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, ParseError> {
     let sets = datasets(bytes)?;
-    let names: Vec<&str> = sets.iter().map(|d| d.name.as_str()).collect();
-    let set = match channel {
-        None => sets.first(),
-        Some(wanted) => sets.iter().find(|d| d.name == wanted),
-    }
-    .ok_or_else(|| {
-        ParseError::malformed(format!(
-            "HDF5 dataset `{}` not found among the 2-D datasets {names:?}",
-            channel.unwrap_or("(any)")
-        ))
-    })?;
+    let all: Vec<String> = sets.iter().map(|d| d.name.clone()).collect();
+    let set = &sets[pick_channel(&all, channel, &[])?];
     let (nx, ny) = set.dims;
     let n = check_points(nx, ny, &format!("HDF5 dataset `{}`", set.name))?;
     let raw = decode_samples(set.data, n, set.sample, set.endian, "HDF5 dataset data")?;
@@ -377,13 +378,12 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
     });
     let map =
         HeightMap::new(grid, 1.0, 1.0).map_err(|e| ParseError::malformed(format!("HDF5: {e}")))?;
-    let mut metadata = BTreeMap::new();
-    metadata.insert("datasets".into(), names.join(", "));
     Ok(Topography {
         spacing: ScaleSource::Assumed,
         height_unit: ScaleSource::Assumed,
         data: TopographyData::Areal(map),
         channel: Some(set.name.clone()),
-        metadata,
+        channels: all,
+        metadata: BTreeMap::new(),
     })
 }

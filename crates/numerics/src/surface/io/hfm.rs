@@ -9,10 +9,20 @@
 use std::collections::BTreeMap;
 
 use super::limits::check_count;
+use super::reader::{Parser, Reader};
 use super::text_units::length_unit_to_metres;
 use super::{LineScan, ParseError, ScaleSource, Topography, TopographyData};
 
 const MAGIC: &[u8] = b"X;Y;valid";
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "hfm",
+    description: "`X;Y;valid` profile text `.hfm` (a line scan)",
+    extensions: &["hfm"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` when `head` starts with the `X;Y;valid` header line.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -105,6 +115,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Line(LineScan { x, z }),
         channel: None,
+        channels: Vec::new(),
         metadata,
     })
 }

@@ -24,6 +24,7 @@ use ndarray::Array2;
 
 use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
 use super::limits::check_points;
+use super::reader::{pick_channel, Parser, Reader};
 use super::text_units::length_unit_to_metres;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
@@ -31,6 +32,13 @@ use crate::surface::HeightMap;
 const BIN_HEADER: usize = 64;
 const WAVE_HEADER: usize = 320;
 const LABEL: usize = 32;
+/// Channels read when none is named (Asylum's height and Z-sensor images), else the first.
+const DEFAULT_CHANNELS: [&str; 4] = [
+    "HeightTrace",
+    "ZSensorTrace",
+    "HeightRetrace",
+    "ZSensorRetrace",
+];
 /// Words in a channel name that mark a quantity other than a height.
 const NOT_HEIGHT: &[&str] = &[
     "Phase",
@@ -66,6 +74,15 @@ fn endian_of(head: &[u8]) -> Option<Endian> {
         _ => None,
     }
 }
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "ibw",
+    description: "Igor Pro binary wave `.ibw` (Asylum Research AFM; one channel per layer)",
+    extensions: &["ibw"],
+    magic: Some(matches_magic),
+    parser: Parser::Channels(parse_channel),
+};
 
 /// `true` when the headers at the start of `head` are a version-5 wave with a valid checksum.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -233,7 +250,7 @@ pub fn channel_names(bytes: &[u8]) -> Result<Vec<String>, ParseError> {
     Ok(read_wave(bytes)?.channels)
 }
 
-/// Parses the first channel.
+/// Parses the default channel (`HeightTrace`, `ZSensorTrace`, …, else the first).
 pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     parse_channel(bytes, None)
 }
@@ -248,7 +265,8 @@ fn unit_factor(unit: &str, what: &str) -> Result<Option<f64>, ParseError> {
         .ok_or_else(|| ParseError::unsupported(format!("IBW {what} unit `{unit}` is not a length")))
 }
 
-/// Parses the channel named `channel` (the first one for `None`), heights in metres.
+/// Parses the channel named `channel` (ASCII case ignored; the default one for `None`),
+/// heights in metres.
 pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, ParseError> {
     let wave = read_wave(bytes)?;
     let [nx, ny, _, d3] = wave.dims;
@@ -258,19 +276,7 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
             wave.dims
         )));
     }
-    let index = match channel {
-        None => 0,
-        Some(wanted) => wave
-            .channels
-            .iter()
-            .position(|n| n == wanted)
-            .ok_or_else(|| {
-                ParseError::malformed(format!(
-                    "IBW channel `{wanted}` not found (channels: {:?})",
-                    wave.channels
-                ))
-            })?,
-    };
+    let index = pick_channel(&wave.channels, channel, &DEFAULT_CHANNELS)?;
     let name = &wave.channels[index];
     if let Some(word) = NOT_HEIGHT.iter().find(|w| name.contains(**w)) {
         return Err(ParseError::unsupported(format!(
@@ -309,6 +315,7 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
         height_unit: source(z_unit.is_some()),
         data: TopographyData::Areal(map),
         channel: Some(name.clone()),
+        channels: wave.channels.clone(),
         metadata: metadata(&wave),
     })
 }

@@ -19,11 +19,21 @@ use ndarray::Array2;
 
 use super::byte_cursor::{decode_samples, ByteCursor, Endian, SampleType};
 use super::limits::check_points;
+use super::reader::{Parser, Reader};
 use super::text_units::length_unit_to_metres;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const BE: Endian = Endian::Big;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "netcdf",
+    description: "netCDF classic / 64-bit offset `.nc` with `heights(x, y)`",
+    extensions: &["nc"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` when `head` starts with a classic or 64-bit-offset netCDF magic.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -271,6 +281,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: source(z_unit.is_some()),
         data: TopographyData::Areal(map),
         channel: None,
+        channels: Vec::new(),
         metadata,
     })
 }

@@ -19,6 +19,7 @@ use ndarray::Array2;
 
 use super::byte_cursor::{decode_samples, ByteCursor, Endian, SampleType};
 use super::limits::check_points;
+use super::reader::{Parser, Reader};
 use super::text_units::length_unit_to_metres;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
@@ -121,6 +122,15 @@ fn tag_u32(bytes: &[u8], e: Endian, entries: &[Entry], tag: u16) -> Result<u32, 
     ByteCursor::new(raw).u32(e, &format!("TIFF tag {tag}"))
 }
 
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "park-tiff",
+    description: "Park Systems TIFF (`.tiff`, data in private tags)",
+    extensions: &["tif", "tiff"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
+
 /// `true` when `head` is a TIFF whose first directory carries the Park Systems magic tag.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
     first_directory(head)
@@ -221,6 +231,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some(utf16(&header[4..68])),
+        channels: Vec::new(),
         metadata,
     })
 }

@@ -14,6 +14,7 @@ use ndarray::Array2;
 
 use super::byte_cursor::{decode_samples, ByteCursor, Endian, SampleType};
 use super::limits::check_points;
+use super::reader::{Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -23,6 +24,15 @@ const MAGIC_FIELD: usize = 32;
 /// Longest comment accepted (TrueMap writes 24 bytes, Gwyddion accepts any length).
 const MAX_COMMENT: usize = 4096;
 const MM: f64 = 1e-3;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "tmd",
+    description: "TrueMap `.tmd` (float32 heights, lengths and heights in mm)",
+    extensions: &["tmd"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` when `head` starts with the TrueMap v2.0 magic.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -93,6 +103,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: None,
+        channels: Vec::new(),
         metadata,
     })
 }

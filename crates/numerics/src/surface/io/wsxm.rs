@@ -22,6 +22,7 @@ use ndarray::Array2;
 
 use super::byte_cursor::{decode_samples, Endian, SampleType};
 use super::limits::check_points;
+use super::reader::{Parser, Reader};
 use super::text_units::length_unit_to_metres;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
@@ -31,6 +32,15 @@ const IMAGE: &str = "SxM Image file";
 const SIZE_KEY: &str = "Image header size:";
 /// Largest header accepted, bytes.
 const MAX_HEADER: usize = 1 << 20;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "wsxm",
+    description: "Nanotec WSxM image `.top`, `.stp`",
+    extensions: &["top", "stp"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` when `head` starts with the WSxM copyright line.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -171,6 +181,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: fields.get("General Info::Acquisition channel").cloned(),
+        channels: Vec::new(),
         metadata: metadata(&fields),
     })
 }

@@ -100,6 +100,7 @@ pub(super) fn grid(rows: &[f64]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::Assumed,
         data: TopographyData::Areal(map),
         channel: None,
+        channels: Vec::new(),
         metadata,
     })
 }
