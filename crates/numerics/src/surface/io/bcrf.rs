@@ -91,8 +91,8 @@ fn header_fields(text: &str) -> BTreeMap<String, String> {
         .collect()
 }
 
-/// Parses a BCR-STM or BCRF file into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+/// The header's `key = value` fields and its length in bytes.
+fn read_header(bytes: &[u8]) -> Result<(BTreeMap<String, String>, usize), ParseError> {
     let encoding = encoding_of(bytes)
         .ok_or_else(|| ParseError::malformed("missing `fileformat = bcrstm/bcrf` first line"))?;
     let unit_bytes = if encoding == Encoding::Latin1 { 1 } else { 2 };
@@ -117,6 +117,12 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         )));
     }
     let fields = header_fields(&decode_text(bytes, encoding, header_chars));
+    Ok((fields, header_bytes))
+}
+
+/// Parses a BCR-STM or BCRF file into heights in metres.
+pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+    let (fields, header_bytes) = read_header(bytes)?;
     let get = |key: &str| {
         fields
             .get(key)
@@ -179,6 +185,18 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         .map_err(|e| ParseError::malformed(format!("BCR array shape: {e}")))?;
     let map =
         HeightMap::new(heights, dx, dy).map_err(|e| ParseError::malformed(format!("BCR: {e}")))?;
+    Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
+        data: TopographyData::Areal(map),
+        channel: None,
+        channels: Vec::new(),
+        metadata: metadata(&fields),
+    })
+}
+
+/// The header fields kept as metadata.
+fn metadata(fields: &BTreeMap<String, String>) -> BTreeMap<String, String> {
     let mut metadata = BTreeMap::new();
     metadata.insert("vendor".into(), "Image Metrology (SPIP)".into());
     for key in [
@@ -194,12 +212,5 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             metadata.insert(key.into(), v.clone());
         }
     }
-    Ok(Topography {
-        spacing: ScaleSource::File,
-        height_unit: ScaleSource::File,
-        data: TopographyData::Areal(map),
-        channel: None,
-        channels: Vec::new(),
-        metadata,
-    })
+    metadata
 }

@@ -134,7 +134,8 @@ fn text(raw: &[u8]) -> String {
         .to_string()
 }
 
-fn read_wave(bytes: &[u8]) -> Result<Wave<'_>, ParseError> {
+/// The byte order of a version-5 wave whose headers are complete and pass their checksum.
+fn checked_endian(bytes: &[u8]) -> Result<Endian, ParseError> {
     let endian = endian_of(bytes).ok_or_else(|| {
         ParseError::malformed("IBW version is not 5 (only version-5 waves hold 2-D data)")
     })?;
@@ -150,6 +151,11 @@ fn read_wave(bytes: &[u8]) -> Result<Wave<'_>, ParseError> {
             "IBW header checksum does not match (damaged header)",
         ));
     }
+    Ok(endian)
+}
+
+fn read_wave(bytes: &[u8]) -> Result<Wave<'_>, ParseError> {
+    let endian = checked_endian(bytes)?;
     let mut c = ByteCursor::new(bytes);
     c.seek(4, "IBW wfmSize")?;
     let mut size =

@@ -37,8 +37,9 @@ struct Entry {
     tag: u16,
     kind: u16,
     count: usize,
-    /// The 4 value bytes: the value itself, or the offset of the values.
-    value: [u8; 4],
+    /// Where the entry's 4 value bytes sit in the file: the value itself, or the offset of
+    /// the values.
+    value_at: usize,
 }
 
 fn tiff_endian(head: &[u8]) -> Option<Endian> {
@@ -67,13 +68,13 @@ fn first_directory(bytes: &[u8]) -> Result<(Endian, Vec<Entry>), ParseError> {
         let tag = c.u16(e, "TIFF entry tag")?;
         let kind = c.u16(e, "TIFF entry type")?;
         let count = c.u32(e, "TIFF entry count")? as usize;
-        let mut value = [0u8; 4];
-        value.copy_from_slice(c.take(4, "TIFF entry value")?);
+        let value_at = offset + 2 + 12 * entries.len() + 8;
+        c.take(4, "TIFF entry value")?;
         entries.push(Entry {
             tag,
             kind,
             count,
-            value,
+            value_at,
         });
     }
     Ok((e, entries))
@@ -83,7 +84,7 @@ fn first_directory(bytes: &[u8]) -> Result<(Endian, Vec<Entry>), ParseError> {
 fn tag_bytes<'a>(
     bytes: &'a [u8],
     e: Endian,
-    entries: &'a [Entry],
+    entries: &[Entry],
     tag: u16,
 ) -> Result<&'a [u8], ParseError> {
     let entry = entries
@@ -105,14 +106,12 @@ fn tag_bytes<'a>(
         .count
         .checked_mul(unit)
         .ok_or_else(|| ParseError::malformed(format!("TIFF tag {tag} size overflows")))?;
-    if len <= 4 {
-        return Ok(&entry.value[..len]);
-    }
-    let offset = match e {
-        Endian::Little => u32::from_le_bytes(entry.value),
-        Endian::Big => u32::from_be_bytes(entry.value),
-    } as usize;
     let mut c = ByteCursor::new(bytes);
+    c.seek(entry.value_at, "TIFF entry value")?;
+    if len <= 4 {
+        return c.take(len, &format!("TIFF tag {tag}"));
+    }
+    let offset = c.u32(e, "TIFF entry value")? as usize;
     c.seek(offset, &format!("TIFF tag {tag}"))?;
     c.take(len, &format!("TIFF tag {tag} ({len} bytes)"))
 }
@@ -151,8 +150,8 @@ fn utf16(raw: &[u8]) -> String {
         .to_string()
 }
 
-/// Parses a Park Systems TIFF into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+/// The Park header (tag 50435), its version and the data bytes (tag 50434).
+fn park_tags(bytes: &[u8]) -> Result<(&[u8], u32, &[u8]), ParseError> {
     let (e, entries) = first_directory(bytes)?;
     if tag_u32(bytes, e, &entries, TAG_MAGIC)? != PARK_MAGIC {
         return Err(ParseError::malformed(
@@ -176,6 +175,13 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             header.len()
         )));
     }
+    let data = tag_bytes(bytes, e, &entries, TAG_DATA)?;
+    Ok((header, version, data))
+}
+
+/// Parses a Park Systems TIFF into heights in metres.
+pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+    let (header, version, data) = park_tags(bytes)?;
     let le = Endian::Little;
     let at = |offset: usize| {
         let mut c = ByteCursor::new(header);
@@ -207,7 +213,6 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     })?;
     let (gain, scale, offset) = (f64_at(220)?, f64_at(228)?, f64_at(236)?);
     let scale = if scale == 0.0 { 1.0 } else { scale };
-    let data = tag_bytes(bytes, e, &entries, TAG_DATA)?;
     let values = decode_samples(data, n, sample, le, "Park TIFF data")?
         .into_iter()
         .map(|raw| unit * gain * (raw * scale + offset))

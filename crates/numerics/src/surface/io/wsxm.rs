@@ -94,8 +94,8 @@ fn amplitude(value: &str, what: &str) -> Result<(f64, f64), ParseError> {
     Ok((x, factor))
 }
 
-/// Parses a WSxM image file into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+/// The header fields (`Section::key` → value) and the header size in bytes.
+fn read_header(bytes: &[u8]) -> Result<(BTreeMap<String, String>, usize), ParseError> {
     if !bytes.starts_with(MAGIC) {
         return Err(ParseError::malformed("missing `WSxM file copyright` line"));
     }
@@ -116,13 +116,24 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
                 "WSxM third line `{size_line}` is not `{SIZE_KEY} N`"
             ))
         })?;
-    if header_size > bytes.len() || header_size > MAX_HEADER {
+    if header_size > MAX_HEADER {
+        return Err(ParseError::malformed(format!(
+            "WSxM header size {header_size} is more than {MAX_HEADER} bytes"
+        )));
+    }
+    if header_size > bytes.len() {
         return Err(ParseError::truncated(format!(
             "WSxM header of {header_size} bytes, the file has {}",
             bytes.len()
         )));
     }
     let fields = header_fields(&latin1(&bytes[..header_size]))?;
+    Ok((fields, header_size))
+}
+
+/// Parses a WSxM image file into heights in metres.
+pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+    let (fields, header_size) = read_header(bytes)?;
     let get = |key: &str| {
         fields
             .get(key)
