@@ -226,3 +226,18 @@ fn a_damaged_ibw_header_fails_its_checksum() {
     let err = parse_topography(&path, &bytes).map(|_| ()).unwrap_err();
     assert!(err.to_string().contains("checksum"), "{err}");
 }
+
+#[test]
+fn an_hdf5_btree_pointing_to_itself_fails_fast() {
+    let Some(dir) = common::data_dir() else {
+        return;
+    };
+    let (path, mut bytes) = load(&dir, "h5/multiple_data_sets.h5");
+    // The root group's B-tree node at byte 136: make it an inner node whose child is itself.
+    bytes[136 + 5] = 1;
+    bytes[168..176].copy_from_slice(&136u64.to_le_bytes());
+    let start = Instant::now();
+    let err = parse_topography(&path, &bytes).map(|_| ()).unwrap_err();
+    assert!(start.elapsed().as_secs_f64() < 1.0, "{:?}", start.elapsed());
+    assert!(err.to_string().contains("B-tree"), "{err}");
+}

@@ -10,9 +10,8 @@
 //!
 //! * Lateral: `xlength`, `ylength` are the full scan sizes in `xunit`/`yunit` (default nm):
 //!   `dx = xlength / xpixels`.
-//! * Heights: `z = value · bit2nm · zunit` (zunit default nm), the rule of SurfaceTopography,
-//!   which reproduces the Sq of the same scan saved by MountainsMap (`mnt-1` ↔ `bcrf-1`, 8
-//!   digits; there the floats are µm and `bit2nm = 1`).
+//! * Heights: `z = value · bit2nm · zunit` (zunit default nm), SurfaceTopography's rule: float
+//!   data are in `zunit` (µm in the files seen, with `bit2nm = 1`), integer data count steps.
 //! * Void points: with a non-zero `voidpixels`, int16 32767 and float values above 1.7·10³⁸
 //!   (the 3.402823·10³⁸ marker) are missing (Gwyddion's test); non-finite values always are.
 

@@ -32,6 +32,8 @@ use crate::surface::HeightMap;
 const MAGIC: &[u8] = b"\x89HDF\r\n\x1a\n";
 const LE: Endian = Endian::Little;
 const MAX_DEPTH: usize = 16;
+/// Most B-tree nodes visited (a node listed twice, or a loop, must not multiply the work).
+const MAX_NODES: usize = 4096;
 const MAX_MEMBERS: usize = 4096;
 const MAX_MESSAGES: usize = 4096;
 const MAX_CONTINUATIONS: usize = 64;
@@ -161,17 +163,20 @@ fn messages(bytes: &[u8], address: u64) -> Result<Vec<Message<'_>>, ParseError> 
     Ok(out)
 }
 
-/// `(name heap offset, object header address)` of every member, from the B-tree at `node`.
+/// `(name heap offset, object header address)` of every member, from the B-tree at `node`;
+/// `visited` counts the nodes read so far.
 fn members(
     bytes: &[u8],
     node: u64,
     depth: usize,
+    visited: &mut usize,
     out: &mut Vec<(u64, u64)>,
 ) -> Result<(), ParseError> {
-    if depth > MAX_DEPTH {
-        return Err(ParseError::malformed(
-            "HDF5 group B-tree deeper than 16 levels",
-        ));
+    *visited += 1;
+    if depth > MAX_DEPTH || *visited > MAX_NODES {
+        return Err(ParseError::malformed(format!(
+            "HDF5 group B-tree deeper than {MAX_DEPTH} levels or of more than {MAX_NODES} nodes"
+        )));
     }
     let mut c = at(bytes, node, "HDF5 B-tree node")?;
     if c.take(4, "HDF5 B-tree signature")? != b"TREE" || c.u8("HDF5 B-tree type")? != 0 {
@@ -186,8 +191,14 @@ fn members(
         addr(&mut c, "HDF5 B-tree key")?;
         let child = addr(&mut c, "HDF5 B-tree child")?;
         if level > 0 {
-            members(bytes, child, depth + 1, out)?;
+            members(bytes, child, depth + 1, visited, out)?;
             continue;
+        }
+        *visited += 1;
+        if *visited > MAX_NODES {
+            return Err(ParseError::malformed(format!(
+                "HDF5 group of more than {MAX_NODES} B-tree and symbol table nodes"
+            )));
         }
         let mut s = at(bytes, child, "HDF5 symbol table node")?;
         if s.take(4, "HDF5 SNOD signature")? != b"SNOD" {
@@ -323,7 +334,7 @@ fn layout<'a>(bytes: &'a [u8], body: &'a [u8]) -> Result<&'a [u8], ParseError> {
 fn datasets(bytes: &[u8]) -> Result<Vec<Dataset<'_>>, ParseError> {
     let (tree, heap) = superblock(bytes)?;
     let mut list = Vec::new();
-    members(bytes, tree, 0, &mut list)?;
+    members(bytes, tree, 0, &mut 0, &mut list)?;
     let mut out = Vec::new();
     for (name_offset, header) in list {
         let name = heap_name(bytes, heap, name_offset)?;

@@ -13,8 +13,8 @@
 //!   `z = count · A / (Maximum − Minimum)` with `[Miscellaneous] Maximum/Minimum` (the count
 //!   range; the data's own range when those are missing), as Gwyddion and SurfaceTopography do;
 //! * **floating-point data** (`float`, `double`) are already in the unit of the Z Amplitude and
-//!   are used as stored (SurfaceTopography ≥ 1.27). Rescaling them by `A / (Maximum − Minimum)`
-//!   as SurfaceTopography 1.22 did uses the 6-digit header values and moves Sq by a few 10⁻⁶.
+//!   are used as stored (SurfaceTopography ≥ 1.27). Rescaling them by `A / (Maximum − Minimum)`,
+//!   as SurfaceTopography 1.22 did, would rest on the 6-digit header values.
 
 use std::collections::BTreeMap;
 
