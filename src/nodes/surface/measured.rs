@@ -23,7 +23,8 @@ with_preprocessing_fields! {
     #[derive(Debug, Deserialize, schemars::JsonSchema)]
     #[serde(deny_unknown_fields)]
     pub struct FileSpec {
-        /// Topography file (x3p, sdf, sur, plu, dat, opd, di, gsf, gwy, al3d, zon, txt/csv, npy);
+        /// Topography file in any format `asperity inspect` reads (x3p, sdf, sur, plu, dat, opd,
+        /// di, gsf, gwy, al3d, zon, nid, mi, frt, opdx, nms, txt/csv, npy; docs/study-format.md);
         /// relative paths are relative to the study file.
         pub path: Param<String>,
         /// The channel to read from a file holding several (height, amplitude, phase, …), by

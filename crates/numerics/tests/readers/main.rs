@@ -11,6 +11,8 @@ mod readers_b;
 mod readers_b_fixtures;
 mod readers_b_robustness;
 mod readers_bounded;
+mod readers_instruments;
+mod readers_instruments_robustness;
 mod readers_more;
 mod readers_more_robustness;
 mod registry;

@@ -9,6 +9,7 @@ pub mod al3d;
 pub mod bcrf;
 mod byte_cursor;
 mod error;
+mod frt;
 pub mod gsf;
 pub mod gwy;
 pub mod hdf5;
@@ -16,10 +17,15 @@ pub mod hfm;
 pub mod ibw;
 mod limits;
 pub mod metropro;
+mod mi;
 pub mod nanoscope;
 pub mod netcdf;
+mod nid;
+mod nms;
 mod npy;
 pub mod opd;
+mod opdx;
+mod opdx_items;
 mod plu;
 pub mod ps_tiff;
 mod reader;
@@ -70,7 +76,12 @@ pub const READERS: &[Reader] = &[
     hfm::READER,
     netcdf::READER,
     hdf5::READER,
+    nid::READER,
+    mi::READER,
+    frt::READER,
+    opdx::READER,
     plu::READER,
+    nms::READER,
     text::READER,
 ];
 
