@@ -166,6 +166,12 @@ fn ibw_reproduces_reference_and_lists_channels() {
         matches!(err, Err(ParseError::Unsupported { .. })),
         "{err:?}"
     );
+    // The message offers the height-like channels only.
+    let text = err.unwrap_err().to_string();
+    assert!(
+        text.contains("`AmplitudeRetrace`") && !text.contains("`PhaseRetrace`"),
+        "{text}"
+    );
     let err = ibw::parse_channel(&bytes, Some("Height")).map(|_| ());
     assert!(
         matches!(&err, Err(ParseError::UnknownChannel { available, .. }) if available == &names),

@@ -214,7 +214,7 @@ fn read_wave(bytes: &[u8]) -> Result<Wave<'_>, ParseError> {
     let n = check_points(dims[0], dims[1], "IBW nDim")?;
     let total = n
         .checked_mul(layers)
-        .ok_or_else(|| ParseError::malformed(format!("IBW nDim {dims:?} overflows")))?;
+        .ok_or_else(|| ParseError::malformed(format!("IBW nDim {} overflows", dims_text(&dims))))?;
     check_block_size(total, sample.size(), data.len(), "IBW wave data")?;
     let channels = channel_names_from(labels, layers);
     Ok(Wave {
@@ -229,6 +229,11 @@ fn read_wave(bytes: &[u8]) -> Result<Wave<'_>, ParseError> {
         channels,
         note,
     })
+}
+
+/// `256 × 256 × 8 × 0`.
+fn dims_text(dims: &[usize; 4]) -> String {
+    dims.map(|d| d.to_string()).join(" × ")
 }
 
 /// Layer names from the dimension-2 labels; unnamed layers are `no name (k)`.
@@ -278,18 +283,24 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
     let [nx, ny, _, d3] = wave.dims;
     if nx < 2 || ny < 2 || d3 > 1 {
         return Err(ParseError::unsupported(format!(
-            "IBW wave of {:?} points is not a stack of 2-D images",
-            wave.dims
+            "IBW wave of {} points is not a stack of 2-D images",
+            dims_text(&wave.dims)
         )));
     }
     let index = pick_channel(&wave.channels, channel, &DEFAULT_CHANNELS)?;
     let name = &wave.channels[index];
     if let Some(word) = NOT_HEIGHT.iter().find(|w| name.contains(**w)) {
+        let heights: Vec<String> = wave
+            .channels
+            .iter()
+            .filter(|c| !NOT_HEIGHT.iter().any(|w| c.contains(w)))
+            .map(|c| format!("`{c}`"))
+            .collect();
         return Err(ParseError::unsupported(format!(
-            "IBW channel `{name}` is a {} signal, not a height; choose a height channel \
-             (channels: {:?})",
+            "IBW channel `{name}` is a {} signal, not a height; set `channel:` to a height \
+             channel ({})",
             word.to_lowercase(),
-            wave.channels
+            heights.join(", ")
         )));
     }
     let n = nx * ny;
