@@ -17,7 +17,7 @@ runs=${1:-1000000}
 study_seconds=${2:-3600}
 max_len=${MAX_LEN:-4096}
 shift 2 2>/dev/null || shift $#
-readers=(al3d frt gsf gwy metropro mi nanoscope nid nms npy opd opdx plu sdf sur text x3p zon topography)
+readers=(al3d bcrf frt gsf gwy hdf5 ibw metropro mi nanoscope netcdf nid nms npy opd opdx park-tiff plu sdf sur text tmd wsxm x3p zon topography)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${readers[@]}" study)
 shared=../../shared/data/topography

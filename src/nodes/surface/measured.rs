@@ -26,8 +26,9 @@ with_preprocessing_fields! {
     #[serde(deny_unknown_fields)]
     pub struct FileSpec {
         /// Topography file in any format `asperity inspect` reads (x3p, sdf, sur, plu, dat, opd,
-        /// di, gsf, gwy, al3d, zon, nid, mi, frt, opdx, nms, txt/csv, npy; docs/study-format.md);
-        /// relative paths are relative to the study file.
+        /// di, gsf, gwy, al3d, zon, nid, mi, frt, opdx, nms, tmd, bcrf, ibw, tiff, top/stp, hfm,
+        /// nc, h5, txt/csv, npy; docs/study-format.md); relative paths are relative to the study
+        /// file.
         pub path: Param<String>,
         /// The channel to read from a file holding several (height, amplitude, phase, …), by
         /// name as `asperity inspect` lists it (ASCII case ignored). Default: the file's height

@@ -6,15 +6,20 @@
 //! are an open set: each reader file exports a [`Reader`] and [`READERS`] lists them.
 
 pub mod al3d;
+pub mod bcrf;
 mod byte_cursor;
 mod error;
 mod frt;
 pub mod gsf;
 pub mod gwy;
+pub mod hdf5;
+pub mod hfm;
+pub mod ibw;
 mod limits;
 pub mod metropro;
 mod mi;
 pub mod nanoscope;
+pub mod netcdf;
 mod nid;
 mod nms;
 mod npy;
@@ -22,16 +27,20 @@ pub mod opd;
 mod opdx;
 mod opdx_items;
 mod plu;
+pub mod ps_tiff;
 mod reader;
 mod sdf;
 mod sur;
 mod text;
 mod text_header;
 mod text_units;
+pub mod tmd;
 mod topography;
+pub mod wsxm;
 mod x3p;
 mod x3p_checksum;
 mod x3p_xml;
+mod xyz;
 pub mod zon;
 
 pub use error::{ParseError, ReadError};
@@ -59,6 +68,14 @@ pub const READERS: &[Reader] = &[
     sdf::READER,
     sur::READER,
     npy::READER,
+    tmd::READER,
+    bcrf::READER,
+    ibw::READER,
+    ps_tiff::READER,
+    wsxm::READER,
+    hfm::READER,
+    netcdf::READER,
+    hdf5::READER,
     nid::READER,
     mi::READER,
     frt::READER,

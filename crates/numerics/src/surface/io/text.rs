@@ -7,9 +7,11 @@
 //!
 //! * **2 columns** → a line scan `x, z` (x strictly increasing, may be non-uniform), returned as
 //!   [`LineScan`]. Units come from the column-header line just above the data (e.g. the Dektak
-//!   CSV `Lateral um,Raw Micrometer`), else metres.
-//! * **3 columns** whose first two columns form a regular x-y grid → x y z triples; grid
-//!   points absent from the list are missing (`NaN`). Lengths in metres.
+//!   CSV `Lateral um,Raw Micrometer`, or `µm µm`), else metres. A single whole number on the
+//!   line above the data is a point count, kept as metadata and not checked (the files that
+//!   write one miscount).
+//! * **3 columns** without a matrix header → an x y z point list on a regular grid
+//!   ([`super::xyz`]); scattered points are refused with how to resample them.
 //! * anything else → a **matrix**, one row per line (row = y, x fastest). Header styles read:
 //!   * `h=305 w=75`, `pixel size=3.69862e-007 m`, `data unit=rad`,
 //!     `height conversion factor (-> m)=2.91818e-008` (heights = value × factor);
@@ -32,6 +34,7 @@ use ndarray::Array2;
 use super::limits::{check_points, MAX_POINTS};
 use super::reader::{Parser, Reader};
 use super::text_header::{column_units, TextHeader};
+use super::xyz;
 use super::{LineScan, ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -65,6 +68,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let mut columns = 0;
     let mut first_data_line = 0;
     let mut values = Vec::new();
+    let mut count_line = None;
     for (index, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() {
@@ -73,6 +77,12 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         match numeric_row(line, &mut values) {
             Some(()) => {
                 if rows.is_empty() {
+                    first_data_line = index + 1;
+                    columns = values.len();
+                } else if is_count_line(&rows, values.len()) {
+                    // `23` above the data (a point count, often wrong): a header line.
+                    count_line = Some(rows[0]);
+                    rows.clear();
                     first_data_line = index + 1;
                     columns = values.len();
                 } else if values.len() != columns {
@@ -107,14 +117,22 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     }
     let header = TextHeader::parse(&header_lines)?;
     if columns == 2 && !header.describes_matrix() {
-        return line_scan(&rows, header_lines.last().copied());
+        let mut t = line_scan(&rows, header_lines.last().copied())?;
+        if let Some(n) = count_line {
+            t.metadata.insert("declared_points".into(), n.to_string());
+        }
+        return Ok(t);
     }
     if columns == 3 && !header.describes_matrix() {
-        if let Some(t) = xyz_grid(&rows)? {
-            return Ok(t);
-        }
+        return xyz::grid(&rows);
     }
     matrix(rows, columns, &header)
+}
+
+/// `true` when the data so far are one line holding one whole number and the next line has
+/// more values: a point count written above the data (`xy-2.txt` style), not a data row.
+fn is_count_line(rows: &[f64], next_columns: usize) -> bool {
+    matches!(rows, [n] if n.fract() == 0.0 && *n >= 0.0) && next_columns > 1
 }
 
 /// The numbers of a data line into `out`, `None` when any non-empty field is not a number or
@@ -173,78 +191,6 @@ fn line_scan(rows: &[f64], column_header: Option<&str>) -> Result<Topography, Pa
         channel: None,
         channels: Vec::new(),
         metadata,
-    })
-}
-
-/// x y z triples (flattened in `rows`) on a regular grid; `None` when the x, y columns do not
-/// form one.
-fn xyz_grid(rows: &[f64]) -> Result<Option<Topography>, ParseError> {
-    let triples = || rows.chunks_exact(3);
-    let Some(xs) = regular_axis(triples().map(|r| r[0])) else {
-        return Ok(None);
-    };
-    let Some(ys) = regular_axis(triples().map(|r| r[1])) else {
-        return Ok(None);
-    };
-    let (nx, ny) = (xs.count, ys.count);
-    // A sparse list must not make us allocate a huge grid: require ≥ 1/4 of it present.
-    let count = rows.len() / 3;
-    if nx < 2 || ny < 2 || nx.saturating_mul(ny) > count.saturating_mul(4).min(MAX_POINTS) {
-        return Ok(None);
-    }
-    let mut grid = Array2::from_elem((ny, nx), f64::NAN);
-    for row in triples() {
-        let ix = ((row[0] - xs.start) / xs.step).round() as usize;
-        let iy = ((row[1] - ys.start) / ys.step).round() as usize;
-        if let Some(cell) = grid.get_mut([iy, ix]) {
-            *cell = row[2];
-        }
-    }
-    let map = HeightMap::new(grid, xs.step, ys.step)
-        .map_err(|e| ParseError::malformed(format!("text: x y z grid: {e}")))?;
-    let mut metadata = BTreeMap::new();
-    metadata.insert("layout".into(), "xyz".into());
-    metadata.insert("x_offset_m".into(), xs.start.to_string());
-    metadata.insert("y_offset_m".into(), ys.start.to_string());
-    Ok(Some(Topography {
-        spacing: ScaleSource::File,
-        height_unit: ScaleSource::Assumed,
-        data: TopographyData::Areal(map),
-        channel: None,
-        channels: Vec::new(),
-        metadata,
-    }))
-}
-
-/// A regularly spaced set of coordinates.
-struct RegularAxis {
-    start: f64,
-    step: f64,
-    count: usize,
-}
-
-/// The distinct values of `values` if they are equally spaced (relative tolerance 1e-6 of
-/// the step, enough for coordinates printed with 7 significant digits).
-fn regular_axis(values: impl Iterator<Item = f64>) -> Option<RegularAxis> {
-    let mut v: Vec<f64> = values.collect();
-    if v.iter().any(|x| !x.is_finite()) {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    v.dedup();
-    let (&first, &last) = (v.first()?, v.last()?);
-    if v.len() < 2 {
-        return None;
-    }
-    let step = (last - first) / (v.len() - 1) as f64;
-    let regular = v
-        .iter()
-        .enumerate()
-        .all(|(i, &x)| (x - (first + i as f64 * step)).abs() <= 1e-6 * step);
-    regular.then_some(RegularAxis {
-        start: first,
-        step,
-        count: v.len(),
     })
 }
 

@@ -161,6 +161,11 @@ pub(crate) fn column_units(line: &str) -> Option<(f64, f64)> {
     };
     match fields.as_slice() {
         [x, z, ..] => Some((unit_of(x)?, unit_of(z)?)),
+        // `µm µm`: two bare unit names separated by spaces.
+        [both] => match both.split_whitespace().collect::<Vec<_>>().as_slice() {
+            [x, z] => Some((length_unit_to_metres(x)?, length_unit_to_metres(z)?)),
+            _ => None,
+        },
         _ => None,
     }
 }
