@@ -101,7 +101,7 @@ pub(super) fn resolve_law(
             at,
             "model",
             format!(
-                "`model: {}` cannot be used with this material pair: {e}",
+                "`model: {}` cannot be used with this material pair: {e} (change the material or choose another model)",
                 law.name
             ),
         )
