@@ -1,0 +1,114 @@
+//! Friction on numbers, bound thinly through the highest-level entry point of the numerics
+//! (`friction::static_friction_curve`), so the binding follows the friction types as they change:
+//! the statistical static friction coefficient μ_s of a rough surface from its summit
+//! statistics (spectral moments or explicit σ_s, R, η) and the material constants, at nominal
+//! pressures.
+
+use asperity::friction::{
+    static_friction_curve, AdhesionParameters, AsperityModel, Material, ModelOptions,
+    SolveSettings, StatisticalModel, SummitStatistics,
+};
+use asperity::nodes::{DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::guard::{compute, value_error};
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(static_friction, m)?)?;
+    m.add("DEFAULT_ADHESION_ENERGY", DEFAULT_ADHESION_ENERGY)?;
+    m.add("DEFAULT_EQUILIBRIUM_DISTANCE", DEFAULT_EQUILIBRIUM_DISTANCE)?;
+    Ok(())
+}
+
+fn asperity_model(name: &str) -> PyResult<AsperityModel> {
+    match name {
+        "kogut_etsion" => Ok(AsperityModel::KogutEtsion),
+        "ceb" => Ok(AsperityModel::ChangEtsionBogy),
+        "full_stick" => Ok(AsperityModel::FullStick),
+        other => Err(value_error(
+            "model",
+            format!("'{other}' is not a statistical model; expected 'kogut_etsion', 'ceb' or 'full_stick'"),
+        )),
+    }
+}
+
+/// Summit statistics from `(m0, m2, m4)` (m², 1, 1/m²) or `(σ_s, R, η)` (m, m, 1/m²).
+fn summits(
+    moments: Option<(f64, f64, f64)>,
+    explicit: Option<(f64, f64, f64)>,
+) -> PyResult<SummitStatistics> {
+    match (moments, explicit) {
+        (Some((m0, m2, m4)), None) => {
+            SummitStatistics::from_moments(m0, m2, m4).map_err(|e| value_error("moments", e))
+        }
+        (None, Some((sigma, radius, density))) => {
+            SummitStatistics::from_explicit(sigma, radius, density)
+                .map_err(|e| value_error("summits", e))
+        }
+        _ => Err(value_error(
+            "moments",
+            "give either the spectral moments (m0, m2, m4) or the summits (sigma_s, radius, density)",
+        )),
+    }
+}
+
+/// μ_s and the separation solve at each nominal pressure (Pa); see `asperity.static_friction`.
+#[pyfunction]
+#[pyo3(signature = (model, composite_modulus, hardness, poisson_ratio, nominal_pressures, nominal_area, moments=None, summits_explicit=None, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE))]
+#[allow(clippy::too_many_arguments)]
+fn static_friction<'py>(
+    py: Python<'py>,
+    model: &str,
+    composite_modulus: f64,
+    hardness: f64,
+    poisson_ratio: f64,
+    nominal_pressures: Vec<f64>,
+    nominal_area: f64,
+    moments: Option<(f64, f64, f64)>,
+    summits_explicit: Option<(f64, f64, f64)>,
+    adhesion_energy: f64,
+    equilibrium_distance: f64,
+) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    let kind = asperity_model(model)?;
+    let summits = summits(moments, summits_explicit)?;
+    let material = Material::new(composite_modulus, hardness, poisson_ratio)
+        .map_err(|e| value_error("material", e))?;
+    let adhesion = AdhesionParameters::new(adhesion_energy, equilibrium_distance)
+        .map_err(|e| value_error("adhesion_energy", e))?;
+    let forces: Vec<f64> = nominal_pressures.iter().map(|p| p * nominal_area).collect();
+    let results = compute(py, || {
+        let model = StatisticalModel::new(
+            kind,
+            summits,
+            material,
+            adhesion,
+            nominal_area,
+            ModelOptions::default(),
+        )
+        .map_err(|e| value_error("nominal_area", e))?;
+        static_friction_curve(&model, &forces, &SolveSettings::default())
+            .map_err(|e| value_error("model", e))
+    })?;
+    results
+        .into_iter()
+        .zip(&nominal_pressures)
+        .map(|(r, p)| {
+            let r = r.map_err(|e| value_error("nominal_pressures", format!("at {p:e} Pa: {e}")))?;
+            let d = PyDict::new(py);
+            d.set_item("nominal_pressure_Pa", p)?;
+            d.set_item("mu_s", r.mu_s)?;
+            d.set_item("static_friction_force_N", r.static_friction_force)?;
+            d.set_item("external_load_N", r.external_load)?;
+            d.set_item("contact_load_N", r.contact_load)?;
+            d.set_item("adhesion_force_N", r.adhesion_force)?;
+            d.set_item("real_contact_area_m2", r.real_contact_area)?;
+            d.set_item("d_star", r.d_star)?;
+            d.set_item("separation_from_heights_m", r.separation_from_heights)?;
+            d.set_item("plasticity_index", r.plasticity_index)?;
+            d.set_item("contacting_summits", r.contacting_summits)?;
+            d.set_item("load_beyond_fit_N", r.load_beyond_fit)?;
+            Ok(d)
+        })
+        .collect()
+}
