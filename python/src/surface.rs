@@ -179,6 +179,9 @@ fn synthetic_surface<'py>(
     Ok((to_numpy(py, map), dx, dy))
 }
 
+/// A twin's heights, dx, dy (m) and its prediction.
+type Twin<'py> = (Bound<'py, PyArray2<f64>>, f64, f64, Bound<'py, PyDict>);
+
 /// A synthetic twin of measured surfaces (complete maps `(heights, dx, dy)`) at Sq `sq` (m) on
 /// `grid` points over `size` (m): `(heights, dx, dy, prediction)`.
 #[pyfunction]
@@ -193,7 +196,7 @@ fn synthetic_twin<'py>(
     seed: u64,
     short_wavelength_cutoff: Option<f64>,
     threshold: f64,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, f64, f64, Bound<'py, PyDict>)> {
+) -> PyResult<Twin<'py>> {
     let maps = measured
         .iter()
         .enumerate()
