@@ -5,6 +5,8 @@
 //! runs with the GIL released and behind [`guard::compute`], so a Rust panic becomes a Python
 //! `RuntimeError`, never an abort.
 
+#![deny(unsafe_code)]
+
 mod contact;
 mod friction;
 mod guard;
