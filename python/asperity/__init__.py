@@ -4,7 +4,7 @@ Studies: :func:`run`, :func:`plan`, :func:`validate` (a broken study raises :cla
 Numerics on NumPy arrays, SI units throughout (metres, pascals): :func:`read_topography`,
 :func:`surface_statistics`, :func:`remove_form`, :func:`gaussian_filter`, :func:`fill_missing`,
 :func:`synthetic_surface`, :func:`synthetic_twin`, :func:`contact`, :func:`material`,
-:func:`static_friction`.
+:func:`static_friction`, :func:`per_spot_friction`.
 
 Every computation releases the GIL; a bad argument raises ``TypeError`` or ``ValueError`` naming
 the parameter and its expected unit or range.
@@ -40,6 +40,7 @@ __all__ = [
     "material",
     "contact",
     "static_friction",
+    "per_spot_friction",
 ]
 
 __version__ = _native.TOOL_VERSION
@@ -448,6 +449,26 @@ def contact(
 # ---------------------------------------------------------------- friction
 
 
+def _friction_material(material: Optional[Material], composite_modulus: Any, hardness: Any, poisson_ratio: Any) -> Tuple[float, float, float]:
+    """E* (Pa), H (Pa) and ν of a body against a rigid flat: from a material (E* = E/(1 − ν²)) or
+    as given."""
+    if material is not None:
+        if any(v is not None for v in (composite_modulus, hardness, poisson_ratio)):
+            raise ValueError("material: give a material or composite_modulus/hardness/poisson_ratio, not both")
+        d = _native.material(material) if isinstance(material, str) else material
+        (e, nu), _ = _body("material", d)
+        if d.get("hardness") is None:
+            raise ValueError("material: needs a hardness (Pa)")
+        composite_modulus, hardness, poisson_ratio = e / (1.0 - nu * nu), d["hardness"], nu
+    if composite_modulus is None or hardness is None or poisson_ratio is None:
+        raise ValueError("material: give a material, or composite_modulus, hardness and poisson_ratio")
+    return (
+        _number("composite_modulus", composite_modulus, "Pa"),
+        _number("hardness", hardness, "Pa"),
+        _number("poisson_ratio", poisson_ratio, "1", positive=False),
+    )
+
+
 def static_friction(
     *,
     model: str,
@@ -477,29 +498,76 @@ def static_friction(
     friction forces (N), real contact area (m²), d*, plasticity index, contacting summits and
     the load beyond the friction law's validated range.
     """
-    if material is not None:
-        if any(v is not None for v in (composite_modulus, hardness, poisson_ratio)):
-            raise ValueError("material: give a material or composite_modulus/hardness/poisson_ratio, not both")
-        d = _native.material(material) if isinstance(material, str) else material
-        (e, nu), _ = _body("material", d)
-        if d.get("hardness") is None:
-            raise ValueError("material: needs a hardness (Pa)")
-        composite_modulus, hardness, poisson_ratio = e / (1.0 - nu * nu), d["hardness"], nu
-    if composite_modulus is None or hardness is None or poisson_ratio is None:
-        raise ValueError("material: give a material, or composite_modulus, hardness and poisson_ratio")
+    composite_modulus, hardness, poisson_ratio = _friction_material(material, composite_modulus, hardness, poisson_ratio)
     pressures = [nominal_pressures] if np.isscalar(nominal_pressures) else list(nominal_pressures)
     triple = lambda name, t, units: None if t is None else tuple(  # noqa: E731
         _number(f"{name}[{i}]", v, u) for i, (v, u) in enumerate(zip(t, units))
     )
     return _native.static_friction(
         str(model),
-        _number("composite_modulus", composite_modulus, "Pa"),
-        _number("hardness", hardness, "Pa"),
-        _number("poisson_ratio", poisson_ratio, "1", positive=False),
+        composite_modulus,
+        hardness,
+        poisson_ratio,
         [_number(f"nominal_pressures[{i}]", p, "Pa") for i, p in enumerate(pressures)],
         _number("nominal_area", nominal_area, "m^2"),
         triple("moments", moments, ("m^2", "1", "1/m^2")),
         triple("summits", summits, ("m", "m", "1/m^2")),
         _native.DEFAULT_ADHESION_ENERGY if adhesion_energy is None else _number("adhesion_energy", adhesion_energy, "N/m", positive=False),
         _native.DEFAULT_EQUILIBRIUM_DISTANCE if equilibrium_distance is None else _number("equilibrium_distance", equilibrium_distance, "m"),
+    )
+
+
+def per_spot_friction(
+    result: Mapping[str, Any],
+    composite_height: np.ndarray,
+    dx: float,
+    dy: Optional[float] = None,
+    *,
+    model: str,
+    material: Optional[Material] = None,
+    composite_modulus: Optional[float] = None,
+    hardness: Optional[float] = None,
+    poisson_ratio: Optional[float] = None,
+    periodic: bool = True,
+    connectivity: int = 4,
+    shear_strength: Optional[float] = None,
+    adhesion_energy: Optional[float] = None,
+    equilibrium_distance: Optional[float] = None,
+) -> Dict[str, Any]:
+    """Static friction of a :func:`contact` result spot by spot, as a study's ``per_spot``
+    friction node: the connected contact spots of ``result["pressure"]`` (``connectivity`` 4 or
+    8, wrapping around when ``periodic``), each with its load, area and paraboloid radius fitted
+    to ``composite_height`` (m: the lower heights against a flat, lower + upper for two
+    surfaces), and the law ``model`` (``"full_stick"``, ``"kogut_etsion"``, ``"ceb"`` or
+    ``"junction_shear"`` with ``shear_strength`` τ_s in Pa) per spot; the Lennard-Jones adhesion
+    across ``result["gap"]``. μ_s = ΣQ_i / (ΣP_i − F_a). Material as in :func:`static_friction`, :func:`per_spot_friction`.
+
+    Returns ``mu_s`` (None without a compressive net force), the totals (N, m²), the adhesion
+    force (N), the load beyond the law's validated range, and per spot ``spot_load_N``,
+    ``spot_area_m2``, ``spot_radius_m`` (None without a convex fit) and ``spot_friction_N``.
+    """
+    for key in ("pressure", "gap"):
+        if not isinstance(result, Mapping) or key not in result:
+            raise TypeError(f"result: expected the dict of asperity.contact with '{key}'")
+    x, y = _spacing(dx, dy)
+    if connectivity not in (4, 8):
+        raise ValueError(f"connectivity: {connectivity!r} is out of range: expected 4 or 8")
+    e, h, nu = _friction_material(material, composite_modulus, hardness, poisson_ratio)
+    return dict(
+        _native.per_spot_friction(
+            _heights("result['pressure']", result["pressure"]),
+            _heights("result['gap']", result["gap"]),
+            _heights("composite_height", composite_height),
+            x,
+            y,
+            str(model),
+            e,
+            h,
+            nu,
+            bool(periodic),
+            connectivity == 8,
+            None if shear_strength is None else _number("shear_strength", shear_strength, "Pa"),
+            _native.DEFAULT_ADHESION_ENERGY if adhesion_energy is None else _number("adhesion_energy", adhesion_energy, "N/m", positive=False),
+            _native.DEFAULT_EQUILIBRIUM_DISTANCE if equilibrium_distance is None else _number("equilibrium_distance", equilibrium_distance, "m"),
+        )
     )

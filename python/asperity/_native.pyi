@@ -87,3 +87,19 @@ def static_friction(
     adhesion_energy: float = ...,
     equilibrium_distance: float = ...,
 ) -> List[Dict[str, Any]]: ...
+def per_spot_friction(
+    pressure: F64,
+    gap: F64,
+    composite_height: F64,
+    dx: float,
+    dy: float,
+    model: str,
+    composite_modulus: float,
+    hardness: float,
+    poisson_ratio: float,
+    periodic: bool = ...,
+    eight_connected: bool = ...,
+    shear_strength: Optional[float] = ...,
+    adhesion_energy: float = ...,
+    equilibrium_distance: float = ...,
+) -> Dict[str, Any]: ...

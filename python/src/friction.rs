@@ -2,13 +2,18 @@
 //! (`friction::static_friction_curve`), so the binding follows the friction types as they change:
 //! the statistical static friction coefficient μ_s of a rough surface from its summit
 //! statistics (spectral moments or explicit σ_s, R, η) and the material constants, at nominal
-//! pressures.
+//! pressures; and the per-spot model on a contact solution (`friction::per_spot_friction` over
+//! `contact_spots` and the Lennard-Jones adhesion across the gap), as a study's `per_spot`
+//! friction node applies it.
 
+use asperity::friction::contact_spots::{adhesion_from_gap, contact_spots};
 use asperity::friction::{
-    static_friction_curve, AdhesionParameters, AsperityModel, Material, ModelOptions,
-    SolveSettings, StatisticalModel, SummitStatistics,
+    per_spot_friction as spot_friction, static_friction_curve, AdhesionParameters, AsperityModel,
+    Connectivity, FullStickOptions, Material, ModelLaws, ModelOptions, SolveSettings, SpotLaw,
+    SpotLoad, StatisticalModel, SummitStatistics,
 };
 use asperity::nodes::{DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE};
+use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -16,6 +21,7 @@ use crate::guard::{compute, value_error};
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(static_friction, m)?)?;
+    m.add_function(wrap_pyfunction!(per_spot_friction, m)?)?;
     m.add("DEFAULT_ADHESION_ENERGY", DEFAULT_ADHESION_ENERGY)?;
     m.add("DEFAULT_EQUILIBRIUM_DISTANCE", DEFAULT_EQUILIBRIUM_DISTANCE)?;
     Ok(())
@@ -111,4 +117,107 @@ fn static_friction<'py>(
             Ok(d)
         })
         .collect()
+}
+
+/// The law applied to each spot: full stick, KE or CEB inverted for each spot's load, or
+/// junction shear with τ_s (Pa).
+fn spot_law(model: &str, material: &Material, shear_strength: Option<f64>) -> PyResult<SpotLaw> {
+    let bad = |e| value_error("model", e);
+    Ok(match (model, shear_strength) {
+        ("junction_shear", Some(tau)) if tau.is_finite() && tau > 0.0 => SpotLaw::JunctionShear {
+            shear_strength: tau,
+        },
+        ("junction_shear", _) => {
+            return Err(value_error(
+                "shear_strength",
+                "junction shear needs the interfacial shear strength τ_s, finite and > 0 Pa",
+            ))
+        }
+        ("full_stick", _) => SpotLaw::FullStick {
+            law: FullStickOptions::default().law(material).map_err(bad)?,
+            composite_modulus: material.composite_modulus,
+        },
+        (other, _) => SpotLaw::Interference {
+            laws: ModelLaws::new(asperity_model(other)?, material, ModelOptions::default())
+                .map_err(bad)?,
+            material: *material,
+        },
+    })
+}
+
+/// μ_s of a contact solution, spot by spot; see `asperity.per_spot_friction`.
+#[pyfunction]
+#[pyo3(signature = (pressure, gap, composite_height, dx, dy, model, composite_modulus, hardness, poisson_ratio, periodic=true, eight_connected=false, shear_strength=None, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE))]
+#[allow(clippy::too_many_arguments)]
+fn per_spot_friction<'py>(
+    py: Python<'py>,
+    pressure: PyReadonlyArray2<'py, f64>,
+    gap: PyReadonlyArray2<'py, f64>,
+    composite_height: PyReadonlyArray2<'py, f64>,
+    dx: f64,
+    dy: f64,
+    model: &str,
+    composite_modulus: f64,
+    hardness: f64,
+    poisson_ratio: f64,
+    periodic: bool,
+    eight_connected: bool,
+    shear_strength: Option<f64>,
+    adhesion_energy: f64,
+    equilibrium_distance: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let material = Material::new(composite_modulus, hardness, poisson_ratio)
+        .map_err(|e| value_error("material", e))?;
+    let law = spot_law(model, &material, shear_strength)?;
+    let adhesion = AdhesionParameters::new(adhesion_energy, equilibrium_distance)
+        .map_err(|e| value_error("adhesion_energy", e))?;
+    let connectivity = if eight_connected {
+        Connectivity::Eight
+    } else {
+        Connectivity::Four
+    };
+    let (p, g, z) = (
+        pressure.as_array(),
+        gap.as_array(),
+        composite_height.as_array(),
+    );
+    let (spots, result) = compute(py, || {
+        let spots = contact_spots(p, z, dx, dy, periodic, connectivity)
+            .map_err(|e| value_error("pressure", e))?;
+        let adhesion =
+            adhesion_from_gap(g, p, dx, dy, adhesion).map_err(|e| value_error("gap", e))?;
+        let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
+        let result = spot_friction(&loads, &law, adhesion).map_err(|e| value_error("model", e))?;
+        Ok((spots, result))
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("mu_s", result.mu_s)?;
+    d.set_item("total_normal_force_N", result.total_normal_force)?;
+    d.set_item("total_friction_force_N", result.total_friction_force)?;
+    d.set_item("total_area_m2", result.total_area)?;
+    d.set_item("adhesion_force_N", result.adhesion_force)?;
+    d.set_item("load_beyond_fit_N", result.load_beyond_fit)?;
+    d.set_item("spot_count", spots.len())?;
+    d.set_item("spots_without_radius", result.spots_without_radius)?;
+    d.set_item(
+        "spot_load_N",
+        spots.iter().map(|s| s.load).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "spot_area_m2",
+        spots.iter().map(|s| s.area).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "spot_radius_m",
+        spots.iter().map(|s| s.radius).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "spot_friction_N",
+        result
+            .spots
+            .iter()
+            .map(|s| s.friction_force)
+            .collect::<Vec<_>>(),
+    )?;
+    Ok(d)
 }

@@ -27,6 +27,13 @@ nodes:
       lower_material: s235jr
       nominal_pressures: [5 MPa, 20 MPa]
       tolerance: 1e-8
+      fields: true
+  spots:
+    friction:
+      method: per_spot
+      model: full_stick
+      contact: squeeze
+      lower_material: s235jr
   grip:
     friction:
       model: kogut_etsion

@@ -48,3 +48,27 @@ def test_explicit_summits_and_bad_models():
         asperity.static_friction(model="ceb", nominal_pressures=1e6, nominal_area=1e-6, material=steel)
     with pytest.raises(ValueError, match="nominal_area"):
         asperity.static_friction(model="ceb", **{**base, "nominal_area": -1.0})
+
+
+def test_per_spot_friction_equals_the_cli_per_spot_node(asperity_bin, contact_study, tmp_path):
+    cli = run_cli(asperity_bin, "run", str(contact_study), "--out", "out", "--cache", "cache", "-q", cwd=tmp_path)
+    assert cli.returncode == 0, cli.stderr
+    friction = pl.read_parquet(tmp_path / "out" / "friction.parquet")
+    contacts = pl.read_parquet(tmp_path / "out" / "contacts.parquet")
+    surfaces = pl.read_parquet(tmp_path / "out" / "surfaces.parquet")
+    heights, dx, dy = asperity.synthetic_surface(
+        C["grid"], C["size"], sq=C["sq"], hurst=C["hurst"], correlation_length=C["correlation_length"], seed=3
+    )
+    c = asperity.contact(heights, dx, dy, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
+    spots = asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"])
+    key = surfaces.filter(pl.col("seed") == 3)["key"][0]
+    contact_key = contacts.filter(pl.col("lower_key") == key)["key"][0]
+    row = friction.filter(pl.col("contact_key") == contact_key)
+    assert len(row) == 1
+    assert spots["mu_s"] == pytest.approx(row["mu_s_computed"][0], rel=1e-12)
+    assert spots["spot_count"] == len(spots["spot_load_N"]) > 0
+    assert sum(spots["spot_load_N"]) == pytest.approx(spots["total_normal_force_N"])
+    with pytest.raises(ValueError, match="shear_strength"):
+        asperity.per_spot_friction(c, heights, dx, dy, model="junction_shear", material=C["material"])
+    with pytest.raises(ValueError, match="connectivity"):
+        asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"], connectivity=6)

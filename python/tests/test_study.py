@@ -21,22 +21,22 @@ def test_a_study_run_from_python_writes_the_cli_bytes(asperity_bin, contact_stud
     cli = run_cli(asperity_bin, "run", str(contact_study), "--out", "cli", "--cache", "cache-cli", "-q", cwd=tmp_path)
     assert cli.returncode == 0, cli.stderr
     result = asperity.run(contact_study, out=tmp_path / "py", cache=tmp_path / "cache-py", jobs=2)
-    assert result.failed == 0 and result.computed == 6
+    assert result.failed == 0 and result.computed == 8
     ours, theirs = parquet_files(tmp_path / "py"), parquet_files(tmp_path / "cli")
     assert {"contacts.parquet", "contacts_load_curve.parquet", "surfaces.parquet"} <= set(ours)
     assert ours == theirs
     assert result.folder == tmp_path / "py"
     assert result["contacts"].equals(pl.read_parquet(tmp_path / "cli" / "contacts.parquet"))
     again = asperity.run(contact_study, out=tmp_path / "py", cache=tmp_path / "cache-py", set={"seed": [3, 4]})
-    assert again.cached == 6 and again.computed == 0
+    assert again.cached == 8 and again.computed == 0
 
 
 def test_set_overrides_and_plan_and_validate(contact_study, tmp_path):
     counts = asperity.validate(contact_study, set=["seed=[1, 2, 3]"])
-    assert counts["scenarios"] == 3 and counts["instances"] == 9
+    assert counts["scenarios"] == 3 and counts["instances"] == 12
     planned = asperity.plan(contact_study, set={"seed": 7}, cache=tmp_path / "cache")
-    assert sorted(planned["kind"].to_list()) == ["contact", "friction", "surface"]
-    assert planned["cached"].to_list() == [False, False, False]
+    assert sorted(planned["kind"].to_list()) == ["contact", "friction", "friction", "surface"]
+    assert planned["cached"].to_list() == [False, False, False, False]
     with pytest.raises(ValueError, match="set"):
         asperity.validate(contact_study, set=["no equals sign"])
 
@@ -64,9 +64,9 @@ def test_a_broken_study_raises_what_the_cli_prints(asperity_bin, tmp_path):
 def test_progress_reaches_the_callback(contact_study, tmp_path):
     events = []
     asperity.run(contact_study, out=tmp_path / "out", cache=tmp_path / "cache", progress=lambda *e: events.append(e))
-    assert events[0] == ("start", 6, "")
+    assert events[0] == ("start", 8, "")
     nodes = [e for e in events if e[0] == "node"]
-    assert len(nodes) == 6 and {e[1] for e in nodes} == {"computed"}
+    assert len(nodes) == 8 and {e[1] for e in nodes} == {"computed"}
 
 
 def test_an_interrupt_stops_the_run_and_leaves_a_valid_cache(asperity_bin, contact_study, tmp_path):
@@ -80,4 +80,4 @@ def test_an_interrupt_stops_the_run_and_leaves_a_valid_cache(asperity_bin, conta
     verify = run_cli(asperity_bin, "cache", "verify", "--cache", "cache", cwd=tmp_path)
     assert verify.returncode == 0, verify.stdout + verify.stderr
     done = asperity.run(contact_study, out=tmp_path / "out", cache=tmp_path / "cache", jobs=1)
-    assert done.cached >= 1 and done.cached + done.computed == 6 and done.failed == 0
+    assert done.cached >= 1 and done.cached + done.computed == 8 and done.failed == 0
