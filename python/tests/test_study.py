@@ -1,6 +1,9 @@
 """Studies from Python: the same Parquet bytes as the command line, StudyError as the command
 line reports it, progress events and a clean interrupt."""
 
+import signal
+import subprocess
+import sys
 from pathlib import Path
 
 import polars as pl
@@ -81,3 +84,51 @@ def test_an_interrupt_stops_the_run_and_leaves_a_valid_cache(asperity_bin, conta
     assert verify.returncode == 0, verify.stdout + verify.stderr
     done = asperity.run(contact_study, out=tmp_path / "out", cache=tmp_path / "cache", jobs=1)
     assert done.cached >= 1 and done.cached + done.computed == 8 and done.failed == 0
+
+
+SLOW_STUDY = """\
+study: slow
+parameters:
+  product:
+    seed: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16]
+nodes:
+  rough:
+    surface:
+      synthetic: {grid: [512, 512], size: [0.5 mm, 0.5 mm], sq: 0.8 um, hurst: 0.7,
+                  correlation_length: 40 um, seed: "${seed}"}
+  squeeze:
+    contact:
+      lower: rough
+      lower_material: s235jr
+      nominal_pressures: [5 MPa, 20 MPa, 40 MPa]
+      tolerance: 1e-10
+"""
+
+CHILD = """\
+import signal, sys
+import asperity
+signal.signal(signal.SIGINT, signal.default_int_handler)
+def progress(event, value, text):
+    if event == "node":
+        print("node", flush=True)
+try:
+    asperity.run(sys.argv[1], out="out", cache="cache", jobs=1, progress=progress)
+    print("finished", flush=True)
+except KeyboardInterrupt:
+    print("interrupted", flush=True)
+"""
+
+
+def test_ctrl_c_interrupts_a_run_cleanly(asperity_bin, tmp_path):
+    (tmp_path / "slow.yaml").write_text(SLOW_STUDY)
+    child = subprocess.Popen(
+        [sys.executable, "-c", CHILD, "slow.yaml"], cwd=tmp_path, stdout=subprocess.PIPE, text=True
+    )
+    assert child.stdout.readline().strip() == "node"
+    child.send_signal(signal.SIGINT)
+    rest = child.stdout.read().split()
+    assert child.wait(timeout=120) == 0
+    assert rest[-1] == "interrupted" and len(rest) < 31, rest
+    assert not (tmp_path / "out").exists()
+    verify = run_cli(asperity_bin, "cache", "verify", "--cache", "cache", cwd=tmp_path)
+    assert verify.returncode == 0 and " 0 corrupt" in verify.stdout, verify.stdout
