@@ -17,7 +17,7 @@ runs=${1:-1000000}
 study_seconds=${2:-3600}
 max_len=${MAX_LEN:-4096}
 shift 2 2>/dev/null || shift $#
-readers=(al3d gsf gwy metropro nanoscope npy opd plu sdf sur text x3p zon topography)
+readers=(al3d frt gsf gwy metropro mi nanoscope nid nms npy opd opdx plu sdf sur text x3p zon topography)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${readers[@]}" study)
 shared=../../shared/data/topography

@@ -482,10 +482,16 @@ def static_friction(
     summits: Optional[Tuple[float, float, float]] = None,
     adhesion_energy: Optional[float] = None,
     equilibrium_distance: Optional[float] = None,
+    parameters: Optional[Mapping[str, Union[float, str]]] = None,
+    yield_strength: Optional[float] = None,
+    shear_strength: Optional[float] = None,
 ) -> List[Dict[str, Any]]:
     """Statistical static friction coefficient μ_s of a rough surface against a rigid flat, as a
-    study's statistical ``friction`` node computes it (``model``: ``"kogut_etsion"``, ``"ceb"``
-    or ``"full_stick"``; equations in docs/friction-models.md).
+    study's statistical ``friction`` node computes it. ``model`` is a law of the registry with
+    single-asperity laws (``"kogut_etsion"``, ``"chang_etsion_bogy"``, ``"full_stick"``, …;
+    equations in docs/friction-models.md), ``parameters`` overrides its parameters (SI numbers or
+    choices by name); ``yield_strength`` Y (default Tabor's H/2.8) and ``shear_strength`` k
+    (default Y/√3) are the softer body's, in Pa.
 
     Roughness: the isotropic spectral ``moments`` (m0 in m², m2, m4 in 1/m², as
     :func:`surface_statistics` reports them), or ``summits`` (σ_s in m, radius R in m, density
@@ -514,6 +520,23 @@ def static_friction(
         triple("summits", summits, ("m", "m", "1/m^2")),
         _native.DEFAULT_ADHESION_ENERGY if adhesion_energy is None else _number("adhesion_energy", adhesion_energy, "N/m", positive=False),
         _native.DEFAULT_EQUILIBRIUM_DISTANCE if equilibrium_distance is None else _number("equilibrium_distance", equilibrium_distance, "m"),
+        *_law_options(parameters, yield_strength, shear_strength),
+    )
+
+
+def _law_options(parameters: Any, yield_strength: Any, shear_strength: Any) -> Tuple[Dict[str, Any], Optional[float], Optional[float]]:
+    """A law's parameter overrides and the softer body's strengths (Pa), checked."""
+    if parameters is None:
+        parameters = {}
+    if not isinstance(parameters, Mapping) or not all(isinstance(k, str) for k in parameters):
+        raise TypeError("parameters: expected a mapping {name: number or choice}")
+    for name, v in parameters.items():
+        if isinstance(v, bool) or not isinstance(v, (int, float, str, np.integer, np.floating)):
+            raise TypeError(f"parameters.{name}: expected a number (SI) or a choice's name, got {type(v).__name__}")
+    return (
+        {k: (v if isinstance(v, str) else float(v)) for k, v in parameters.items()},
+        None if yield_strength is None else _number("yield_strength", yield_strength, "Pa"),
+        None if shear_strength is None else _number("shear_strength", shear_strength, "Pa"),
     )
 
 
@@ -530,9 +553,11 @@ def per_spot_friction(
     poisson_ratio: Optional[float] = None,
     periodic: bool = True,
     connectivity: int = 4,
-    shear_strength: Optional[float] = None,
     adhesion_energy: Optional[float] = None,
     equilibrium_distance: Optional[float] = None,
+    parameters: Optional[Mapping[str, Union[float, str]]] = None,
+    yield_strength: Optional[float] = None,
+    shear_strength: Optional[float] = None,
 ) -> Dict[str, Any]:
     """Static friction of a :func:`contact` result spot by spot, as a study's ``per_spot``
     friction node: the connected contact spots of ``result["pressure"]`` (``connectivity`` 4 or
@@ -566,8 +591,8 @@ def per_spot_friction(
             nu,
             bool(periodic),
             connectivity == 8,
-            None if shear_strength is None else _number("shear_strength", shear_strength, "Pa"),
             _native.DEFAULT_ADHESION_ENERGY if adhesion_energy is None else _number("adhesion_energy", adhesion_energy, "N/m", positive=False),
             _native.DEFAULT_EQUILIBRIUM_DISTANCE if equilibrium_distance is None else _number("equilibrium_distance", equilibrium_distance, "m"),
+            *_law_options(parameters, yield_strength, shear_strength),
         )
     )

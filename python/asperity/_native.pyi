@@ -86,6 +86,9 @@ def static_friction(
     summits_explicit: Optional[Tuple[float, float, float]] = ...,
     adhesion_energy: float = ...,
     equilibrium_distance: float = ...,
+    parameters: Dict[str, Any] = ...,
+    yield_strength: Optional[float] = ...,
+    shear_strength: Optional[float] = ...,
 ) -> List[Dict[str, Any]]: ...
 def per_spot_friction(
     pressure: F64,
@@ -99,7 +102,9 @@ def per_spot_friction(
     poisson_ratio: float,
     periodic: bool = ...,
     eight_connected: bool = ...,
-    shear_strength: Optional[float] = ...,
     adhesion_energy: float = ...,
     equilibrium_distance: float = ...,
+    parameters: Dict[str, Any] = ...,
+    yield_strength: Optional[float] = ...,
+    shear_strength: Optional[float] = ...,
 ) -> Dict[str, Any]: ...

@@ -1,16 +1,19 @@
-//! Friction on numbers, bound thinly through the highest-level entry point of the numerics
-//! (`friction::static_friction_curve`), so the binding follows the friction types as they change:
-//! the statistical static friction coefficient μ_s of a rough surface from its summit
-//! statistics (spectral moments or explicit σ_s, R, η) and the material constants, at nominal
-//! pressures; and the per-spot model on a contact solution (`friction::per_spot_friction` over
-//! `contact_spots` and the Lennard-Jones adhesion across the gap), as a study's `per_spot`
-//! friction node applies it.
+//! Friction on numbers, bound thinly through the law registry and the highest-level entry points
+//! of the numerics, so the binding follows the friction laws as they are added: a law is built
+//! by name from the registry (`friction::find_law`, parameters at their defaults unless given),
+//! then either the statistical static friction coefficient μ_s of a rough surface
+//! (`friction::static_friction_curve`) from its summit statistics at nominal pressures, or the
+//! per-spot model on a contact solution (`friction::per_spot_friction` over `contact_spots` and
+//! the Lennard-Jones adhesion across the gap), as a study's friction node applies them.
+
+use std::collections::HashMap;
+use std::sync::Arc;
 
 use asperity::friction::contact_spots::{adhesion_from_gap, contact_spots};
 use asperity::friction::{
-    per_spot_friction as spot_friction, static_friction_curve, AdhesionParameters, AsperityModel,
-    Connectivity, FullStickOptions, Material, ModelLaws, ModelOptions, SolveSettings, SpotLaw,
-    SpotLoad, StatisticalModel, SummitStatistics,
+    find_law, law_names, per_spot_friction as spot_friction, static_friction_curve,
+    AdhesionBeyondFits, AdhesionParameters, Connectivity, FrictionLaw, LawInputs, Material,
+    SolveSettings, SpotLoad, StatisticalModel, SummitStatistics,
 };
 use asperity::nodes::{DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE};
 use numpy::PyReadonlyArray2;
@@ -27,16 +30,61 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-fn asperity_model(name: &str) -> PyResult<AsperityModel> {
-    match name {
-        "kogut_etsion" => Ok(AsperityModel::KogutEtsion),
-        "ceb" => Ok(AsperityModel::ChangEtsionBogy),
-        "full_stick" => Ok(AsperityModel::FullStick),
-        other => Err(value_error(
+/// A law parameter as Python gives it: a number (SI) or one of a choice's options.
+#[derive(FromPyObject)]
+enum Parameter {
+    Number(f64),
+    Choice(String),
+}
+
+/// The law `model` of the registry, built for `material` with the softer body's yield strength
+/// Y (Pa; default Tabor's H/2.8) and shear strength k (Pa; default Y/√3) and `parameters`
+/// overriding the law's defaults.
+fn build_law(
+    model: &str,
+    material: Material,
+    yield_strength: Option<f64>,
+    shear_strength: Option<f64>,
+    parameters: HashMap<String, Parameter>,
+) -> PyResult<Arc<dyn FrictionLaw>> {
+    let descriptor = find_law(model).ok_or_else(|| {
+        value_error(
             "model",
-            format!("'{other}' is not a statistical model; expected 'kogut_etsion', 'ceb' or 'full_stick'"),
-        )),
+            format!(
+                "'{model}' is not a friction law; expected one of: {}",
+                law_names().join(", ")
+            ),
+        )
+    })?;
+    let mut values = descriptor.default_parameters();
+    for (name, value) in parameters {
+        let spec = descriptor.parameter(&name).ok_or_else(|| {
+            let known: Vec<_> = descriptor.parameters.iter().map(|p| p.name).collect();
+            value_error(
+                "parameters",
+                format!(
+                    "'{model}' has no parameter '{name}'; its parameters: {}",
+                    known.join(", ")
+                ),
+            )
+        })?;
+        let parsed = match value {
+            Parameter::Number(v) => spec.number(v),
+            Parameter::Choice(text) => spec.choice(&text),
+        }
+        .map_err(|e| value_error(&format!("parameters.{name}"), e))?;
+        values.set(&name, parsed);
     }
+    let yield_strength = yield_strength.unwrap_or_else(|| material.tabor_yield_strength());
+    let inputs = LawInputs {
+        material,
+        yield_strength,
+        shear_strength: shear_strength.unwrap_or(yield_strength / 3f64.sqrt()),
+        parameters: values,
+    };
+    (descriptor.build)(&inputs)
+        .map(Arc::from)
+        .map_err(|e| value_error("model", e))
 }
 
 /// Summit statistics from `(m0, m2, m4)` (m², 1, 1/m²) or `(σ_s, R, η)` (m, m, 1/m²).
@@ -61,7 +109,7 @@ fn summits(
 
 /// μ_s and the separation solve at each nominal pressure (Pa); see `asperity.static_friction`.
 #[pyfunction]
-#[pyo3(signature = (model, composite_modulus, hardness, poisson_ratio, nominal_pressures, nominal_area, moments=None, summits_explicit=None, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE))]
+#[pyo3(signature = (model, composite_modulus, hardness, poisson_ratio, nominal_pressures, nominal_area, moments=None, summits_explicit=None, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE, parameters=HashMap::new(), yield_strength=None, shear_strength=None))]
 #[allow(clippy::too_many_arguments)]
 fn static_friction<'py>(
     py: Python<'py>,
@@ -75,22 +123,28 @@ fn static_friction<'py>(
     summits_explicit: Option<(f64, f64, f64)>,
     adhesion_energy: f64,
     equilibrium_distance: f64,
+    parameters: HashMap<String, Parameter>,
+    yield_strength: Option<f64>,
+    shear_strength: Option<f64>,
 ) -> PyResult<Vec<Bound<'py, PyDict>>> {
-    let kind = asperity_model(model)?;
     let summits = summits(moments, summits_explicit)?;
     let material = Material::new(composite_modulus, hardness, poisson_ratio)
         .map_err(|e| value_error("material", e))?;
+    let law = build_law(model, material, yield_strength, shear_strength, parameters)?;
+    let laws = law.asperity_laws().ok_or_else(|| {
+        value_error("model", format!("'{model}' has no single-asperity laws for the statistical method; use per_spot_friction"))
+    })?;
     let adhesion = AdhesionParameters::new(adhesion_energy, equilibrium_distance)
         .map_err(|e| value_error("adhesion_energy", e))?;
     let forces: Vec<f64> = nominal_pressures.iter().map(|p| p * nominal_area).collect();
     let results = compute(py, || {
         let model = StatisticalModel::new(
-            kind,
+            laws,
             summits,
             material,
             adhesion,
             nominal_area,
-            ModelOptions::default(),
+            AdhesionBeyondFits::default(),
         )
         .map_err(|e| value_error("nominal_area", e))?;
         static_friction_curve(&model, &forces, &SolveSettings::default())
@@ -119,35 +173,9 @@ fn static_friction<'py>(
         .collect()
 }
 
-/// The law applied to each spot: full stick, KE or CEB inverted for each spot's load, or
-/// junction shear with τ_s (Pa).
-fn spot_law(model: &str, material: &Material, shear_strength: Option<f64>) -> PyResult<SpotLaw> {
-    let bad = |e| value_error("model", e);
-    Ok(match (model, shear_strength) {
-        ("junction_shear", Some(tau)) if tau.is_finite() && tau > 0.0 => SpotLaw::JunctionShear {
-            shear_strength: tau,
-        },
-        ("junction_shear", _) => {
-            return Err(value_error(
-                "shear_strength",
-                "junction shear needs the interfacial shear strength τ_s, finite and > 0 Pa",
-            ))
-        }
-        ("full_stick", _) => SpotLaw::FullStick {
-            law: FullStickOptions::default().law(material).map_err(bad)?,
-            composite_modulus: material.composite_modulus,
-        },
-        (other, _) => SpotLaw::Interference {
-            laws: ModelLaws::new(asperity_model(other)?, material, ModelOptions::default())
-                .map_err(bad)?,
-            material: *material,
-        },
-    })
-}
-
 /// μ_s of a contact solution, spot by spot; see `asperity.per_spot_friction`.
 #[pyfunction]
-#[pyo3(signature = (pressure, gap, composite_height, dx, dy, model, composite_modulus, hardness, poisson_ratio, periodic=true, eight_connected=false, shear_strength=None, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE))]
+#[pyo3(signature = (pressure, gap, composite_height, dx, dy, model, composite_modulus, hardness, poisson_ratio, periodic=true, eight_connected=false, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE, parameters=HashMap::new(), yield_strength=None, shear_strength=None))]
 #[allow(clippy::too_many_arguments)]
 fn per_spot_friction<'py>(
     py: Python<'py>,
@@ -162,13 +190,15 @@ fn per_spot_friction<'py>(
     poisson_ratio: f64,
     periodic: bool,
     eight_connected: bool,
-    shear_strength: Option<f64>,
     adhesion_energy: f64,
     equilibrium_distance: f64,
+    parameters: HashMap<String, Parameter>,
+    yield_strength: Option<f64>,
+    shear_strength: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let material = Material::new(composite_modulus, hardness, poisson_ratio)
         .map_err(|e| value_error("material", e))?;
-    let law = spot_law(model, &material, shear_strength)?;
+    let law = build_law(model, material, yield_strength, shear_strength, parameters)?;
     let adhesion = AdhesionParameters::new(adhesion_energy, equilibrium_distance)
         .map_err(|e| value_error("adhesion_energy", e))?;
     let connectivity = if eight_connected {
@@ -187,7 +217,8 @@ fn per_spot_friction<'py>(
         let adhesion =
             adhesion_from_gap(g, p, dx, dy, adhesion).map_err(|e| value_error("gap", e))?;
         let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
-        let result = spot_friction(&loads, &law, adhesion).map_err(|e| value_error("model", e))?;
+        let result =
+            spot_friction(&loads, law.as_ref(), adhesion).map_err(|e| value_error("model", e))?;
         Ok((spots, result))
     })?;
     let d = PyDict::new(py);

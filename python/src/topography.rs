@@ -28,7 +28,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 fn topography_format(py: Python<'_>, path: PathBuf) -> PyResult<Option<&'static str>> {
     compute(py, || {
         let bytes = read_topography_bytes(&path).map_err(|e| PyOSError::new_err(e.to_string()))?;
-        Ok(detect_format(&path, &bytes).map(|f| f.name()))
+        Ok(detect_format(&path, &bytes).map(|f| f.name))
     })
 }
 
@@ -114,6 +114,7 @@ fn read_topography<'py>(
         spacing,
         height_unit,
         channel,
+        channels,
         metadata,
     } = topography;
     let d = PyDict::new(py);
@@ -136,6 +137,7 @@ fn read_topography<'py>(
     d.set_item("spacing_from_file", spacing == ScaleSource::File)?;
     d.set_item("height_unit_from_file", height_unit == ScaleSource::File)?;
     d.set_item("channel", channel)?;
+    d.set_item("channels", channels)?;
     d.set_item("metadata", metadata)?;
     Ok(d)
 }

@@ -37,7 +37,7 @@ def test_static_friction_equals_the_cli_friction_node(asperity_bin, contact_stud
 def test_explicit_summits_and_bad_models():
     steel = asperity.material("s235jr")
     base = dict(nominal_pressures=[1e6], nominal_area=1e-6, material=steel, summits=(0.3e-6, 50e-6, 5e9))
-    for model in ("kogut_etsion", "ceb", "full_stick"):
+    for model in ("kogut_etsion", "chang_etsion_bogy", "full_stick"):
         (r,) = asperity.static_friction(model=model, **base)
         assert abs(r["mu_s"]) < 5 and r["contact_load_N"] > 0 and r["real_contact_area_m2"] > 0, model
     (stick,) = asperity.static_friction(model="full_stick", **base)
@@ -45,9 +45,9 @@ def test_explicit_summits_and_bad_models():
     with pytest.raises(ValueError, match="model"):
         asperity.static_friction(model="coulomb", **base)
     with pytest.raises(ValueError, match="moments"):
-        asperity.static_friction(model="ceb", nominal_pressures=1e6, nominal_area=1e-6, material=steel)
+        asperity.static_friction(model="full_stick", nominal_pressures=1e6, nominal_area=1e-6, material=steel)
     with pytest.raises(ValueError, match="nominal_area"):
-        asperity.static_friction(model="ceb", **{**base, "nominal_area": -1.0})
+        asperity.static_friction(model="full_stick", **{**base, "nominal_area": -1.0})
 
 
 def test_per_spot_friction_equals_the_cli_per_spot_node(asperity_bin, contact_study, tmp_path):
@@ -68,7 +68,9 @@ def test_per_spot_friction_equals_the_cli_per_spot_node(asperity_bin, contact_st
     assert spots["mu_s"] == pytest.approx(row["mu_s_computed"][0], rel=1e-12)
     assert spots["spot_count"] == len(spots["spot_load_N"]) > 0
     assert sum(spots["spot_load_N"]) == pytest.approx(spots["total_normal_force_N"])
-    with pytest.raises(ValueError, match="shear_strength"):
-        asperity.per_spot_friction(c, heights, dx, dy, model="junction_shear", material=C["material"])
+    shear = asperity.per_spot_friction(c, heights, dx, dy, model="junction_shear", material=C["material"])
+    assert shear["mu_s"] > 0
+    with pytest.raises(ValueError, match="parameters"):
+        asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"], parameters={"no_such": 1.0})
     with pytest.raises(ValueError, match="connectivity"):
         asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"], connectivity=6)

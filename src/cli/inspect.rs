@@ -1,5 +1,5 @@
-//! `asperity inspect FILE [--png OUT]`: what a topography file holds, its statistics, and
-//! optionally a height-map image.
+//! `asperity inspect FILE [--channel NAME] [--png OUT]`: what a topography file holds (format,
+//! instrument, channels), its statistics, and optionally a height-map image.
 
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
@@ -10,7 +10,8 @@ use anyhow::{Context, Result};
 use asperity::engine::value::Field;
 use asperity::nodes::validity;
 use asperity::surface::io::{
-    detect_format, parse_topography, read_topography_bytes, LineScan, ScaleSource, TopographyData,
+    detect_format, parse_topography_channel, read_topography_bytes, LineScan, ScaleSource,
+    Topography, TopographyData, METADATA_INSTRUMENT, METADATA_VENDOR,
 };
 use asperity::surface::{amplitude_statistics, AmplitudeStatistics, Boundary, HeightMap};
 use asperity::units::Dimension;
@@ -24,17 +25,21 @@ pub struct InspectArgs {
     /// missing points in red).
     #[arg(long, value_name = "OUT")]
     png: Option<PathBuf>,
+    /// The channel to read, for a file holding several (listed under `channels:`); default:
+    /// the height channel.
+    #[arg(long, value_name = "NAME")]
+    channel: Option<String>,
 }
 
 pub fn inspect(args: InspectArgs) -> Result<ExitCode> {
     let bytes = read_topography_bytes(&args.file)?;
-    let format = detect_format(&args.file, &bytes).map(|f| f.name());
-    let topo = parse_topography(&args.file, &bytes)?;
+    let reader = detect_format(&args.file, &bytes);
+    let topo = parse_topography_channel(&args.file, &bytes, args.channel.as_deref())?;
     println!("file:      {}", args.file.display());
-    println!("format:    {}", format.unwrap_or("?"));
-    if let Some(channel) = &topo.channel {
-        println!("channel:   {channel}");
+    if let Some(reader) = reader {
+        println!("format:    {} ({})", reader.name, reader.description);
     }
+    describe_source(&topo);
     match &topo.data {
         TopographyData::Areal(map) => describe_map(map, topo.spacing, topo.height_unit)?,
         TopographyData::Line(line) => describe_line(line)?,
@@ -54,6 +59,31 @@ pub fn inspect(args: InspectArgs) -> Result<ExitCode> {
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The instrument (when the file names it) and the channels, the one read marked.
+fn describe_source(topo: &Topography) {
+    let instrument: Vec<&str> = [METADATA_VENDOR, METADATA_INSTRUMENT]
+        .iter()
+        .filter_map(|k| topo.metadata.get(*k).map(String::as_str))
+        .filter(|v| !v.trim().is_empty())
+        .collect();
+    if !instrument.is_empty() {
+        println!("instrument: {}", instrument.join(" "));
+    }
+    let read = topo.channel.as_deref().unwrap_or_default();
+    let channels: Vec<String> = topo
+        .channels
+        .iter()
+        .map(|c| {
+            if c == read {
+                format!("{c} (read)")
+            } else {
+                c.clone()
+            }
+        })
+        .collect();
+    println!("channels:  {}", channels.join(", "));
 }
 
 fn describe_map(map: &HeightMap, spacing: ScaleSource, height_unit: ScaleSource) -> Result<()> {

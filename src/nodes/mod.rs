@@ -23,8 +23,8 @@ use crate::units::format_number;
 
 pub use contact::{final_step_metrics, ContactSpec, ContactTask, CONTACT_KIND_VERSION};
 pub use friction::{
-    FrictionSpec, FrictionTask, DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE,
-    FRICTION_KIND_VERSION,
+    friction_models_markdown, FrictionSpec, FrictionTask, DEFAULT_ADHESION_ENERGY,
+    DEFAULT_EQUILIBRIUM_DISTANCE, FRICTION_KIND_VERSION,
 };
 pub use material_spec::{MaterialMapping, MaterialSpec, ResolvedMaterial};
 pub use surface::{

@@ -231,3 +231,44 @@ nodes:
     assert!((sq / measured - 1.0).abs() < 1e-12, "{sq} vs {measured}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `channel:` picks a channel of a multi-channel file (ASCII case ignored; the default is the
+/// height channel), and a name the file does not hold fails naming the channels it does.
+#[test]
+fn measured_file_channel_is_chosen_by_name() {
+    let Some(data) = common::data_dir() else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("asperity-channel-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = data.join("di/di-5.di");
+    let text = format!(
+        r#"
+study: channels
+nodes:
+  default:
+    surface:
+      file: {{path: "{f}"}}
+  named:
+    surface:
+      file: {{path: "{f}", channel: zsensor}}
+  unknown:
+    surface:
+      file: {{path: "{f}", channel: Phase}}
+"#,
+        f = file.display()
+    );
+    let (all_ok, outcome) = run(&dir, text);
+    assert!(!all_ok);
+    let sq = |name: &str| float(metric(&outcome(name).metrics, "sq"));
+    assert_eq!(sq("named"), sq("default"));
+    let message = outcome("unknown").status.message().to_string();
+    assert!(
+        message.contains("no channel `Phase`")
+            && message.contains("`ZSensor`, `PeakForceError`")
+            && message.contains("di-5.di"),
+        "{message}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

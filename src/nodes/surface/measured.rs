@@ -10,7 +10,7 @@ use serde::Deserialize;
 use crate::engine::node::NodeError;
 use crate::engine::study::{Param, ResolveContext, SpecError};
 use crate::engine::value::Field;
-use crate::surface::io::{declared_points, read_topography, ScaleSource, TopographyData};
+use crate::surface::io::{declared_points, read_topography_channel, ScaleSource, TopographyData};
 use crate::surface::HeightMap;
 
 use super::lateral_scale::LateralLengths;
@@ -23,9 +23,15 @@ with_preprocessing_fields! {
     #[derive(Debug, Deserialize, schemars::JsonSchema)]
     #[serde(deny_unknown_fields)]
     pub struct FileSpec {
-        /// Topography file (x3p, sdf, sur, plu, dat, opd, di, gsf, gwy, al3d, zon, txt/csv, npy);
+        /// Topography file in any format `asperity inspect` reads (x3p, sdf, sur, plu, dat, opd,
+        /// di, gsf, gwy, al3d, zon, nid, mi, frt, opdx, nms, txt/csv, npy; docs/study-format.md);
         /// relative paths are relative to the study file.
         pub path: Param<String>,
+        /// The channel to read from a file holding several (height, amplitude, phase, …), by
+        /// name as `asperity inspect` lists it (ASCII case ignored). Default: the file's height
+        /// channel. A name the file does not hold is an error listing its channels.
+        #[serde(default)]
+        pub channel: Option<Param<String>>,
     }
 }
 
@@ -35,6 +41,8 @@ pub(crate) struct MeasuredFile {
     path: PathBuf,
     /// blake3 of the file's bytes: the file enters the key by content, not by path.
     content_hash: String,
+    /// The channel asked for; `None` reads the height channel.
+    channel: Option<String>,
     /// For the memory estimate.
     file_bytes: u64,
     /// The point count the file's header declares (X3P), read when the estimate is first
@@ -51,7 +59,10 @@ pub(crate) struct MeasuredSource {
 
 impl FileSpec {
     pub(super) fn instantiate(&self, ctx: &ResolveContext<'_>) -> Result<SurfaceTask, SpecError> {
-        let file = MeasuredFile::resolve(ctx, &self.path, "file.path")?;
+        let mut file = MeasuredFile::resolve(ctx, &self.path, "file.path")?;
+        if let Some(channel) = &self.channel {
+            file.channel = Some(ctx.resolve(channel, "file.channel")?);
+        }
         let preprocessing = self.preprocess_fields().resolve(
             ctx,
             self.path.location(),
@@ -85,6 +96,7 @@ impl MeasuredFile {
             file_bytes: std::fs::metadata(&path_buf).map_or(0, |m| m.len()),
             path: path_buf,
             content_hash,
+            channel: None,
             declared_points: Arc::default(),
         })
     }
@@ -121,15 +133,17 @@ impl MeasuredSource {
         }
     }
 
-    /// The key fields of a measured surface: the file by content and its preprocessing, in SI.
-    /// The path (the same bytes may move) and the file size (a memory estimate) are not part of
-    /// it.
+    /// The key fields of a measured surface: the file by content, the channel when one is named
+    /// (a surface without `channel:` keeps the key it had before channels existed), and its
+    /// preprocessing, in SI. The path (the same bytes may move) and the file size (a memory
+    /// estimate) are not part of it.
     pub(super) fn key_fields(&self) -> Vec<Field> {
         let Self {
             file:
                 MeasuredFile {
                     path: _,
                     content_hash,
+                    channel,
                     file_bytes: _,
                     declared_points: _,
                 },
@@ -139,6 +153,9 @@ impl MeasuredSource {
             Field::text("source", "file"),
             Field::text("file_blake3", content_hash.clone()),
         ];
+        if let Some(channel) = channel {
+            fields.push(Field::text("channel", channel.clone()));
+        }
         fields.extend(preprocessing.key_fields());
         fields
     }
@@ -151,7 +168,7 @@ impl MeasuredSource {
     /// Reads and preprocesses the surface; also returns `height_unit_from_file` (the lateral
     /// scale's check needs the surface statistics: [`super::lateral_scale::lateral_scale_warning`]).
     pub(super) fn load_with_scale_report(&self) -> Result<(HeightMap, Vec<Field>), NodeError> {
-        let topography = read_topography(&self.file.path)
+        let topography = read_topography_channel(&self.file.path, self.file.channel.as_deref())
             .map_err(|e| NodeError::new(format!("reading: {e}")))?;
         let height_unit_from_file = topography.height_unit == ScaleSource::File;
         let map = match topography.data {

@@ -5,5 +5,7 @@ mod friction_contact_spots;
 mod friction_full_stick;
 mod friction_gw_summits;
 mod friction_integrals;
+mod friction_law_registry;
 mod friction_per_summit;
 mod friction_static_solve;
+mod law_support;

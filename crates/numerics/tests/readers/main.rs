@@ -11,3 +11,6 @@ mod readers_b;
 mod readers_b_fixtures;
 mod readers_b_robustness;
 mod readers_bounded;
+mod readers_instruments;
+mod readers_instruments_robustness;
+mod registry;

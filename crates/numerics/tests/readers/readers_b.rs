@@ -103,7 +103,7 @@ fn check(reference: &Reference) {
     let path = dir.join(reference.file);
     let t = read_topography(&path).unwrap_or_else(|e| panic!("{e}"));
     let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{e}"));
-    let format = asperity_numerics::surface::io::detect_format(&path, &bytes).map(|f| f.name());
+    let format = asperity_numerics::surface::io::detect_format(&path, &bytes).map(|f| f.name);
     assert_eq!(
         format,
         Some(reference.format),
@@ -308,7 +308,14 @@ fn nanoscope_lists_and_selects_channels() {
         "{err:?}"
     );
     let err = nanoscope::parse_channel(&bytes, Some("Height")).map(|_| ());
-    assert!(matches!(err, Err(ParseError::Malformed { .. })), "{err:?}");
+    assert!(
+        matches!(&err, Err(ParseError::UnknownChannel { wanted, available })
+            if wanted == "Height" && available == &["ZSensor", "PeakForceError"]),
+        "{err:?}"
+    );
+    let t = nanoscope::parse_channel(&bytes, Some("zsensor")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(t.channel.as_deref(), Some("ZSensor"));
+    assert_eq!(t.channels, ["ZSensor", "PeakForceError"]);
 }
 
 #[test]
@@ -322,7 +329,11 @@ fn gwy_lists_channels() {
     let t =
         gwy::parse_channel(&bytes, Some("Left_Top_Right_Bottom")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(areal(&t).nx(), 256);
-    assert!(gwy::parse_channel(&bytes, Some("nope")).is_err());
+    let err = gwy::parse_channel(&bytes, Some("nope")).map(|_| ());
+    assert!(
+        matches!(err, Err(ParseError::UnknownChannel { .. })),
+        "{err:?}"
+    );
 }
 
 /// A GSF file: header lines, NUL padding to a multiple of 4 (at least one NUL), float32 data.

@@ -17,11 +17,21 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::limits::check_points;
+use super::reader::{Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const MAGIC: &[u8] = b"AliconaImaging\0\r\n";
 const TAG_SIZE: usize = 52;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "al3d",
+    description: "Alicona `.al3d`",
+    extensions: &["al3d"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` when `head` starts with the AL3D magic.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -159,6 +169,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some("depth".into()),
+        channels: Vec::new(),
         metadata,
     })
 }

@@ -25,6 +25,11 @@ impl<'a> ByteCursor<'a> {
         Self { bytes, pos: 0 }
     }
 
+    /// The current position, bytes from the start.
+    pub(crate) fn position(&self) -> usize {
+        self.pos
+    }
+
     /// Bytes left after the current position.
     pub(crate) fn remaining(&self) -> usize {
         self.bytes.len() - self.pos

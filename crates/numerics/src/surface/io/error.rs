@@ -14,6 +14,28 @@ pub enum ParseError {
     /// A valid file that uses a feature this reader does not implement.
     #[error("unsupported: {what}")]
     Unsupported { what: String },
+    /// The channel asked for is not in the file.
+    #[error(
+        "the file has no channel `{wanted}`; it holds {}; set `channel:` to one of them \
+         (or leave it out for the height channel)",
+        quoted_list(available)
+    )]
+    UnknownChannel {
+        wanted: String,
+        available: Vec<String>,
+    },
+}
+
+/// `` `a`, `b`, `c` `` (or "no channel").
+fn quoted_list(names: &[String]) -> String {
+    if names.is_empty() {
+        return "no channel".to_string();
+    }
+    names
+        .iter()
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 impl ParseError {
@@ -50,8 +72,9 @@ pub enum ReadError {
     )]
     TooLarge { path: PathBuf, size: u64 },
     #[error(
-        "{}: unknown topography format (checked magic bytes and extension); supported: x3p, sdf, sur, plu, dat (MetroPro), opd, di, gsf, gwy, al3d, zon, txt/csv/asc, npy",
-        path.display()
+        "{}: unknown topography format (checked magic bytes and extension); supported: {}",
+        path.display(),
+        super::supported_formats()
     )]
     UnknownFormat { path: PathBuf },
     #[error("{} ({format}): {cause}", path.display())]

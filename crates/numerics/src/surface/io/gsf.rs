@@ -14,10 +14,20 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::limits::check_points;
+use super::reader::{Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const MAGIC: &[u8] = b"Gwyddion Simple Field 1.0\n";
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "gsf",
+    description: "Gwyddion Simple Field `.gsf`",
+    extensions: &["gsf"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` when `head` starts with the GSF magic line.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -133,6 +143,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit,
         data: TopographyData::Areal(map),
         channel,
+        channels: Vec::new(),
         metadata: fields,
     })
 }

@@ -17,12 +17,22 @@ use ndarray::Array2;
 
 use super::gsf::length_unit_factor;
 use super::limits::check_points;
+use super::reader::{pick_channel, Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const MAGIC: &[u8] = b"GWYP";
 /// Deepest object nesting accepted (real files nest 3–4 levels); bounds the recursion.
 const MAX_DEPTH: usize = 32;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "gwy",
+    description: "Gwyddion native `.gwy`",
+    extensions: &["gwy"],
+    magic: Some(matches_magic),
+    parser: Parser::Channels(parse_channel),
+};
 
 /// `true` when `head` starts with the GWY magic.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -249,19 +259,18 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
 pub fn parse_channel(bytes: &[u8], title: Option<&str>) -> Result<Topography, ParseError> {
     let container = read_container(bytes)?;
     let all = channels(&container);
-    let chosen = match title {
-        Some(t) => all.iter().find(|(_, name, _)| name == t),
+    let names: Vec<String> = all.iter().map(|(_, n, _)| n.clone()).collect();
+    let (_, name, field) = match title {
+        Some(t) => &all[pick_channel(&names, Some(t), &[])?],
         None => all
             .iter()
-            .find(|(_, _, f)| length_unit_factor(&unit_string(f, "si_unit_z")).is_some()),
+            .find(|(_, _, f)| length_unit_factor(&unit_string(f, "si_unit_z")).is_some())
+            .ok_or_else(|| {
+                ParseError::malformed(format!(
+                    "GWY: no channel has heights in a length unit (channels: {names:?})"
+                ))
+            })?,
     };
-    let (_, name, field) = chosen.ok_or_else(|| {
-        let names: Vec<&str> = all.iter().map(|(_, n, _)| n.as_str()).collect();
-        ParseError::malformed(format!(
-            "GWY: no {} height channel (channels: {names:?})",
-            title.map_or("length-valued".to_string(), |t| format!("`{t}`"))
-        ))
-    })?;
     let int = |key: &str| -> Result<usize, ParseError> {
         match field.get(key) {
             Some(GwyValue::Int(v)) if *v > 0 => usize::try_from(*v)
@@ -339,6 +348,7 @@ pub fn parse_channel(bytes: &[u8], title: Option<&str>) -> Result<Topography, Pa
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some(name.clone()),
+        channels: names,
         metadata,
     })
 }

@@ -18,6 +18,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::limits::check_points;
+use super::reader::{Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -25,6 +26,15 @@ use crate::surface::HeightMap;
 const MAGICS: [u32; 3] = [0x881B_036F, 0x881B_0370, 0x881B_0371];
 /// Phase values at or above this mark invalid points.
 const PHASE_INVALID_MIN: i32 = 2_147_483_640;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "metropro",
+    description: "Zygo MetroPro `.dat`",
+    extensions: &["dat"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` when `head` starts with a MetroPro magic number.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -182,6 +192,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some("phase".into()),
+        channels: Vec::new(),
         metadata,
     })
 }

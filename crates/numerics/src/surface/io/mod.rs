@@ -2,19 +2,27 @@
 //!
 //! Every reader turns bytes into a [`Topography`] in SI units (metres), with missing points as
 //! `NaN` (never zero). [`read_topography`] detects the format from magic bytes, then from the
-//! file extension, and wraps every failure in a [`ReadError`] that names the file.
+//! file extension, and wraps every failure in a [`ReadError`] that names the file. The formats
+//! are an open set: each reader file exports a [`Reader`] and [`READERS`] lists them.
 
 pub mod al3d;
 mod byte_cursor;
 mod error;
+mod frt;
 pub mod gsf;
 pub mod gwy;
 mod limits;
 pub mod metropro;
+mod mi;
 pub mod nanoscope;
+mod nid;
+mod nms;
 mod npy;
 pub mod opd;
+mod opdx;
+mod opdx_items;
 mod plu;
+mod reader;
 mod sdf;
 mod sur;
 mod text;
@@ -28,168 +36,76 @@ pub mod zon;
 
 pub use error::{ParseError, ReadError};
 pub use limits::MAX_POINTS;
-pub use topography::{LineScan, ScaleSource, Topography, TopographyData};
+pub use reader::{ChannelParseFn, ParseFn, Parser, Reader, HEIGHT_CHANNEL};
+pub use topography::{
+    LineScan, ScaleSource, Topography, TopographyData, METADATA_INSTRUMENT, METADATA_VENDOR,
+};
 
 use std::path::Path;
 
-/// A supported file format.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Format {
-    /// Zygo MetroPro `.dat`.
-    MetroPro,
-    /// Wyko/Veeco Vision `.opd`.
-    Opd,
-    /// Bruker Nanoscope `.di` / `.spm`.
-    Nanoscope,
-    /// Gwyddion Simple Field `.gsf`.
-    Gsf,
-    /// Gwyddion native `.gwy`.
-    Gwy,
-    /// Alicona `.al3d`.
-    Al3d,
-    /// Keyence `.zon`.
-    Zon,
-    /// ISO 25178-72 X3P: zip with `main.xml` and `bindata/`; int16/int32/float32/float64 heights,
-    /// validity bit mask, inline `DataList`; lateral offsets go to the metadata.
-    X3p,
-    /// ISO 25178-71 SDF: ASCII `aISO-1.0`/`aISO-2.0` (`BAD` = missing) or binary `bISO-1.0`.
-    Sdf,
-    /// Digital Surf `.sur` (uncompressed, int16/int32; non-measured points → NaN).
-    Sur,
-    /// NumPy `.npy` (f4/f8/i1/i2/i4/u1/u2/u4, either byte order): heights in metres, `NaN` =
-    /// missing. A plain `.npy` has no spacing: it is read as **1 pixel = 1 m** with
-    /// [`Topography::spacing`] = [`ScaleSource::Assumed`]; the caller must apply the real pixel
-    /// size.
-    Npy,
-    /// Sensofar `.plu` (float32 µm heights; 1 000 001 µm = not measured).
-    Plu,
-    /// Text/CSV: a matrix grid (header styles `h= w=` / `pixel size=` /
-    /// `height conversion factor (-> m)=`, or Gwyddion `# Width:` / `# Value units:`), x y z
-    /// triples, or a 2-column line scan (returned as [`TopographyData::Line`]). Without a
-    /// spacing or height unit in the file, 1 m is assumed and [`Topography::spacing`] /
-    /// [`Topography::height_unit`] say [`ScaleSource::Assumed`].
-    Text,
+/// Every reader, in detection order: the first whose magic bytes match a file reads it, else
+/// the first whose extensions hold the file's. Text and PLU come last: they have no magic.
+/// Adding a format is its own file, exporting a [`Reader`] as `READER`, a `mod` line and one
+/// line here.
+pub const READERS: &[Reader] = &[
+    metropro::READER,
+    opd::READER,
+    nanoscope::READER,
+    gsf::READER,
+    gwy::READER,
+    al3d::READER,
+    zon::READER,
+    x3p::READER,
+    sdf::READER,
+    sur::READER,
+    npy::READER,
+    nid::READER,
+    mi::READER,
+    frt::READER,
+    opdx::READER,
+    plu::READER,
+    nms::READER,
+    text::READER,
+];
+
+/// The reader named `name` (as [`Reader::name`] spells it).
+pub fn reader_named(name: &str) -> Option<&'static Reader> {
+    READERS.iter().find(|r| r.name == name)
 }
 
-impl Format {
-    /// Every supported format, in detection order.
-    pub const ALL: &'static [Format] = &[
-        Format::MetroPro,
-        Format::Opd,
-        Format::Nanoscope,
-        Format::Gsf,
-        Format::Gwy,
-        Format::Al3d,
-        Format::Zon,
-        Format::X3p,
-        Format::Sdf,
-        Format::Sur,
-        Format::Npy,
-        Format::Plu,
-        Format::Text,
-    ];
-
-    /// Short lowercase name ("x3p", "sdf", …).
-    pub fn name(self) -> &'static str {
-        match self {
-            Format::MetroPro => "metropro",
-            Format::Opd => "opd",
-            Format::Nanoscope => "nanoscope",
-            Format::Gsf => "gsf",
-            Format::Gwy => "gwy",
-            Format::Al3d => "al3d",
-            Format::Zon => "zon",
-            Format::X3p => "x3p",
-            Format::Sdf => "sdf",
-            Format::Sur => "sur",
-            Format::Npy => "npy",
-            Format::Plu => "plu",
-            Format::Text => "text",
-        }
-    }
-
-    /// `true` when the first bytes of a file identify this format.
-    fn matches_magic(self, head: &[u8]) -> bool {
-        match self {
-            Format::MetroPro => metropro::matches_magic(head),
-            Format::Opd => opd::matches_magic(head),
-            Format::Nanoscope => nanoscope::matches_magic(head),
-            Format::Gsf => gsf::matches_magic(head),
-            Format::Gwy => gwy::matches_magic(head),
-            Format::Al3d => al3d::matches_magic(head),
-            Format::Zon => zon::matches_magic(head),
-            Format::X3p => x3p::matches_magic(head),
-            Format::Sdf => sdf::matches_magic(head),
-            Format::Sur => sur::matches_magic(head),
-            Format::Npy => npy::matches_magic(head),
-            Format::Plu => false,
-            Format::Text => false,
-        }
-    }
-
-    /// `true` when the (lowercase) file extension belongs to this format.
-    fn matches_extension(self, ext: &str) -> bool {
-        match self {
-            Format::MetroPro => ext == "dat",
-            Format::Opd => ext == "opd",
-            Format::Nanoscope => matches!(ext, "di" | "spm"),
-            Format::Gsf => ext == "gsf",
-            Format::Gwy => ext == "gwy",
-            Format::Al3d => ext == "al3d",
-            Format::Zon => ext == "zon",
-            Format::X3p => ext == "x3p",
-            Format::Sdf => ext == "sdf",
-            Format::Sur => ext == "sur",
-            Format::Npy => ext == "npy",
-            Format::Plu => ext == "plu",
-            Format::Text => text::EXTENSIONS.contains(&ext),
-        }
-    }
-
-    /// The format named `name` (as [`Format::name`] spells it).
-    pub fn from_name(name: &str) -> Option<Format> {
-        Format::ALL.iter().copied().find(|f| f.name() == name)
-    }
-
-    /// Parses the whole file content with this format's reader, whatever its magic bytes say
-    /// (the fuzz targets reach each reader this way; files go through [`parse_topography`]).
-    pub fn parse(self, bytes: &[u8]) -> Result<Topography, ParseError> {
-        match self {
-            Format::MetroPro => metropro::parse(bytes),
-            Format::Opd => opd::parse(bytes),
-            Format::Nanoscope => nanoscope::parse(bytes),
-            Format::Gsf => gsf::parse(bytes),
-            Format::Gwy => gwy::parse(bytes),
-            Format::Al3d => al3d::parse(bytes),
-            Format::Zon => zon::parse(bytes),
-            Format::X3p => x3p::parse(bytes),
-            Format::Sdf => sdf::parse(bytes),
-            Format::Sur => sur::parse(bytes),
-            Format::Npy => npy::parse(bytes),
-            Format::Plu => plu::parse(bytes),
-            Format::Text => text::parse(bytes),
-        }
-    }
+/// The supported formats for an error message: "metropro (.dat), opd (.opd), …".
+pub fn supported_formats() -> String {
+    READERS
+        .iter()
+        .map(|r| format!("{} (.{})", r.name, r.extensions.join(", .")))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
-/// Detects the format of `bytes` (magic bytes first, then the extension of `path`).
-pub fn detect_format(path: &Path, bytes: &[u8]) -> Option<Format> {
+/// Detects the reader of `bytes` (magic bytes first, then the extension of `path`).
+pub fn detect_format(path: &Path, bytes: &[u8]) -> Option<&'static Reader> {
     let head = &bytes[..bytes.len().min(4096)];
-    if let Some(f) = Format::ALL.iter().copied().find(|f| f.matches_magic(head)) {
-        return Some(f);
+    if let Some(r) = READERS.iter().find(|r| r.matches_magic(head)) {
+        return Some(r);
     }
     let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-    Format::ALL
-        .iter()
-        .copied()
-        .find(|f| f.matches_extension(&ext))
+    READERS.iter().find(|r| r.matches_extension(&ext))
 }
 
 /// Reads a topography file from disk in any supported format ([`read_topography_bytes`], then
 /// [`parse_topography`]).
 pub fn read_topography(path: &Path) -> Result<Topography, ReadError> {
+    read_topography_channel(path, None)
+}
+
+/// Reads the channel named `channel` (`None`: the height channel) of a topography file
+/// ([`parse_topography_channel`]).
+pub fn read_topography_channel(
+    path: &Path,
+    channel: Option<&str>,
+) -> Result<Topography, ReadError> {
     let bytes = read_topography_bytes(path)?;
-    parse_topography(path, &bytes)
+    parse_topography_channel(path, &bytes, channel)
 }
 
 /// Largest topography file read, bytes: [`MAX_POINTS`] in the most verbose format (text, up to
@@ -265,20 +181,34 @@ pub fn declared_points(path: &Path) -> Option<usize> {
     let mut head = Vec::with_capacity(4096);
     let file = std::fs::File::open(path).ok()?;
     std::io::Read::read_to_end(&mut std::io::Read::take(file, 4096), &mut head).ok()?;
-    match detect_format(path, &head)? {
-        Format::X3p => x3p::declared_points(&read_topography_bytes(path).ok()?),
-        _ => None,
+    if detect_format(path, &head)?.name == x3p::READER.name {
+        x3p::declared_points(&read_topography_bytes(path).ok()?)
+    } else {
+        None
     }
 }
 
-/// Parses file content already in memory; `path` is used for format detection and errors only.
+/// Parses file content already in memory (the height channel); `path` is used for format
+/// detection and errors only.
 pub fn parse_topography(path: &Path, bytes: &[u8]) -> Result<Topography, ReadError> {
-    let format = detect_format(path, bytes).ok_or_else(|| ReadError::UnknownFormat {
+    parse_topography_channel(path, bytes, None)
+}
+
+/// Parses file content already in memory, reading the channel named `channel` (`None`: the
+/// height channel); an unknown name is an error listing the file's channels.
+pub fn parse_topography_channel(
+    path: &Path,
+    bytes: &[u8],
+    channel: Option<&str>,
+) -> Result<Topography, ReadError> {
+    let reader = detect_format(path, bytes).ok_or_else(|| ReadError::UnknownFormat {
         path: path.to_path_buf(),
     })?;
-    format.parse(bytes).map_err(|cause| ReadError::Parse {
-        path: path.to_path_buf(),
-        format: format.name(),
-        cause,
-    })
+    reader
+        .parse(bytes, channel)
+        .map_err(|cause| ReadError::Parse {
+            path: path.to_path_buf(),
+            format: reader.name,
+            cause,
+        })
 }

@@ -19,6 +19,7 @@ use ndarray::Array2;
 
 use super::gsf::length_unit_factor;
 use super::limits::check_points;
+use super::reader::{pick_channel, Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -26,6 +27,15 @@ const MAGIC: &[u8] = b"\\*File list";
 const END_MARKER: &[u8] = b"\\*File list end";
 /// Channels tried in order when none is requested (as SurfaceTopography does).
 const DEFAULT_CHANNELS: [&str; 2] = ["ZSensor", "Height"];
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "nanoscope",
+    description: "Bruker Nanoscope `.di` / `.spm`",
+    extensions: &["di", "spm"],
+    magic: Some(matches_magic),
+    parser: Parser::Channels(parse_channel),
+};
 
 /// `true` when `head` starts with the Nanoscope header.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -129,20 +139,8 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
         .filter(|s| s.name == "Ciao image list")
         .map(|s| (s, channel_name(s).unwrap_or_default()))
         .collect();
-    let (image, name) = match channel {
-        Some(wanted) => images.iter().find(|(_, n)| n == wanted),
-        None => DEFAULT_CHANNELS
-            .iter()
-            .find_map(|d| images.iter().find(|(_, n)| n == d))
-            .or(images.first()),
-    }
-    .ok_or_else(|| {
-        let names: Vec<&str> = images.iter().map(|(_, n)| n.as_str()).collect();
-        ParseError::malformed(format!(
-            "Nanoscope channel `{}` not found (channels: {names:?})",
-            channel.unwrap_or("default")
-        ))
-    })?;
+    let names: Vec<String> = images.iter().map(|(_, n)| n.clone()).collect();
+    let (image, name) = &images[pick_channel(&names, channel, &DEFAULT_CHANNELS)?];
 
     let offset = usize_field(image, "Data offset", name)?;
     let bpp = usize_field(image, "Bytes/pixel", name)?;
@@ -259,6 +257,7 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some(name.clone()),
+        channels: names,
         metadata,
     })
 }

@@ -21,10 +21,20 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
+use super::reader::{Parser, Reader};
 use super::{LineScan, ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const MAGIC: &[u8] = b"\x93NUMPY";
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "npy",
+    description: "NumPy `.npy` (heights in metres, no lateral calibration)",
+    extensions: &["npy"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` for the NumPy magic string.
 pub(crate) fn matches_magic(head: &[u8]) -> bool {
@@ -102,6 +112,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::Assumed,
         data,
         channel: None,
+        channels: Vec::new(),
         metadata,
     })
 }

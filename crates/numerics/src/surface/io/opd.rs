@@ -18,6 +18,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::limits::check_points;
+use super::reader::{Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -27,6 +28,15 @@ const ENTRY_SIZE: usize = 24;
 const INVALID_MAGNITUDE: f32 = 1e38;
 /// Names of the height (OPD) array block.
 const HEIGHT_BLOCKS: [&str; 4] = ["RAW_DATA", "RAW DATA", "OPD", "Raw"];
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "opd",
+    description: "Wyko/Veeco Vision `.opd`",
+    extensions: &["opd"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` when `head` starts with the OPD directory entry.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -190,6 +200,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some(array.name.clone()),
+        channels: Vec::new(),
         metadata,
     })
 }

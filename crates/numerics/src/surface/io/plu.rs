@@ -21,6 +21,7 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
+use super::reader::{Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -29,6 +30,15 @@ const DATA_DIMENSIONS_OFFSET: usize = 500;
 /// Sensofar's marker for a non-measured point, in µm.
 const NOT_MEASURED_UM: f64 = 1_000_001.0;
 const MICROMETRE: f64 = 1e-6;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "plu",
+    description: "Sensofar `.plu`",
+    extensions: &["plu"],
+    magic: None,
+    parser: Parser::Single(parse),
+};
 
 /// Parses a Sensofar `.plu` file.
 pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
@@ -101,6 +111,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: None,
+        channels: Vec::new(),
         metadata: meta,
     })
 }

@@ -18,8 +18,18 @@ use ndarray::Array2;
 
 use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
 use super::limits::check_points;
+use super::reader::{Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "sdf",
+    description: "ISO 25178-71 SDF (ASCII `aISO-1.0`/`aISO-2.0` or binary `bISO-1.0`)",
+    extensions: &["sdf"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` for an ASCII or binary ISO SDF header.
 pub(crate) fn matches_magic(head: &[u8]) -> bool {
@@ -125,6 +135,7 @@ impl SdfHeader {
             height_unit: ScaleSource::File,
             data: TopographyData::Areal(map),
             channel: None,
+            channels: Vec::new(),
             metadata,
         })
     }

@@ -27,11 +27,21 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::byte_cursor::{check_block_size, decode_samples, ByteCursor, Endian, SampleType};
+use super::reader::{Parser, Reader};
 use super::text_units::length_unit_to_metres;
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 const HEADER_SIZE: usize = 512;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "sur",
+    description: "Digital Surf `.sur` (uncompressed)",
+    extensions: &["sur"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` for a Digital Surf signature.
 pub(crate) fn matches_magic(head: &[u8]) -> bool {
@@ -177,6 +187,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: None,
+        channels: Vec::new(),
         metadata: meta,
     })
 }

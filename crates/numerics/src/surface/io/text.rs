@@ -30,12 +30,22 @@ use std::collections::BTreeMap;
 use ndarray::Array2;
 
 use super::limits::{check_points, MAX_POINTS};
+use super::reader::{Parser, Reader};
 use super::text_header::{column_units, TextHeader};
 use super::{LineScan, ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
 /// File extensions handled by this reader.
 pub(crate) const EXTENSIONS: &[&str] = &["txt", "csv", "asc", "xyz", "tsv"];
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "text",
+    description: "text/CSV: a matrix grid, x y z triples or a 2-column line scan",
+    extensions: EXTENSIONS,
+    magic: None,
+    parser: Parser::Single(parse),
+};
 
 /// Parses a text topography file.
 pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
@@ -161,6 +171,7 @@ fn line_scan(rows: &[f64], column_header: Option<&str>) -> Result<Topography, Pa
         height_unit: source,
         data: TopographyData::Line(LineScan { x, z }),
         channel: None,
+        channels: Vec::new(),
         metadata,
     })
 }
@@ -200,6 +211,7 @@ fn xyz_grid(rows: &[f64]) -> Result<Option<Topography>, ParseError> {
         height_unit: ScaleSource::Assumed,
         data: TopographyData::Areal(map),
         channel: None,
+        channels: Vec::new(),
         metadata,
     }))
 }
@@ -272,6 +284,7 @@ fn matrix(rows: Vec<f64>, columns: usize, header: &TextHeader) -> Result<Topogra
         height_unit,
         data: TopographyData::Areal(map),
         channel: header.channel.clone(),
+        channels: Vec::new(),
         metadata,
     })
 }

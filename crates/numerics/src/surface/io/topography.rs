@@ -39,8 +39,18 @@ pub struct Topography {
     pub spacing: ScaleSource,
     /// Where the height unit came from.
     pub height_unit: ScaleSource,
-    /// Name of the channel read, for multi-channel files (e.g. "ZSensor").
+    /// Name of the channel read (e.g. "ZSensor"); set by every reader of the registry
+    /// ([`super::Reader::parse`]), the one channel of a single-channel file included.
     pub channel: Option<String>,
-    /// Free-form metadata from the file header (instrument, date, original units, …).
+    /// Every channel of the file, in file order (filled by [`super::Reader::parse`]).
+    pub channels: Vec<String>,
+    /// Free-form metadata from the file header (date, original units, …); the keys
+    /// [`METADATA_VENDOR`] and [`METADATA_INSTRUMENT`] name the maker and the instrument when
+    /// the file says.
     pub metadata: BTreeMap<String, String>,
 }
+
+/// Metadata key of the instrument's maker ("Zygo", "Bruker").
+pub const METADATA_VENDOR: &str = "vendor";
+/// Metadata key of the instrument model or name, as the file states it.
+pub const METADATA_INSTRUMENT: &str = "instrument";

@@ -31,6 +31,7 @@ use zip::ZipArchive;
 
 use super::byte_cursor::{decode_samples, Endian, SampleType};
 use super::limits::{check_points, MAX_POINTS};
+use super::reader::{Parser, Reader};
 use super::x3p_checksum::{checksum_file_sum, verify};
 use super::x3p_xml::X3pDocument;
 use super::{LineScan, ParseError, ScaleSource, Topography, TopographyData};
@@ -46,6 +47,15 @@ const MAX_MAIN_XML_BYTES: usize = 64 << 20;
 
 /// Zip local-file-header magic.
 const ZIP_MAGIC: &[u8] = b"PK\x03\x04";
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "x3p",
+    description: "ISO 25178-72 X3P (zip with `main.xml` and `bindata/`)",
+    extensions: &["x3p"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` for a zip archive whose first entries look like an X3P container.
 pub(crate) fn matches_magic(head: &[u8]) -> bool {
@@ -189,6 +199,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data,
         channel: None,
+        channels: Vec::new(),
         metadata,
     })
 }

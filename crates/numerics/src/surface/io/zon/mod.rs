@@ -24,6 +24,7 @@ use ndarray::Array2;
 mod archive;
 
 use super::limits::{check_points, MAX_POINTS};
+use super::reader::{Parser, Reader};
 use super::{ParseError, ScaleSource, Topography, TopographyData};
 use crate::surface::HeightMap;
 
@@ -38,6 +39,15 @@ const INVALID_STATUS_BITS: u8 = 0x03;
 /// room for padded rows), bounding the memory a corrupted or hostile zstd frame can make us
 /// allocate.
 const MAX_MEMBER_BYTES: u64 = MAX_POINTS as u64 * 8;
+
+/// The registry entry of this format ([`super::READERS`]).
+pub(crate) const READER: Reader = Reader {
+    name: "zon",
+    description: "Keyence `.zon`",
+    extensions: &["zon"],
+    magic: Some(matches_magic),
+    parser: Parser::Single(parse),
+};
 
 /// `true` when `head` starts with a ZON magic.
 pub(super) fn matches_magic(head: &[u8]) -> bool {
@@ -240,6 +250,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         height_unit: ScaleSource::File,
         data: TopographyData::Areal(map),
         channel: Some("height".into()),
+        channels: Vec::new(),
         metadata,
     })
 }
