@@ -6,7 +6,8 @@
 //!   knows nothing of tribology beyond the node-kind trait.
 //!
 //! This crate owns the node kinds that plug tribology into the engine ([`nodes`]) and the
-//! report pages ([`report`]); the `asperity` binary is the command line. See `ARCHITECTURE.md`
+//! report pages ([`report`]), and the steps of a study run every front end shares
+//! ([`study_run`]); the `asperity` binary is the command line, the `python/` package another. See `ARCHITECTURE.md`
 //! for the code map and invariants.
 
 #![deny(unsafe_code)]
@@ -17,6 +18,7 @@ pub use asperity_numerics::{contact, fft2, friction, materials, surface};
 
 pub mod nodes;
 pub mod report;
+pub mod study_run;
 
 /// The tool version recorded in cache manifests and Parquet metadata.
 pub const TOOL_VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -86,10 +86,7 @@ struct CacheArg {
 
 impl CacheArg {
     fn dir(&self) -> PathBuf {
-        self.cache
-            .clone()
-            .or_else(|| std::env::var_os("ASPERITY_CACHE").map(PathBuf::from))
-            .unwrap_or_else(|| PathBuf::from("cache"))
+        asperity::study_run::cache_dir(self.cache.clone())
     }
 
     fn open(&self) -> Result<Cache> {
@@ -138,10 +135,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
 }
 
 fn load(study: &std::path::Path, set: &SetArg) -> Result<(Study<TribologyNode>, Plan)> {
-    let mut study = Study::<TribologyNode>::load(study)?;
-    study.apply_overrides(&set.overrides)?;
-    let plan = Plan::build(&study)?;
-    Ok((study, plan))
+    Ok(asperity::study_run::load_study(study, &set.overrides)?)
 }
 
 fn warn_unused(plan: &Plan) {

@@ -5,12 +5,11 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
-use asperity::engine::execute::{
-    execute, execute_nodes, ExecuteOptions, NodeOutcome, NodeStatus, RunReport,
-};
-use asperity::engine::output::{check_target, OutputMetadata, ResultSet};
+use asperity::engine::execute::{execute, execute_nodes, NodeOutcome, NodeStatus, RunReport};
+use asperity::engine::output::check_target;
 use asperity::engine::plan::Plan;
 use asperity::engine::shard::{Shard, ShardPlan};
+use asperity::study_run::{default_memory_budget, default_out, execute_options, write_results};
 
 use super::progress::BarProgress;
 use super::CacheArg;
@@ -56,18 +55,13 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     let (study, plan) = super::load(&args.study, &args.set)?;
     super::warn_unused(&plan);
     let cache = args.cache.open()?;
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("results").join(study.name()));
-    let options = ExecuteOptions {
-        tables: study.outputs.clone(),
-        memory_budget: args
-            .memory_mib
+    let out = args.out.clone().unwrap_or_else(|| default_out(&study));
+    let options = execute_options(
+        &study,
+        args.memory_mib
             .map(|m| m.saturating_mul(1 << 20))
             .unwrap_or_else(default_memory_budget),
-        tool_version: asperity::TOOL_VERSION.to_string(),
-    };
+    );
     if args.shard.is_none() {
         check_target(&out)?;
     }
@@ -91,17 +85,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     }
     let report = execute(&plan, &cache, &options, &progress)?;
     progress.finish();
-    let meta = OutputMetadata {
-        study: study.name().to_string(),
-        study_file_hash: study.file_hash.clone(),
-        tool_version: asperity::TOOL_VERSION.to_string(),
-        overrides: study.overrides.clone(),
-    };
-    let mut set = ResultSet::stage(&out)?;
-    set.write_tables(&plan, &report, &study.outputs, &meta)?;
-    set.write_summaries(&plan, &report, &study.file.summaries, &meta)?;
-    set.write_timings(&plan, &report, &meta)?;
-    let files = set.publish()?;
+    let files = write_results(&study, &plan, &report, &out)?;
     report_failures(&plan, &report);
     println!(
         "{}: {} computed, {} reused from cache, {} failed, {} skipped{} in {:.2} s",
@@ -151,17 +135,4 @@ fn report_failures(plan: &Plan, report: &RunReport) {
             }
         }
     }
-}
-
-/// 60 % of MemAvailable from /proc/meminfo, or 4 GiB when it cannot be read.
-fn default_memory_budget() -> u64 {
-    std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("MemAvailable:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|kb| kb.parse::<u64>().ok())
-        })
-        .map_or(4 << 30, |kb| kb * 1024 / 10 * 6)
 }

@@ -21,11 +21,15 @@ use crate::engine::study::{ResolveContext, SpecError};
 use crate::engine::value::Field;
 use crate::units::format_number;
 
-pub use contact::{ContactSpec, ContactTask, CONTACT_KIND_VERSION};
-pub use friction::{friction_models_markdown, FrictionSpec, FrictionTask, FRICTION_KIND_VERSION};
+pub use contact::{final_step_metrics, ContactSpec, ContactTask, CONTACT_KIND_VERSION};
+pub use friction::{
+    friction_models_markdown, FrictionSpec, FrictionTask, DEFAULT_ADHESION_ENERGY,
+    DEFAULT_EQUILIBRIUM_DISTANCE, FRICTION_KIND_VERSION,
+};
 pub use material_spec::{MaterialMapping, MaterialSpec, ResolvedMaterial};
 pub use surface::{
-    AnisotropySpec, FileSpec, SurfaceSpec, SurfaceTask, SyntheticSpec, SURFACE_KIND_VERSION,
+    apply_lateral_calibration, surface_statistics, AnisotropySpec, FileSpec, LateralCalibration,
+    SurfaceSpec, SurfaceTask, SyntheticSpec, SURFACE_KIND_VERSION,
 };
 
 /// A node of a study: `name: {<kind>: {...}}`.

@@ -7,8 +7,13 @@ use std::path::{Path, PathBuf};
 
 use super::architecture::rust_files;
 
-/// The source folders of the three crates.
-const CRATES: [&str; 3] = ["crates/numerics/src", "crates/engine/src", "src"];
+/// The source folders of the three crates and of the Python bindings.
+const CRATES: [&str; 4] = [
+    "crates/numerics/src",
+    "crates/engine/src",
+    "src",
+    "python/src",
+];
 
 /// Longest source file, in lines (tests included: a file is read whole).
 const MAX_FILE_LINES: usize = 600;

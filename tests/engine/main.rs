@@ -2,6 +2,7 @@
 
 mod architecture;
 mod cache_policy;
+mod cancellation;
 mod code_shape;
 mod engine_end_to_end;
 mod flagged_status;

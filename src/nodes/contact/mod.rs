@@ -26,7 +26,8 @@ use crate::units::{format_number, Dimension, Pressure, Quantity};
 
 mod results;
 
-use results::{final_step_metrics, load_curve_table, store_fields};
+pub use results::final_step_metrics;
+use results::{load_curve_table, store_fields};
 
 pub(crate) const KIND: &str = "contact";
 pub(crate) const TABLE: &str = "contacts";

@@ -10,8 +10,9 @@ use crate::engine::artifact::{Artifact, Table};
 use crate::engine::value::Field;
 use crate::units::Dimension;
 
-/// The `contacts` row: the final load step, the composite modulus and the grid.
-pub(super) fn final_step_metrics(
+/// The `contacts` row: the final load step, the composite modulus and the grid (also the
+/// scalars of the Python package's `contact`).
+pub fn final_step_metrics(
     last: &LoadStep,
     composite_modulus: f64,
     (dx, dy): (f64, f64),

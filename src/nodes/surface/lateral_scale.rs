@@ -65,7 +65,7 @@ impl schemars::JsonSchema for LateralLengths {
 
 /// What the node states about the lateral scale.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum LateralCalibration {
+pub enum LateralCalibration {
     /// `pixel_size`: [dx, dy] (m).
     PixelSize([f64; 2]),
     /// `size`: [Lx, Ly] (m) of the whole map as read, dx = Lx/nx.
@@ -92,7 +92,7 @@ impl LateralCalibration {
 
 /// The map with its lateral scale settled: the file's, the node's (when the file has none, or
 /// `override_file_spacing`), or an error.
-pub(crate) fn apply_lateral_calibration(
+pub fn apply_lateral_calibration(
     map: HeightMap,
     file_scale: ScaleSource,
     given: Option<LateralCalibration>,

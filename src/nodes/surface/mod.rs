@@ -26,6 +26,7 @@ pub use synthetic::{AnisotropySpec, SyntheticSpec};
 pub use twin::TwinSpec;
 
 use lateral_scale::lateral_scale_warning;
+pub use lateral_scale::{apply_lateral_calibration, LateralCalibration};
 use measured::MeasuredSource;
 use twin::TwinSource;
 
@@ -105,6 +106,14 @@ impl SurfaceTask {
                 .map(|(map, extra, flags)| (map, Boundary::Periodic, extra, flags)),
         }
     }
+}
+
+/// The metrics of a `surfaces` row for `map` (amplitude, hybrid, spectral and summit
+/// statistics; see `metrics`), the one computation the surface node and the Python package
+/// share. `boundary` is [`Boundary::Periodic`] for a synthetic map, [`Boundary::Open`] for a
+/// measured one.
+pub fn surface_statistics(map: &HeightMap, boundary: Boundary) -> Result<Vec<Field>, NodeError> {
+    metrics::surface_report(map, boundary).map(|report| report.metrics)
 }
 
 impl NodeTask for SurfaceTask {

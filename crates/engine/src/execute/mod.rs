@@ -32,6 +32,12 @@ pub trait Progress: Sync {
     fn finished(&self, node: &PlannedNode, status: &NodeStatus);
     /// Something the user should know that is not a failure (a corrupt entry was discarded, …).
     fn warn(&self, message: &str);
+    /// `true` once the caller wants the run to stop (Ctrl-C): no further instance is started,
+    /// the running ones finish and are stored, so the cache holds only complete entries. The
+    /// instances never started have no outcome and [`RunReport::cancelled`] is set.
+    fn cancelled(&self) -> bool {
+        false
+    }
 }
 
 /// A [`Progress`] that ignores everything.
@@ -67,13 +73,15 @@ pub struct RunReport {
     pub flagged: usize,
     /// Corrupt cache entries found, discarded and recomputed.
     pub discarded: usize,
+    /// The run stopped early on [`Progress::cancelled`]: some needed instances never ran.
+    pub cancelled: bool,
     pub wall_seconds: f64,
 }
 
 impl RunReport {
     /// `true` when every needed instance computed (flagged ones included).
     pub fn all_ok(&self) -> bool {
-        self.failed == 0 && self.skipped == 0
+        self.failed == 0 && self.skipped == 0 && !self.cancelled
     }
 }
 
@@ -170,6 +178,7 @@ pub fn execute_nodes(
         mut report,
         ..
     } = shared.into_inner().unwrap_or_else(|p| p.into_inner());
+    report.cancelled = progress.cancelled() && needed.iter().any(|&i| outcomes[i].is_none());
     report.outcomes = outcomes;
     report.wall_seconds = start.elapsed().as_secs_f64();
     Ok(report)
@@ -242,6 +251,9 @@ impl<'a> RunContext<'a> {
     }
 
     fn take_ready(&self) -> Option<usize> {
+        if self.progress.cancelled() {
+            return None;
+        }
         let mut shared = self.lock();
         if shared.running >= self.slots {
             return None;

@@ -1,0 +1,203 @@
+//! `contact`: the elastic–perfectly-plastic FFT boundary-element solver of a study's `contact`
+//! node on arrays. The problem is built as the node builds it (composite gap of one map
+//! against a rigid flat or of two maps, the bodies' elasticity, the flow pressure, the
+//! boundary) and solved through the same load steps with the same options, so equal inputs give
+//! the node's numbers bit for bit.
+
+use asperity::contact::{
+    BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
+    FieldRequest, LoadStep, SolverOptions,
+};
+use asperity::engine::value::Value;
+use asperity::materials::find_material;
+use asperity::nodes::final_step_metrics;
+use numpy::{IntoPyArray, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::guard::{compute, value_error};
+use crate::surface::height_map;
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(contact, m)?)?;
+    m.add_function(wrap_pyfunction!(material, m)?)?;
+    m.add("DEFAULT_TOLERANCE", SolverOptions::default().tolerance)?;
+    Ok(())
+}
+
+/// A built-in material by name or alias (case-insensitive): its constants in SI and sources.
+#[pyfunction]
+fn material<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyDict>> {
+    let m = find_material(name).map_err(|e| value_error("material", e))?;
+    let d = PyDict::new(py);
+    d.set_item("name", m.name)?;
+    d.set_item("youngs_modulus", m.youngs_modulus)?;
+    d.set_item("poisson_ratio", m.poisson_ratio)?;
+    d.set_item("hardness", m.hardness)?;
+    d.set_item("flow_pressure", m.flow_pressure)?;
+    d.set_item("source", m.source)?;
+    Ok(d)
+}
+
+/// A body `(E, ν)` in Pa and 1.
+fn body((youngs_modulus, poisson_ratio): (f64, f64)) -> BodyElasticity {
+    BodyElasticity::Isotropic {
+        youngs_modulus,
+        poisson_ratio,
+    }
+}
+
+/// The contact problem: lower map (against a flat, or against the upper map), the bodies and
+/// p_lim (Pa, +∞ elastic).
+struct Setup {
+    problem: ContactProblem,
+    composite_modulus: f64,
+    spacing: (f64, f64),
+}
+
+fn setup(
+    lower: asperity::surface::HeightMap,
+    upper: Option<(asperity::surface::HeightMap, (f64, f64))>,
+    lower_body: (f64, f64),
+    flow_pressure: f64,
+    periodic: bool,
+) -> PyResult<Setup> {
+    let (gap, upper_body) = match &upper {
+        Some((map, e)) => (
+            CompositeGap::from_surfaces(&lower, map).map_err(|e| value_error("upper", e))?,
+            body(*e),
+        ),
+        None => (
+            CompositeGap::against_flat(&lower).map_err(|e| value_error("lower", e))?,
+            BodyElasticity::Rigid,
+        ),
+    };
+    let material = ContactMaterial::new(body(lower_body), upper_body, flow_pressure)
+        .map_err(|e| value_error("lower_material", e))?;
+    let boundary = if periodic {
+        Boundary::Periodic
+    } else {
+        Boundary::NonPeriodic
+    };
+    Ok(Setup {
+        problem: ContactProblem::new(gap, material, boundary),
+        composite_modulus: material.composite_modulus(),
+        spacing: (lower.dx(), lower.dy()),
+    })
+}
+
+/// Solves the load steps `nominal_pressures` (Pa, ascending); see `asperity.contact`.
+#[pyfunction]
+#[pyo3(signature = (lower, dx, dy, lower_body, nominal_pressures, flow_pressure, upper=None, upper_body=None, periodic=true, tolerance=None))]
+#[allow(clippy::too_many_arguments)]
+fn contact<'py>(
+    py: Python<'py>,
+    lower: PyReadonlyArray2<'py, f64>,
+    dx: f64,
+    dy: f64,
+    lower_body: (f64, f64),
+    nominal_pressures: Vec<f64>,
+    flow_pressure: f64,
+    upper: Option<PyReadonlyArray2<'py, f64>>,
+    upper_body: Option<(f64, f64)>,
+    periodic: bool,
+    tolerance: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let lower = height_map("lower", &lower, dx, dy)?;
+    let upper = match (upper, upper_body) {
+        (Some(h), Some(e)) => Some((height_map("upper", &h, dx, dy)?, e)),
+        (None, None) => None,
+        _ => {
+            return Err(value_error(
+                "upper_material",
+                "an upper surface needs its material, and a material needs the upper surface",
+            ))
+        }
+    };
+    check_pressures(&nominal_pressures, flow_pressure)?;
+    let options = SolverOptions {
+        tolerance: tolerance.unwrap_or(SolverOptions::default().tolerance),
+        ..SolverOptions::default()
+    };
+    let (row, curve, fields) = compute(py, || {
+        let s = setup(lower, upper, lower_body, flow_pressure, periodic)?;
+        let mut solver =
+            ContactSolver::new(s.problem, options).map_err(|e| value_error("tolerance", e))?;
+        let curve = solver
+            .solve_load_steps(&nominal_pressures)
+            .map_err(|e| value_error("nominal_pressures", e))?;
+        let last = curve
+            .steps
+            .last()
+            .ok_or_else(|| value_error("nominal_pressures", "needs at least one pressure (Pa)"))?;
+        let row = final_step_metrics(last, s.composite_modulus, s.spacing);
+        let fields = solver.last_fields(FieldRequest::ALL);
+        Ok((row, curve, fields))
+    })?;
+    let d = PyDict::new(py);
+    for field in row {
+        let key = field.column_name();
+        match field.value {
+            Value::Float(v) => d.set_item(key, v)?,
+            Value::Int(v) => d.set_item(key, v)?,
+            Value::Bool(v) => d.set_item(key, v)?,
+            Value::Text(v) => d.set_item(key, v)?,
+        }
+    }
+    let steps = curve.steps.iter().map(step_dict).collect::<Vec<_>>();
+    d.set_item("load_curve", steps.into_pyobject(py)?)?;
+    if let Some(f) = fields {
+        let named = [
+            ("pressure", f.pressure),
+            ("gap", f.gap),
+            ("deformation_lower", f.deformation_first),
+            ("deformation_upper", f.deformation_second),
+            ("plastic_penetration", f.plastic_penetration),
+        ];
+        for (name, array) in named {
+            if let Some(a) = array {
+                d.set_item(name, a.into_pyarray(py))?;
+            }
+        }
+    }
+    Ok(d)
+}
+
+/// Pressures must be finite, > 0, ascending and below the flow pressure (as in a study).
+fn check_pressures(pressures: &[f64], flow_pressure: f64) -> PyResult<()> {
+    if pressures.is_empty() {
+        return Err(value_error(
+            "nominal_pressures",
+            "needs at least one pressure (Pa)",
+        ));
+    }
+    let mut previous = 0.0;
+    for (i, &p) in pressures.iter().enumerate() {
+        if !(p > previous && p < flow_pressure) {
+            return Err(value_error(
+                &format!("nominal_pressures[{i}]"),
+                format!("{p:e} Pa is out of range: pressures must ascend, be > 0 Pa and stay below the flow pressure ({flow_pressure:e} Pa)"),
+            ));
+        }
+        previous = p;
+    }
+    Ok(())
+}
+
+/// One load step's results (SI; column names as in `contacts_load_curve`).
+fn step_dict(s: &LoadStep) -> std::collections::BTreeMap<&'static str, f64> {
+    [
+        ("nominal_pressure_Pa", s.nominal_pressure),
+        ("area_fraction", s.area_fraction),
+        ("mean_contact_pressure_Pa", s.mean_contact_pressure),
+        ("stress_ratio", s.stress_ratio),
+        ("plastic_area_share", s.plastic_area_share),
+        ("mean_separation_m", s.mean_separation),
+        ("max_elastic_deformation_m", s.max_elastic_deformation),
+        ("approach_m", s.approach),
+        ("iterations", s.iterations as f64),
+        ("residual", s.residuals.max()),
+    ]
+    .into_iter()
+    .collect()
+}

@@ -1,0 +1,254 @@
+//! Friction on numbers, bound thinly through the law registry and the highest-level entry points
+//! of the numerics, so the binding follows the friction laws as they are added: a law is built
+//! by name from the registry (`friction::find_law`, parameters at their defaults unless given),
+//! then either the statistical static friction coefficient μ_s of a rough surface
+//! (`friction::static_friction_curve`) from its summit statistics at nominal pressures, or the
+//! per-spot model on a contact solution (`friction::per_spot_friction` over `contact_spots` and
+//! the Lennard-Jones adhesion across the gap), as a study's friction node applies them.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use asperity::friction::contact_spots::{adhesion_from_gap, contact_spots};
+use asperity::friction::{
+    find_law, law_names, per_spot_friction as spot_friction, static_friction_curve,
+    AdhesionBeyondFits, AdhesionParameters, Connectivity, FrictionLaw, LawInputs, Material,
+    SolveSettings, SpotLoad, StatisticalModel, SummitStatistics,
+};
+use asperity::nodes::{DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE};
+use numpy::PyReadonlyArray2;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::guard::{compute, value_error};
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(static_friction, m)?)?;
+    m.add_function(wrap_pyfunction!(per_spot_friction, m)?)?;
+    m.add("DEFAULT_ADHESION_ENERGY", DEFAULT_ADHESION_ENERGY)?;
+    m.add("DEFAULT_EQUILIBRIUM_DISTANCE", DEFAULT_EQUILIBRIUM_DISTANCE)?;
+    Ok(())
+}
+
+/// A law parameter as Python gives it: a number (SI) or one of a choice's options.
+#[derive(FromPyObject)]
+enum Parameter {
+    Number(f64),
+    Choice(String),
+}
+
+/// The law `model` of the registry, built for `material` with the softer body's yield strength
+/// Y (Pa; default Tabor's H/2.8) and shear strength k (Pa; default Y/√3) and `parameters`
+/// overriding the law's defaults.
+fn build_law(
+    model: &str,
+    material: Material,
+    yield_strength: Option<f64>,
+    shear_strength: Option<f64>,
+    parameters: HashMap<String, Parameter>,
+) -> PyResult<Arc<dyn FrictionLaw>> {
+    let descriptor = find_law(model).ok_or_else(|| {
+        value_error(
+            "model",
+            format!(
+                "'{model}' is not a friction law; expected one of: {}",
+                law_names().join(", ")
+            ),
+        )
+    })?;
+    let mut values = descriptor.default_parameters();
+    for (name, value) in parameters {
+        let spec = descriptor.parameter(&name).ok_or_else(|| {
+            let known: Vec<_> = descriptor.parameters.iter().map(|p| p.name).collect();
+            value_error(
+                "parameters",
+                format!(
+                    "'{model}' has no parameter '{name}'; its parameters: {}",
+                    known.join(", ")
+                ),
+            )
+        })?;
+        let parsed = match value {
+            Parameter::Number(v) => spec.number(v),
+            Parameter::Choice(text) => spec.choice(&text),
+        }
+        .map_err(|e| value_error(&format!("parameters.{name}"), e))?;
+        values.set(&name, parsed);
+    }
+    let yield_strength = yield_strength.unwrap_or_else(|| material.tabor_yield_strength());
+    let inputs = LawInputs {
+        material,
+        yield_strength,
+        shear_strength: shear_strength.unwrap_or(yield_strength / 3f64.sqrt()),
+        parameters: values,
+    };
+    (descriptor.build)(&inputs)
+        .map(Arc::from)
+        .map_err(|e| value_error("model", e))
+}
+
+/// Summit statistics from `(m0, m2, m4)` (m², 1, 1/m²) or `(σ_s, R, η)` (m, m, 1/m²).
+fn summits(
+    moments: Option<(f64, f64, f64)>,
+    explicit: Option<(f64, f64, f64)>,
+) -> PyResult<SummitStatistics> {
+    match (moments, explicit) {
+        (Some((m0, m2, m4)), None) => {
+            SummitStatistics::from_moments(m0, m2, m4).map_err(|e| value_error("moments", e))
+        }
+        (None, Some((sigma, radius, density))) => {
+            SummitStatistics::from_explicit(sigma, radius, density)
+                .map_err(|e| value_error("summits", e))
+        }
+        _ => Err(value_error(
+            "moments",
+            "give either the spectral moments (m0, m2, m4) or the summits (sigma_s, radius, density)",
+        )),
+    }
+}
+
+/// μ_s and the separation solve at each nominal pressure (Pa); see `asperity.static_friction`.
+#[pyfunction]
+#[pyo3(signature = (model, composite_modulus, hardness, poisson_ratio, nominal_pressures, nominal_area, moments=None, summits_explicit=None, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE, parameters=HashMap::new(), yield_strength=None, shear_strength=None))]
+#[allow(clippy::too_many_arguments)]
+fn static_friction<'py>(
+    py: Python<'py>,
+    model: &str,
+    composite_modulus: f64,
+    hardness: f64,
+    poisson_ratio: f64,
+    nominal_pressures: Vec<f64>,
+    nominal_area: f64,
+    moments: Option<(f64, f64, f64)>,
+    summits_explicit: Option<(f64, f64, f64)>,
+    adhesion_energy: f64,
+    equilibrium_distance: f64,
+    parameters: HashMap<String, Parameter>,
+    yield_strength: Option<f64>,
+    shear_strength: Option<f64>,
+) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    let summits = summits(moments, summits_explicit)?;
+    let material = Material::new(composite_modulus, hardness, poisson_ratio)
+        .map_err(|e| value_error("material", e))?;
+    let law = build_law(model, material, yield_strength, shear_strength, parameters)?;
+    let laws = law.asperity_laws().ok_or_else(|| {
+        value_error("model", format!("'{model}' has no single-asperity laws for the statistical method; use per_spot_friction"))
+    })?;
+    let adhesion = AdhesionParameters::new(adhesion_energy, equilibrium_distance)
+        .map_err(|e| value_error("adhesion_energy", e))?;
+    let forces: Vec<f64> = nominal_pressures.iter().map(|p| p * nominal_area).collect();
+    let results = compute(py, || {
+        let model = StatisticalModel::new(
+            laws,
+            summits,
+            material,
+            adhesion,
+            nominal_area,
+            AdhesionBeyondFits::default(),
+        )
+        .map_err(|e| value_error("nominal_area", e))?;
+        static_friction_curve(&model, &forces, &SolveSettings::default())
+            .map_err(|e| value_error("model", e))
+    })?;
+    results
+        .into_iter()
+        .zip(&nominal_pressures)
+        .map(|(r, p)| {
+            let r = r.map_err(|e| value_error("nominal_pressures", format!("at {p:e} Pa: {e}")))?;
+            let d = PyDict::new(py);
+            d.set_item("nominal_pressure_Pa", p)?;
+            d.set_item("mu_s", r.mu_s)?;
+            d.set_item("static_friction_force_N", r.static_friction_force)?;
+            d.set_item("external_load_N", r.external_load)?;
+            d.set_item("contact_load_N", r.contact_load)?;
+            d.set_item("adhesion_force_N", r.adhesion_force)?;
+            d.set_item("real_contact_area_m2", r.real_contact_area)?;
+            d.set_item("d_star", r.d_star)?;
+            d.set_item("separation_from_heights_m", r.separation_from_heights)?;
+            d.set_item("plasticity_index", r.plasticity_index)?;
+            d.set_item("contacting_summits", r.contacting_summits)?;
+            d.set_item("load_beyond_fit_N", r.load_beyond_fit)?;
+            Ok(d)
+        })
+        .collect()
+}
+
+/// μ_s of a contact solution, spot by spot; see `asperity.per_spot_friction`.
+#[pyfunction]
+#[pyo3(signature = (pressure, gap, composite_height, dx, dy, model, composite_modulus, hardness, poisson_ratio, periodic=true, eight_connected=false, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE, parameters=HashMap::new(), yield_strength=None, shear_strength=None))]
+#[allow(clippy::too_many_arguments)]
+fn per_spot_friction<'py>(
+    py: Python<'py>,
+    pressure: PyReadonlyArray2<'py, f64>,
+    gap: PyReadonlyArray2<'py, f64>,
+    composite_height: PyReadonlyArray2<'py, f64>,
+    dx: f64,
+    dy: f64,
+    model: &str,
+    composite_modulus: f64,
+    hardness: f64,
+    poisson_ratio: f64,
+    periodic: bool,
+    eight_connected: bool,
+    adhesion_energy: f64,
+    equilibrium_distance: f64,
+    parameters: HashMap<String, Parameter>,
+    yield_strength: Option<f64>,
+    shear_strength: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let material = Material::new(composite_modulus, hardness, poisson_ratio)
+        .map_err(|e| value_error("material", e))?;
+    let law = build_law(model, material, yield_strength, shear_strength, parameters)?;
+    let adhesion = AdhesionParameters::new(adhesion_energy, equilibrium_distance)
+        .map_err(|e| value_error("adhesion_energy", e))?;
+    let connectivity = if eight_connected {
+        Connectivity::Eight
+    } else {
+        Connectivity::Four
+    };
+    let (p, g, z) = (
+        pressure.as_array(),
+        gap.as_array(),
+        composite_height.as_array(),
+    );
+    let (spots, result) = compute(py, || {
+        let spots = contact_spots(p, z, dx, dy, periodic, connectivity)
+            .map_err(|e| value_error("pressure", e))?;
+        let adhesion =
+            adhesion_from_gap(g, p, dx, dy, adhesion).map_err(|e| value_error("gap", e))?;
+        let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
+        let result =
+            spot_friction(&loads, law.as_ref(), adhesion).map_err(|e| value_error("model", e))?;
+        Ok((spots, result))
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("mu_s", result.mu_s)?;
+    d.set_item("total_normal_force_N", result.total_normal_force)?;
+    d.set_item("total_friction_force_N", result.total_friction_force)?;
+    d.set_item("total_area_m2", result.total_area)?;
+    d.set_item("adhesion_force_N", result.adhesion_force)?;
+    d.set_item("load_beyond_fit_N", result.load_beyond_fit)?;
+    d.set_item("spot_count", spots.len())?;
+    d.set_item("spots_without_radius", result.spots_without_radius)?;
+    d.set_item(
+        "spot_load_N",
+        spots.iter().map(|s| s.load).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "spot_area_m2",
+        spots.iter().map(|s| s.area).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "spot_radius_m",
+        spots.iter().map(|s| s.radius).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "spot_friction_N",
+        result
+            .spots
+            .iter()
+            .map(|s| s.friction_force)
+            .collect::<Vec<_>>(),
+    )?;
+    Ok(d)
+}

@@ -1,0 +1,76 @@
+"""Statistical μ_s from Python equals the study's friction node for the same surface and material."""
+
+import polars as pl
+import pytest
+
+import asperity
+from conftest import CONTACT_INPUTS as C
+from conftest import run_cli
+
+
+def test_static_friction_equals_the_cli_friction_node(asperity_bin, contact_study, tmp_path):
+    cli = run_cli(asperity_bin, "run", str(contact_study), "--out", "out", "--cache", "cache", "-q", cwd=tmp_path)
+    assert cli.returncode == 0, cli.stderr
+    friction = pl.read_parquet(tmp_path / "out" / "friction.parquet")
+    surfaces = pl.read_parquet(tmp_path / "out" / "surfaces.parquet")
+    for seed in (3, 4):
+        heights, dx, dy = asperity.synthetic_surface(
+            C["grid"], C["size"], sq=C["sq"], hurst=C["hurst"], correlation_length=C["correlation_length"], seed=seed
+        )
+        s = asperity.surface_statistics(heights, dx, dy, periodic=True)
+        results = asperity.static_friction(
+            model="kogut_etsion",
+            nominal_pressures=C["pressures"],
+            nominal_area=C["size"][0] * C["size"][1],
+            material=C["material"],
+            moments=(s["m0_m^2"], s["m2"], s["m4_m^-2"]),
+        )
+        key = surfaces.filter(pl.col("seed") == seed)["key"][0]
+        row = friction.filter(pl.col("lower_key") == key)
+        assert len(row) == 1
+        assert len(results) == 2
+        # The node floors a negative μ_s (the literal KE 2004 polynomial) and keeps the model's value.
+        assert results[-1]["mu_s"] == pytest.approx(row["mu_s_computed"][0], rel=1e-9)
+        assert results[-1]["plasticity_index"] == pytest.approx(row["plasticity_index"][0], rel=1e-9)
+
+
+def test_explicit_summits_and_bad_models():
+    steel = asperity.material("s235jr")
+    base = dict(nominal_pressures=[1e6], nominal_area=1e-6, material=steel, summits=(0.3e-6, 50e-6, 5e9))
+    for model in ("kogut_etsion", "chang_etsion_bogy", "full_stick"):
+        (r,) = asperity.static_friction(model=model, **base)
+        assert abs(r["mu_s"]) < 5 and r["contact_load_N"] > 0 and r["real_contact_area_m2"] > 0, model
+    (stick,) = asperity.static_friction(model="full_stick", **base)
+    assert stick["mu_s"] > 0
+    with pytest.raises(ValueError, match="model"):
+        asperity.static_friction(model="coulomb", **base)
+    with pytest.raises(ValueError, match="moments"):
+        asperity.static_friction(model="full_stick", nominal_pressures=1e6, nominal_area=1e-6, material=steel)
+    with pytest.raises(ValueError, match="nominal_area"):
+        asperity.static_friction(model="full_stick", **{**base, "nominal_area": -1.0})
+
+
+def test_per_spot_friction_equals_the_cli_per_spot_node(asperity_bin, contact_study, tmp_path):
+    cli = run_cli(asperity_bin, "run", str(contact_study), "--out", "out", "--cache", "cache", "-q", cwd=tmp_path)
+    assert cli.returncode == 0, cli.stderr
+    friction = pl.read_parquet(tmp_path / "out" / "friction.parquet")
+    contacts = pl.read_parquet(tmp_path / "out" / "contacts.parquet")
+    surfaces = pl.read_parquet(tmp_path / "out" / "surfaces.parquet")
+    heights, dx, dy = asperity.synthetic_surface(
+        C["grid"], C["size"], sq=C["sq"], hurst=C["hurst"], correlation_length=C["correlation_length"], seed=3
+    )
+    c = asperity.contact(heights, dx, dy, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
+    spots = asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"])
+    key = surfaces.filter(pl.col("seed") == 3)["key"][0]
+    contact_key = contacts.filter(pl.col("lower_key") == key)["key"][0]
+    row = friction.filter(pl.col("contact_key") == contact_key)
+    assert len(row) == 1
+    assert spots["mu_s"] == pytest.approx(row["mu_s_computed"][0], rel=1e-12)
+    assert spots["spot_count"] == len(spots["spot_load_N"]) > 0
+    assert sum(spots["spot_load_N"]) == pytest.approx(spots["total_normal_force_N"])
+    shear = asperity.per_spot_friction(c, heights, dx, dy, model="junction_shear", material=C["material"])
+    assert shear["mu_s"] > 0
+    with pytest.raises(ValueError, match="parameters"):
+        asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"], parameters={"no_such": 1.0})
+    with pytest.raises(ValueError, match="connectivity"):
+        asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"], connectivity=6)

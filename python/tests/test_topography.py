@@ -1,0 +1,89 @@
+"""Every file of the shared topography folder whose format asperity reads gives its reference Sq."""
+
+import json
+
+import numpy as np
+import pytest
+
+import asperity
+
+UNITS = {"m": 1.0, "mm": 1e-3, "µm": 1e-6, "um": 1e-6, "nm": 1e-9}
+
+
+# Files of a format asperity reads that its reader refuses (SurfaceTopography reads them): the
+# Nanoscope header without `\Scan Size`, the two-column text with a one-value first line. Each
+# must still raise, naming the cause; a reader that learns them fails this test until the entry
+# goes.
+REFUSED = {"di/di-2.di": "Scan Size", "xyz/xy-2.txt": "values"}
+
+
+def reference_sq(entry, height_unit_from_file):
+    """Sq in m from SurfaceTopography's value in the file's unit, or asperity's own reference (m)
+    where SurfaceTopography has none; a file without a height unit is compared in its numbers."""
+    st = entry.get("SurfaceTopography_1.27.1") or {}
+    if "Sq" in st:
+        unit = st.get("unit")
+        if unit in UNITS:
+            return st["Sq"] * UNITS[unit]
+        assert unit is None and not height_unit_from_file
+        return st["Sq"]
+    own = entry.get("own_reader")
+    return own["Sq"] if own and "Sq" in own else None
+
+
+def sq_of(t) -> float:
+    z = t["heights"]
+    valid = z[~np.isnan(z)]
+    return float(np.sqrt(np.mean((valid - valid.mean()) ** 2)))
+
+
+def read(path):
+    """The file as the command line reads it; a file without a lateral calibration gets one."""
+    try:
+        return asperity.read_topography(path)
+    except ValueError as e:
+        assert "pixel_size" in str(e) and "not in the file" in str(e), e
+        t = asperity.read_topography(path, pixel_size=1e-6)
+        assert not t["spacing_from_file"]
+        return t
+
+
+def test_every_readable_file_gives_its_reference_sq(data_dir):
+    references = json.loads((data_dir / "reference_values.json").read_text())
+    checked, unreadable = [], []
+    for name, entry in sorted(references.items()):
+        path = data_dir / name
+        if asperity.topography_format(path) is None:
+            unreadable.append(name)
+            continue
+        if name in REFUSED:
+            with pytest.raises(OSError, match=REFUSED[name]):
+                asperity.read_topography(path, pixel_size=1e-6)
+            continue
+        if "SurfaceTopography_error" in entry and "own_reader" not in entry:
+            # Damaged on purpose (SurfaceTopography cannot read it either): it raises.
+            with pytest.raises(OSError):
+                asperity.read_topography(path, pixel_size=1e-6)
+            continue
+        t = read(path)
+        expected = reference_sq(entry, t["height_unit_from_file"])
+        assert expected is not None, name
+        if t["heights"].ndim == 2:
+            stats = asperity.surface_statistics(t["heights"], t["dx"], t["dy"])
+            assert stats["sq_m"] == pytest.approx(expected, rel=1e-6), name
+        assert sq_of(t) == pytest.approx(expected, rel=1e-6), name
+        checked.append(name)
+    assert len(checked) >= 20, (checked, unreadable)
+
+
+def test_a_map_without_calibration_is_not_given_one(data_dir):
+    line = data_dir / "xyz" / "xy-4.txt"
+    with pytest.raises(ValueError, match="pixel_size"):
+        asperity.read_topography(line)
+    t = asperity.read_topography(line, size=1e-3)
+    assert t["x"][1] == 1e-3 / len(t["x"]) and not t["spacing_from_file"]
+    calibrated = data_dir / "x3p" / "x3p-2.x3p"
+    with pytest.raises(ValueError, match="override_file_spacing"):
+        asperity.read_topography(calibrated, pixel_size=1e-3)
+    t = asperity.read_topography(calibrated, pixel_size=(1e-3, 2e-3), override_file_spacing=True)
+    assert (t["dx"], t["dy"]) == (1e-3, 2e-3)
