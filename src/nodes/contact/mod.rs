@@ -23,13 +23,14 @@ use crate::engine::value::{Field, Value};
 use crate::materials::{bounds, MaterialPair};
 use crate::surface::HeightMap;
 use crate::units::{format_number, Dimension, Pressure, Quantity};
+use crate::vocabulary::{roles, tables};
 
 mod results;
 
 use results::{final_step_metrics, load_curve_table, store_fields};
 
-pub(crate) const KIND: &str = "contact";
-pub(crate) const TABLE: &str = "contacts";
+pub(crate) use crate::vocabulary::kinds::CONTACT as KIND;
+pub(crate) use crate::vocabulary::tables::CONTACTS as TABLE;
 
 /// Implementation version of the `contact` kind; bump whenever its numerics change (26: the
 /// validity rules fail impossible values and flag coarse grids and steep slopes).
@@ -71,12 +72,12 @@ pub struct ContactSpec {
 impl ContactSpec {
     pub(crate) fn upstream(&self) -> Vec<UpstreamRef<'_>> {
         let mut refs = vec![UpstreamRef {
-            role: "lower",
+            role: roles::LOWER,
             node: &self.lower,
         }];
         if let Some(upper) = &self.upper {
             refs.push(UpstreamRef {
-                role: "upper",
+                role: roles::UPPER,
                 node: upper,
             });
         }
@@ -361,7 +362,7 @@ impl NodeTask for ContactTask {
         };
         artifact
             .tables
-            .insert(String::from("load_curve"), load_curve_table(&curve));
+            .insert(String::from(tables::LOAD_CURVE), load_curve_table(&curve));
         if let Some(z) = setup.composite {
             artifact
                 .arrays

@@ -85,12 +85,11 @@ pub(super) fn contact_solution(
         ));
     }
     check_same_modulus(spec, contact_task, &name.value, pair)?;
-    let flag =
-        validity::cross::flow_pressure_match(
-            contact_task.material().flow_pressure(),
-            pair.material.hardness,
-        )
-            .map_err(|message| spec_error(name.location, "contact", message))?;
+    let flag = validity::cross::flow_pressure_match(
+        contact_task.material().flow_pressure(),
+        pair.material.hardness,
+    )
+    .map_err(|message| spec_error(name.location, "contact", message))?;
     Ok((index, contact_task.periodic(), flag))
 }
 
