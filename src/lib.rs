@@ -19,6 +19,7 @@ pub use asperity_numerics::{contact, fft2, friction, materials, surface};
 pub mod nodes;
 pub mod report;
 pub mod study_run;
+pub mod vocabulary;
 
 /// The tool version recorded in cache manifests and Parquet metadata.
 pub const TOOL_VERSION: &str = env!("CARGO_PKG_VERSION");

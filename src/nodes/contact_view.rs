@@ -8,25 +8,15 @@ use crate::engine::artifact::Artifact;
 use crate::engine::node::NodeError;
 use crate::engine::value::Value;
 
-/// Contact pressure of the final step (Pa, `[[iy, ix]]`).
-pub(crate) const PRESSURE: &str = "pressure";
-/// Gap of the final step (m).
-pub(crate) const GAP: &str = "gap";
-/// Elastic normal displacement of the lower body (m).
-pub(crate) const DEFORMATION_LOWER: &str = "deformation_lower";
-/// Elastic normal displacement of the upper body (m; absent for a rigid flat).
-pub(crate) const DEFORMATION_UPPER: &str = "deformation_upper";
-/// Plastic penetration (m).
-pub(crate) const PLASTIC_PENETRATION: &str = "plastic_penetration";
-/// The composite height z₁ + z₂ (m) the contact was solved on (the lower heights against a flat).
-pub(crate) const COMPOSITE_HEIGHT: &str = "composite_height";
-/// Grid spacings (m) among the contact's metrics.
-pub(crate) const DX: &str = "dx";
-pub(crate) const DY: &str = "dy";
-/// The final nominal pressure (Pa) among the contact's metrics.
-pub(crate) const NOMINAL_PRESSURE: &str = "nominal_pressure";
-/// The share of the section in contact (points with p > 0) among the contact's metrics.
-pub(crate) const AREA_FRACTION: &str = "area_fraction";
+/// The final step's maps (pressure in Pa, gap, deformations, plastic penetration in m,
+/// `[[iy, ix]]`; no upper deformation against a rigid flat) and the composite height z₁ + z₂ (m)
+/// the contact was solved on (the lower heights against a flat).
+pub(crate) use crate::vocabulary::arrays::{
+    COMPOSITE_HEIGHT, DEFORMATION_LOWER, DEFORMATION_UPPER, GAP, PLASTIC_PENETRATION, PRESSURE,
+};
+/// Among the contact's metrics: grid spacings (m), the final nominal pressure (Pa) and the share
+/// of the section in contact (points with p > 0).
+pub(crate) use crate::vocabulary::metrics::{AREA_FRACTION, DX, DY, NOMINAL_PRESSURE};
 
 /// The final step's fields of a contact run with `fields: true`, and its grid.
 #[derive(Debug, Clone)]

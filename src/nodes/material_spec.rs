@@ -3,8 +3,8 @@
 //! (`{youngs_modulus: 210 GPa, poisson_ratio: 0.3, hardness: 2 GPa}`). Built-in values come from
 //! [`crate::materials`]; names are case-insensitive and accept aliases (`1.0037`).
 //!
-//! Flow pressure rule: p_lim given explicitly wins; otherwise a built-in material's p_lim; otherwise
-//! p_lim = H when a hardness is known (the rule of [`crate::materials`]); otherwise none.
+//! The result is a checked [`BodyMaterial`]: bounds and default rules (Y = H/2.8, k = Y/√3,
+//! p_lim = H) are those of [`crate::materials`].
 
 use std::fmt;
 
@@ -17,7 +17,9 @@ use crate::engine::value::ParamValue;
 use crate::engine::study::{
     did_you_mean, Located, Param, ResolveContext, SourceLocation, SpecError,
 };
-use crate::materials::{all_names, find_material, UnknownMaterial};
+use crate::materials::{
+    all_names, bounds, find_material, BodyConstants, BodyMaterial, MaterialError, UnknownMaterial,
+};
 use crate::units::{format_number, Pressure, Quantity};
 
 /// A body's material: `s235jr`, `{name: s235jr, hardness: 2.2 GPa}` or
@@ -44,42 +46,23 @@ pub struct MaterialMapping {
     /// Young's modulus (or indentation modulus E_IT), pressure > 0; required without `name`.
     #[serde(default)]
     pub youngs_modulus: Option<Param<Quantity<Pressure>>>,
-    /// Poisson's ratio in [0, 0.5); required without `name`.
+    /// Poisson's ratio in [0, 0.5]; required without `name`.
     #[serde(default)]
     pub poisson_ratio: Option<Param<f64>>,
-    /// Hardness H (pressure > 0), e.g. from ultra-micro-hardness of the near-surface material.
+    /// Hardness H (pressure > 0, below E), e.g. ultra-micro-hardness of the near-surface material.
     #[serde(default)]
     pub hardness: Option<Param<Quantity<Pressure>>>,
-    /// Plastic flow pressure p_lim (pressure > 0); omitted: the built-in value, else = hardness.
+    /// Plastic flow pressure p_lim (pressure > 0, below E); omitted: p_lim = H.
     #[serde(default)]
     pub flow_pressure: Option<Param<Quantity<Pressure>>>,
-    /// Yield strength Y (pressure > 0) used by the full-stick and Jackson–Green laws; omitted:
-    /// Tabor's rule Y = H/2.8.
+    /// Yield strength Y (pressure > 0, at most H) used by the full-stick and Jackson–Green laws;
+    /// omitted: Tabor's rule Y = H/2.8.
     #[serde(default)]
     pub yield_strength: Option<Param<Quantity<Pressure>>>,
-    /// Shear strength k (pressure > 0) of the material, the junction-shear strength of a clean
-    /// interface; omitted: von Mises k = Y/√3.
+    /// Shear strength k (pressure > 0, at most Y) of the material, the junction-shear strength of
+    /// a clean interface; omitted: von Mises k = Y/√3.
     #[serde(default)]
     pub shear_strength: Option<Param<Quantity<Pressure>>>,
-}
-
-/// A material resolved for one scenario (SI units).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ResolvedMaterial {
-    /// Canonical built-in name, if one was used.
-    pub name: Option<&'static str>,
-    /// Young's modulus (Pa).
-    pub youngs_modulus: f64,
-    /// Poisson's ratio.
-    pub poisson_ratio: f64,
-    /// Hardness (Pa), if known.
-    pub hardness: Option<f64>,
-    /// Plastic flow pressure (Pa), if known.
-    pub flow_pressure: Option<f64>,
-    /// Yield strength (Pa), if given (the friction models default to H/2.8).
-    pub yield_strength: Option<f64>,
-    /// Shear strength (Pa), if given (the friction models default to Y/√3).
-    pub shear_strength: Option<f64>,
 }
 
 impl<'de> Deserialize<'de> for MaterialSpec {
@@ -247,22 +230,18 @@ impl schemars::JsonSchema for MaterialSpec {
     }
 }
 
-fn positive_pressure(q: &Quantity<Pressure>) -> Result<(), String> {
-    if q.si() > 0.0 {
-        Ok(())
-    } else {
-        Err(String::from("is out of range: must be > 0 Pa"))
-    }
+/// A study check from a material bound ([`bounds`]).
+fn within(
+    bound: impl Fn(f64) -> Result<f64, MaterialError>,
+) -> impl Fn(&f64) -> Result<(), String> {
+    move |v| bound(*v).map(|_| ()).map_err(|e| e.range_message())
 }
 
-fn poisson(v: &f64) -> Result<(), String> {
-    if (0.0..0.5).contains(v) {
-        Ok(())
-    } else {
-        Err(String::from(
-            "is out of range: Poisson's ratio must be in [0, 0.5)",
-        ))
-    }
+/// A pressure check from a material bound.
+fn pressure_within(
+    bound: impl Fn(f64) -> Result<f64, MaterialError>,
+) -> impl Fn(&Quantity<Pressure>) -> Result<(), String> {
+    move |q| bound(q.si()).map(|_| ()).map_err(|e| e.range_message())
 }
 
 impl MaterialSpec {
@@ -297,37 +276,45 @@ impl MaterialSpec {
         })
     }
 
-    /// Resolves the material under one scenario; `field` names it in messages (`lower_material`).
+    /// Resolves the material under one scenario into a checked [`BodyMaterial`]: the given
+    /// values over the built-in ones, each checked by its bound ([`bounds`]) where it is written,
+    /// the relations between them (H below E, Y at most H, k at most Y) at the material; `field`
+    /// names it in messages (`lower_material`).
     pub fn resolve(
         &self,
         ctx: &ResolveContext<'_>,
         field: &str,
-    ) -> Result<ResolvedMaterial, SpecError> {
-        let m = match &self.source {
-            MaterialSource::Named(name) => {
-                let b = self.lookup(ctx, name, self.location, field)?;
-                return Ok(ResolvedMaterial {
-                    name: Some(b.name),
-                    youngs_modulus: b.youngs_modulus,
-                    poisson_ratio: b.poisson_ratio,
-                    hardness: Some(b.hardness),
-                    flow_pressure: Some(b.flow_pressure),
-                    yield_strength: None,
-                    shear_strength: None,
-                });
-            }
-            MaterialSource::Mapping(m) => m,
+    ) -> Result<BodyMaterial, SpecError> {
+        let constants = match &self.source {
+            MaterialSource::Named(name) => self.lookup(ctx, name, self.location, field)?.constants,
+            MaterialSource::Mapping(m) => self.constants(m, ctx, field)?,
         };
+        BodyMaterial::new(constants).map_err(|e| SpecError {
+            location: self.location,
+            field: format!("{field}.{}", e.parameter()),
+            message: format!("{} {}", format_number(e.value()), e.range_message()),
+        })
+    }
+
+    /// The constants of the mapping form: its values over those of its built-in `name`.
+    fn constants(
+        &self,
+        m: &MaterialMapping,
+        ctx: &ResolveContext<'_>,
+        field: &str,
+    ) -> Result<BodyConstants, SpecError> {
         let base = match &m.name {
-            Some(name) => {
-                Some(self.lookup(ctx, &name.source, name.location, &format!("{field}.name"))?)
-            }
+            Some(name) => Some(
+                self.lookup(ctx, &name.source, name.location, &format!("{field}.name"))?
+                    .constants,
+            ),
             None => None,
         };
-        let pressure = |p: &Option<Param<Quantity<Pressure>>>, sub: &str| {
+        let strength = |p: &Option<Param<Quantity<Pressure>>>, sub: &'static str| {
             p.as_ref()
                 .map(|p| {
-                    ctx.resolve_checked(p, &format!("{field}.{sub}"), positive_pressure)
+                    let check = pressure_within(|v| bounds::strength(sub, v));
+                    ctx.resolve_checked(p, &format!("{field}.{sub}"), check)
                         .map(|q| q.si())
                 })
                 .transpose()
@@ -341,39 +328,34 @@ impl MaterialSpec {
             ),
         }
         };
-        let youngs_modulus = match (pressure(&m.youngs_modulus, "youngs_modulus")?, base) {
-            (Some(e), _) => e,
+        let youngs_modulus = match (&m.youngs_modulus, base) {
+            (Some(p), _) => {
+                let check = pressure_within(bounds::youngs_modulus);
+                ctx.resolve_checked(p, &format!("{field}.youngs_modulus"), check)?
+                    .si()
+            }
             (None, Some(b)) => b.youngs_modulus,
             (None, None) => return Err(missing("youngs_modulus")),
         };
         let poisson_ratio = match (&m.poisson_ratio, base) {
-            (Some(p), _) => ctx.resolve_checked(p, &format!("{field}.poisson_ratio"), poisson)?,
+            (Some(p), _) => {
+                let check = within(bounds::poisson_ratio);
+                ctx.resolve_checked(p, &format!("{field}.poisson_ratio"), check)?
+            }
             (None, Some(b)) => b.poisson_ratio,
             (None, None) => return Err(missing("poisson_ratio")),
         };
-        let hardness = pressure(&m.hardness, "hardness")?.or(base.map(|b| b.hardness));
-        let flow_pressure = pressure(&m.flow_pressure, "flow_pressure")?
-            .or(base.map(|b| b.flow_pressure))
-            .or(hardness);
-        if let Some(h) = hardness.filter(|h| *h >= youngs_modulus) {
-            return Err(SpecError {
-                location: self.location,
-                field: format!("{field}.hardness"),
-                message: format!(
-                    "{} Pa is out of range: the hardness must be below Young's modulus {} Pa",
-                    format_number(h),
-                    format_number(youngs_modulus)
-                ),
-            });
-        }
-        Ok(ResolvedMaterial {
-            name: base.map(|b| b.name),
+        let base = |pick: fn(&BodyConstants) -> Option<f64>| base.as_ref().and_then(pick);
+        Ok(BodyConstants {
             youngs_modulus,
             poisson_ratio,
-            hardness,
-            flow_pressure,
-            yield_strength: pressure(&m.yield_strength, "yield_strength")?,
-            shear_strength: pressure(&m.shear_strength, "shear_strength")?,
+            hardness: strength(&m.hardness, "hardness")?.or(base(|b| b.hardness)),
+            yield_strength: strength(&m.yield_strength, "yield_strength")?
+                .or(base(|b| b.yield_strength)),
+            shear_strength: strength(&m.shear_strength, "shear_strength")?
+                .or(base(|b| b.shear_strength)),
+            flow_pressure: strength(&m.flow_pressure, "flow_pressure")?
+                .or(base(|b| b.flow_pressure)),
         })
     }
 }

@@ -26,7 +26,7 @@ pub use friction::{
     friction_models_markdown, FrictionSpec, FrictionTask, DEFAULT_ADHESION_ENERGY,
     DEFAULT_EQUILIBRIUM_DISTANCE, FRICTION_KIND_VERSION,
 };
-pub use material_spec::{MaterialMapping, MaterialSpec, ResolvedMaterial};
+pub use material_spec::{MaterialMapping, MaterialSpec};
 pub use surface::{
     apply_lateral_calibration, surface_statistics, AnisotropySpec, FileSpec, LateralCalibration,
     SurfaceSpec, SurfaceTask, SyntheticSpec, SURFACE_KIND_VERSION,

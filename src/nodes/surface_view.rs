@@ -10,13 +10,9 @@ use crate::engine::value::Value;
 use crate::surface::HeightMap;
 
 /// The height array (m, `[[iy, ix]]`).
-pub(crate) const HEIGHTS: &str = "heights";
-/// Grid size among the surface's metrics.
-pub(crate) const GRID_NX: &str = "grid_nx";
-pub(crate) const GRID_NY: &str = "grid_ny";
-/// Grid spacings (m) among the surface's metrics.
-pub(crate) const DX: &str = "dx";
-pub(crate) const DY: &str = "dy";
+pub(crate) use crate::vocabulary::arrays::HEIGHTS;
+/// Grid size and spacings (m) among the surface's metrics.
+pub(crate) use crate::vocabulary::metrics::{DX, DY, GRID_NX, GRID_NY};
 /// Isotropic profile spectral moments m0 (m²), m2, m4 (m⁻²); with the suffix `_x` or `_y`
 /// the moments along one axis.
 pub(crate) const M0: &str = "m0";

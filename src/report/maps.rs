@@ -8,6 +8,7 @@ use ndarray::{ArrayD, Ix2};
 use crate::engine::cache::{Cache, CachedEntry};
 use crate::engine::hash::NodeKey;
 use crate::engine::value::Value;
+use crate::vocabulary::{arrays, kinds, metrics, roles};
 
 use super::error::ReportError;
 use super::figure::Figure;
@@ -58,7 +59,7 @@ fn spacing(entry: &CachedEntry) -> Option<(f64, f64)> {
         },
         None => None,
     };
-    Some((metric("dx")?, metric("dy")?))
+    Some((metric(metrics::DX)?, metric(metrics::DY)?))
 }
 
 fn as_map(array: &ArrayD<f64>) -> Option<ndarray::ArrayView2<'_, f64>> {
@@ -94,8 +95,8 @@ pub fn map_figures(
                     continue;
                 }
                 let figure = match table.kind.as_str() {
-                    "surface" => height_figure(cache, &key, &link.node, &context),
-                    "contact" => pressure_figure(cache, &key, &link.node, &context),
+                    kinds::SURFACE => height_figure(cache, &key, &link.node, &context),
+                    kinds::CONTACT => pressure_figure(cache, &key, &link.node, &context),
                     _ => continue,
                 };
                 match figure {
@@ -116,12 +117,12 @@ pub fn map_figures(
 type MapResult = Result<Result<Figure, ReportError>, String>;
 
 fn height_figure(cache: &Cache, key: &str, node: &str, context: &str) -> MapResult {
-    let entry = load(cache, "surface", key, true)?;
+    let entry = load(cache, kinds::SURFACE, key, true)?;
     let (dx, dy) = spacing(&entry).ok_or("the entry records no grid spacing")?;
     let heights = entry
         .artifact
         .arrays
-        .get("heights")
+        .get(arrays::HEIGHTS)
         .and_then(as_map)
         .ok_or(
             "the entry holds no height array (synthetic surfaces above 1024² points are \
@@ -144,26 +145,26 @@ fn height_figure(cache: &Cache, key: &str, node: &str, context: &str) -> MapResu
 }
 
 fn pressure_figure(cache: &Cache, key: &str, node: &str, context: &str) -> MapResult {
-    let entry = load(cache, "contact", key, true)?;
+    let entry = load(cache, kinds::CONTACT, key, true)?;
     let pressure = entry
         .artifact
         .arrays
-        .get("pressure")
+        .get(arrays::PRESSURE)
         .and_then(as_map)
         .ok_or("no pressure field stored (run the contact with `fields: true`)")?;
     let lower = entry
         .manifest
         .upstream
         .iter()
-        .find(|(role, _)| role == "lower")
+        .find(|(role, _)| role == roles::LOWER)
         .ok_or("the entry names no lower surface")?;
-    let surface = load(cache, "surface", &lower.1, false)?;
+    let surface = load(cache, kinds::SURFACE, &lower.1, false)?;
     let (dx, dy) = spacing(&surface).ok_or("the lower surface records no grid spacing")?;
     let nominal = entry
         .artifact
         .metrics
         .iter()
-        .find(|f| f.name == "nominal_pressure")
+        .find(|f| f.name == metrics::NOMINAL_PRESSURE)
         .and_then(|f| match f.value {
             Value::Float(v) => Some(format!(" at {} MPa", super::axis::format_number(v * 1e-6))),
             _ => None,

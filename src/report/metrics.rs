@@ -4,6 +4,8 @@
 
 use std::collections::BTreeMap;
 
+use crate::vocabulary::{kinds, metrics, tables};
+
 use super::error::ReportError;
 use super::quantity::base_name;
 use super::scenarios::{NodeLink, ScenarioSet};
@@ -11,16 +13,16 @@ use super::table::ResultTable;
 
 /// The node tables the report reads, with their node kind (the cache folder of their entries).
 pub const NODE_TABLES: [(&str, &str); 3] = [
-    ("surfaces", "surface"),
-    ("contacts", "contact"),
-    ("friction", "friction"),
+    (tables::SURFACES, kinds::SURFACE),
+    (tables::CONTACTS, kinds::CONTACT),
+    (tables::FRICTION, kinds::FRICTION),
 ];
 
 /// Columns plotted without being asked for: μ_s, A_t,rel and θ.
 pub const DEFAULT_METRICS: [(&str, &str); 3] = [
-    ("friction", "mu_s"),
-    ("contacts", "area_fraction"),
-    ("contacts", "stress_ratio"),
+    (tables::FRICTION, metrics::MU_S),
+    (tables::CONTACTS, metrics::AREA_FRACTION),
+    (tables::CONTACTS, metrics::STRESS_RATIO),
 ];
 
 /// A node table with its key index.

@@ -30,6 +30,7 @@ mod twin_comparison;
 use std::path::PathBuf;
 
 use crate::engine::cache::Cache;
+use crate::vocabulary::{kinds, metrics as names, tables as table_names};
 
 pub use error::ReportError;
 
@@ -68,7 +69,7 @@ pub struct Report {
 /// Builds the report page. `cache`: where maps come from (`None`: no maps).
 pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Report, ReportError> {
     let dir = &options.results_dir;
-    let scenario_table = ResultTable::read(dir, "scenarios")?
+    let scenario_table = ResultTable::read(dir, table_names::SCENARIOS)?
         .ok_or_else(|| ReportError::NotAResultsDir(dir.clone()))?;
     let scenarios = ScenarioSet::from_table(&scenario_table, options.replicates.as_deref())?;
     let mut skipped = Vec::new();
@@ -79,8 +80,11 @@ pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Re
     sections.push(trend_section(&scenarios, &metrics, &mut skipped));
     sections.extend(twin_comparison::twin_comparison(&scenarios, &tables));
 
-    let contacts = tables.iter().find(|t| t.kind == "contact");
-    match (contacts, ResultTable::read(dir, "contacts_load_curve")?) {
+    let contacts = tables.iter().find(|t| t.kind == kinds::CONTACT);
+    match (
+        contacts,
+        ResultTable::read(dir, table_names::CONTACTS_LOAD_CURVE)?,
+    ) {
         (Some(contacts), Some(curve)) => sections.push(Section {
             title: String::from("Load curves"),
             intro: String::from(
@@ -93,8 +97,11 @@ pub fn build_report(options: &ReportOptions, cache: Option<&Cache>) -> Result<Re
         )),
     }
 
-    let surfaces = tables.iter().find(|t| t.kind == "surface");
-    match (surfaces, ResultTable::read(dir, "surfaces_material_ratio")?) {
+    let surfaces = tables.iter().find(|t| t.kind == kinds::SURFACE);
+    match (
+        surfaces,
+        ResultTable::read(dir, table_names::SURFACES_MATERIAL_RATIO)?,
+    ) {
         (Some(surfaces), Some(curve)) => sections.extend(material_ratio::material_ratio_section(
             &scenarios, surfaces, &curve,
         )),
@@ -203,7 +210,7 @@ fn trend_section(
     metrics: &[Metric],
     skipped: &mut Vec<String>,
 ) -> Section {
-    let is_mu_s = |m: &Metric| m.table == "friction" && m.column == "mu_s";
+    let is_mu_s = |m: &Metric| m.table == table_names::FRICTION && m.column == names::MU_S;
     let mu_s: Vec<&Metric> = metrics.iter().filter(|m| is_mu_s(m)).collect();
     let last_mu_s = metrics.iter().rposition(is_mu_s);
     let mut figures = Vec::new();

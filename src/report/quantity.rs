@@ -1,6 +1,8 @@
 //! How quantities are shown: SI values from the tables are scaled to readable units (µm, mm,
 //! MPa, …) and columns get readable names with the tribology symbols (A_t,rel, θ, μ_s).
 
+use crate::vocabulary::metrics;
+
 /// A display unit: multiply an SI value by `factor` to get it in `symbol`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DisplayUnit {
@@ -85,13 +87,13 @@ pub fn base_name<'a>(column: &'a str, unit: &str) -> &'a str {
 /// is one.
 pub fn pretty_name(base: &str) -> String {
     match base {
-        "area_fraction" => String::from("A_t,rel (true area fraction)"),
-        "stress_ratio" => String::from("θ (stress ratio)"),
-        "mu_s" => String::from("μ_s (static friction coefficient)"),
-        "sq" => String::from("Sq"),
-        "hurst" => String::from("Hurst exponent H"),
-        "nominal_pressure" => String::from("nominal pressure"),
-        "mean_contact_pressure" => String::from("mean contact pressure"),
+        metrics::AREA_FRACTION => String::from("A_t,rel (true area fraction)"),
+        metrics::STRESS_RATIO => String::from("θ (stress ratio)"),
+        metrics::MU_S => String::from("μ_s (static friction coefficient)"),
+        metrics::SQ => String::from("Sq"),
+        metrics::HURST => String::from("Hurst exponent H"),
+        metrics::NOMINAL_PRESSURE => String::from("nominal pressure"),
+        metrics::MEAN_CONTACT_PRESSURE => String::from("mean contact pressure"),
         other => other.replace('_', " "),
     }
 }
@@ -99,11 +101,11 @@ pub fn pretty_name(base: &str) -> String {
 /// A short name for series labels (`Sq`, `seed`, `θ`).
 pub fn short_name(base: &str) -> String {
     match base {
-        "area_fraction" => String::from("A_t,rel"),
-        "stress_ratio" => String::from("θ"),
-        "mu_s" => String::from("μ_s"),
-        "sq" => String::from("Sq"),
-        "hurst" => String::from("H"),
+        metrics::AREA_FRACTION => String::from("A_t,rel"),
+        metrics::STRESS_RATIO => String::from("θ"),
+        metrics::MU_S => String::from("μ_s"),
+        metrics::SQ => String::from("Sq"),
+        metrics::HURST => String::from("H"),
         other => other.replace('_', " "),
     }
 }

@@ -4,6 +4,8 @@
 
 use std::collections::BTreeMap;
 
+use crate::vocabulary::metrics;
+
 use super::figure::{Figure, ValueTable};
 use super::metrics::{Metric, NodeTable};
 use super::quantity::{pretty_name, short_name, DisplayUnit};
@@ -297,8 +299,8 @@ pub fn load_curve_figures(
     contacts: &NodeTable,
     curve: &super::table::ResultTable,
 ) -> Vec<Figure> {
-    let (Some(keys), Some(pressure)) = (curve.texts("key"), curve.numbers("nominal_pressure_Pa"))
-    else {
+    let pressure_column = format!("{}_Pa", metrics::NOMINAL_PRESSURE);
+    let (Some(keys), Some(pressure)) = (curve.texts("key"), curve.numbers(&pressure_column)) else {
         return Vec::new();
     };
     let mut rows_of: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
@@ -312,7 +314,7 @@ pub fn load_curve_figures(
     let pressure_unit = DisplayUnit::for_slice("Pa", pressure.iter().flatten().copied());
     let mut figures = Vec::new();
     for link in scenarios.links_into(&contacts.index) {
-        for column in ["area_fraction", "stress_ratio"] {
+        for column in [metrics::AREA_FRACTION, metrics::STRESS_RATIO] {
             let Some(values) = curve.numbers(column) else {
                 continue;
             };
@@ -349,7 +351,7 @@ pub fn load_curve_figures(
                     short_name(column),
                     link.node
                 ),
-                (&pretty_name("nominal_pressure"), &pressure_unit),
+                (&pretty_name(metrics::NOMINAL_PRESSURE), &pressure_unit),
                 (&pretty_name(column), ""),
                 &series,
                 caption,

@@ -7,6 +7,8 @@
 //! sample standard deviation over the replicates (seeds) against the measured value, one point
 //! per group of the other swept parameters (e.g. per file), with the line of equality.
 
+use crate::vocabulary::{kinds, metrics, roles};
+
 use super::axis::format_number;
 use super::figure::{Figure, Section, ValueTable};
 use super::metrics::{Metric, NodeTable};
@@ -20,13 +22,13 @@ struct Pair<'a> {
     table: &'a NodeTable,
     measured: &'a NodeLink,
     twin: &'a NodeLink,
-    column: &'static str,
+    column: String,
 }
 
 /// The comparison section, or `None` when the results hold no file surface with a twin of it.
 pub fn twin_comparison(scenarios: &ScenarioSet, tables: &[NodeTable]) -> Option<Section> {
     let of_kind = |kind: &str| tables.iter().find(|t| t.kind == kind);
-    let surfaces = of_kind("surface")?;
+    let surfaces = of_kind(kinds::SURFACE)?;
     let surface_pairs = twin_pairs(scenarios, surfaces);
     if surface_pairs.is_empty() {
         return None;
@@ -37,27 +39,27 @@ pub fn twin_comparison(scenarios: &ScenarioSet, tables: &[NodeTable]) -> Option<
             table: surfaces,
             measured,
             twin,
-            column: "summit_mean_radius_m",
+            column: format!("{}_m", metrics::SUMMIT_MEAN_RADIUS),
         });
-        let contacts = of_kind("contact").and_then(|c| {
+        let contacts = of_kind(kinds::CONTACT).and_then(|c| {
             let on = |surface| {
-                downstream(scenarios, c, surface, "lower_key")
+                downstream(scenarios, c, surface, &key_column(roles::LOWER))
                     .into_iter()
                     .next()
             };
             Some((c, on(measured)?, on(twin)?))
         });
         if let Some((table, measured, twin)) = contacts {
-            for column in ["area_fraction", "stress_ratio"] {
+            for column in [metrics::AREA_FRACTION, metrics::STRESS_RATIO] {
                 pairs.push(Pair {
                     table,
                     measured,
                     twin,
-                    column,
+                    column: column.to_string(),
                 });
             }
         }
-        if let Some(friction) = of_kind("friction") {
+        if let Some(friction) = of_kind(kinds::FRICTION) {
             let sides = [
                 (measured, contacts.map(|c| c.1)),
                 (twin, contacts.map(|c| c.2)),
@@ -92,9 +94,14 @@ fn friction_nodes<'a>(
     surface: &NodeLink,
     contact: Option<&NodeLink>,
 ) -> Vec<&'a NodeLink> {
-    let mut links = downstream(scenarios, friction, surface, "lower_key");
+    let mut links = downstream(scenarios, friction, surface, &key_column(roles::LOWER));
     if let Some(c) = contact {
-        links.extend(downstream(scenarios, friction, c, "contact_key"));
+        links.extend(downstream(
+            scenarios,
+            friction,
+            c,
+            &key_column(roles::CONTACT),
+        ));
     }
     let mut seen = std::collections::BTreeSet::new();
     links.retain(|l| seen.insert(l.node.as_str()));
@@ -108,7 +115,7 @@ fn same_method_and_model<'a>(
     on_measured: &[&'a NodeLink],
     on_twin: &[&'a NodeLink],
 ) -> Vec<Pair<'a>> {
-    let detail = |link: &NodeLink| Metric::resolve(friction, link, "mu_s").map(|m| m.detail);
+    let detail = |link: &NodeLink| Metric::resolve(friction, link, metrics::MU_S).map(|m| m.detail);
     let twin_details: Vec<_> = on_twin.iter().map(|t| detail(t)).collect();
     on_measured
         .iter()
@@ -119,7 +126,7 @@ fn same_method_and_model<'a>(
                 table: friction,
                 measured: m,
                 twin: on_twin[i],
-                column: "mu_s",
+                column: metrics::MU_S.to_string(),
             })
         })
         .collect()
@@ -177,6 +184,11 @@ fn twin_pairs<'a>(
         }
     }
     pairs
+}
+
+/// The column of a node table holding the key of its upstream input in `role` (`lower_key`).
+fn key_column(role: &str) -> String {
+    format!("{role}_key")
 }
 
 /// The nodes of `table` whose `upstream_column` holds the key of `upstream`'s instance in every
@@ -261,8 +273,8 @@ fn comparison_table(rows: &[(String, f64, Summary)], unit: &DisplayUnit) -> Valu
 
 /// Twin mean ± std against the measured value per group of the swept parameters.
 fn comparison_figure(scenarios: &ScenarioSet, pair: &Pair<'_>) -> Option<Figure> {
-    let measured = Metric::resolve(pair.table, pair.measured, pair.column)?;
-    let twin = Metric::resolve(pair.table, pair.twin, pair.column)?;
+    let measured = Metric::resolve(pair.table, pair.measured, &pair.column)?;
+    let twin = Metric::resolve(pair.table, pair.twin, &pair.column)?;
     let rows = comparison_rows(scenarios, &measured, &twin);
     if rows.is_empty() {
         return None;

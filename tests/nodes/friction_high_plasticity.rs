@@ -8,7 +8,7 @@ use asperity::friction::{
     static_friction, AdhesionBeyondFits, AdhesionParameters, FullStick, FullStickOptions, Material,
     SolveSettings, SpectralMoments, StatisticalModel, SummitStatistics,
 };
-use asperity::materials::find_material;
+use asperity::materials::{find_material, BodyMaterial, MaterialPair};
 use nodes_common::{boolean, column, float, int, outcomes, plan_error, run, text};
 
 /// Two ground-steel surfaces (ψ ≈ 40–60), contact at 20 MPa with fields, and one friction node per
@@ -111,9 +111,8 @@ fn statistical_full_stick_equals_the_library() {
         &moments(surfaces[0]).combined_with(&moments(surfaces[1])),
     )
     .unwrap();
-    let s235 = find_material("s235jr").unwrap();
-    let (e, nu) = (s235.youngs_modulus, s235.poisson_ratio);
-    let material = Material::from_bodies(e, nu, e, nu, s235.hardness, true).unwrap();
+    let s235 = BodyMaterial::new(find_material("s235jr").unwrap().constants).unwrap();
+    let material = Material::from_pair(&MaterialPair::new(s235, Some(s235))).unwrap();
     let options = FullStickOptions {
         yield_strength: Some(material.tabor_yield_strength()),
         ..FullStickOptions::default()
@@ -144,7 +143,7 @@ fn per_spot_rows_are_consistent_with_their_spots() {
     let (plan, report) = run(GROUND, "ground-spots");
     let rows = outcomes(&plan, &report, "friction");
     let shear = by_model(&rows, "per_spot", "junction_shear");
-    let k = find_material("s235jr").unwrap().hardness / 2.8 / 3f64.sqrt();
+    let k = find_material("s235jr").unwrap().constants.hardness.unwrap() / 2.8 / 3f64.sqrt();
     let expected = k * float(shear, "real_area") / float(shear, "external_load");
     assert!((float(shear, "mu_s") - expected).abs() <= 1e-12 * expected);
     // τ_s = c·k with c = 1 is the law's parameter column.

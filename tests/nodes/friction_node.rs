@@ -10,21 +10,13 @@ use asperity::friction::{
     static_friction, AdhesionBeyondFits, AdhesionParameters, KogutEtsion, Material, SolveSettings,
     SpectralMoments, StaticFrictionForm, StatisticalModel, SummitStatistics,
 };
-use asperity::materials::find_material;
+use asperity::materials::{find_material, BodyMaterial, MaterialPair};
 use nodes_common::{boolean, column, float, outcomes, plan_error, run, study, text};
 
 /// S235JR against S235JR: composite modulus and the built-in hardness.
 fn s235_pair() -> Material {
-    let m = find_material("s235jr").unwrap();
-    Material::from_bodies(
-        m.youngs_modulus,
-        m.poisson_ratio,
-        m.youngs_modulus,
-        m.poisson_ratio,
-        m.hardness,
-        true,
-    )
-    .unwrap()
+    let steel = BodyMaterial::new(find_material("s235jr").unwrap().constants).unwrap();
+    Material::from_pair(&MaterialPair::new(steel, Some(steel))).unwrap()
 }
 
 fn library_mu(summits: SummitStatistics, area: f64, load: f64) -> f64 {
@@ -229,6 +221,50 @@ fn materials_by_name_with_overrides_and_suggestions() {
     );
 }
 
+/// One set of material bounds for every use: ν = 0.5 is accepted (friction and the parser
+/// refused it before), a negative ν, a yield strength above the hardness and a shear strength
+/// above Tabor's Y = H/2.8 are refused at the material with the bound.
+#[test]
+fn materials_obey_one_set_of_bounds() {
+    let upper = |material: &str| {
+        EXPLICIT.replace("PRESSURES", "20 MPa").replace(
+            "upper_material: S235JR",
+            &format!("upper_material: {material}"),
+        )
+    };
+    let plan = Plan::build(&study(&upper("{name: s235jr, poisson_ratio: 0.5}")));
+    assert!(plan.is_ok(), "{:?}", plan.err());
+    for (material, field, bound) in [
+        (
+            "{name: s235jr, poisson_ratio: -0.1}",
+            "upper_material.poisson_ratio",
+            "in [0, 0.5]",
+        ),
+        (
+            "{name: s235jr, yield_strength: 2.5 GPa}",
+            "upper_material.yield_strength",
+            "at most hardness",
+        ),
+        // S235JR: H = 1.96 GPa, so Tabor's Y = 0.70 GPa.
+        (
+            "{name: s235jr, shear_strength: 1 GPa}",
+            "upper_material.shear_strength",
+            "at most yield_strength",
+        ),
+        (
+            "{name: s235jr, hardness: 300 GPa}",
+            "upper_material.hardness",
+            "below youngs_modulus",
+        ),
+    ] {
+        let message = plan_error(&upper(material));
+        assert!(
+            message.contains(field) && message.contains(bound),
+            "{material}: {message}"
+        );
+    }
+}
+
 #[test]
 fn materials_can_be_swept_and_give_the_contact_its_flow_pressure() {
     let text = PER_SUMMIT
@@ -259,7 +295,7 @@ fn materials_can_be_swept_and_give_the_contact_its_flow_pressure() {
     // Rule p_lim = H of the built-in material (200 HV and 434 HV).
     let expected: Vec<f64> = ["s235jr", "17-4ph"]
         .iter()
-        .map(|n| find_material(n).unwrap().hardness)
+        .map(|n| find_material(n).unwrap().constants.hardness.unwrap())
         .collect();
     assert_eq!(flow, expected);
 }

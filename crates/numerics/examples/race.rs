@@ -24,7 +24,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use asperity_numerics::contact::{
-    BodyElasticity, Boundary, ContactMaterial, ContactProblem, ContactSolver, SolverOptions,
+    Boundary, ContactMaterial, ContactProblem, ContactSolver, SolverOptions,
 };
 use ndarray::Array2;
 
@@ -126,14 +126,8 @@ fn run() -> Result<String, String> {
     let args = parse_args()?;
     let heights = read_heights(&args.surface, args.grid)?;
     let spacing = args.length / args.grid as f64;
-    let material = ContactMaterial::new(
-        BodyElasticity::PlaneStrain {
-            modulus: args.modulus,
-        },
-        BodyElasticity::Rigid,
-        args.flow_pressure,
-    )
-    .map_err(|e| e.to_string())?;
+    let material = ContactMaterial::against_rigid_flat(args.modulus, args.flow_pressure)
+        .map_err(|e| e.to_string())?;
     // Against a flat the gap is −z up to a shift (`from_gap_array` shifts it to min 0).
     let problem = ContactProblem::from_gap_array(
         heights.mapv(|z| -z).view(),

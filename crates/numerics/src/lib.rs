@@ -4,7 +4,7 @@
 //!   surfaces and twins, summits;
 //! * [`contact`] — elastic–perfectly-plastic FFT boundary-element contact;
 //! * [`friction`] — Kogut–Etsion, full-stick and per-summit / per-spot static friction;
-//! * [`materials`] — built-in material constants;
+//! * [`materials`] — the body and pair material description and the built-in materials;
 //! * [`fft2`] — the real-to-complex 2-D FFT they share.
 //!
 //! See `ARCHITECTURE.md` at the repository root for the code map and invariants.

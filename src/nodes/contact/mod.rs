@@ -13,24 +13,25 @@ use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
 use super::validity;
 use crate::contact::{
-    BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
-    FieldRequest, SolverOptions, MAX_TOLERANCE, MIN_TOLERANCE,
+    Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver, FieldRequest,
+    SolverOptions, MAX_TOLERANCE, MIN_TOLERANCE,
 };
 use crate::engine::artifact::Artifact;
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
 use crate::engine::study::{Param, ResolveContext, SourceLocation, SpannedName, SpecError};
 use crate::engine::value::{Field, Value};
-use crate::materials::half_space_compliance;
+use crate::materials::{bounds, MaterialPair};
 use crate::surface::HeightMap;
 use crate::units::{format_number, Dimension, Pressure, Quantity};
+use crate::vocabulary::{roles, tables};
 
 mod results;
 
 pub use results::final_step_metrics;
 use results::{load_curve_table, store_fields};
 
-pub(crate) const KIND: &str = "contact";
-pub(crate) const TABLE: &str = "contacts";
+pub(crate) use crate::vocabulary::kinds::CONTACT as KIND;
+pub(crate) use crate::vocabulary::tables::CONTACTS as TABLE;
 
 /// Implementation version of the `contact` kind; bump whenever its numerics change (26: the
 /// validity rules fail impossible values and flag coarse grids and steep slopes).
@@ -72,12 +73,12 @@ pub struct ContactSpec {
 impl ContactSpec {
     pub(crate) fn upstream(&self) -> Vec<UpstreamRef<'_>> {
         let mut refs = vec![UpstreamRef {
-            role: "lower",
+            role: roles::LOWER,
             node: &self.lower,
         }];
         if let Some(upper) = &self.upper {
             refs.push(UpstreamRef {
-                role: "upper",
+                role: roles::UPPER,
                 node: upper,
             });
         }
@@ -86,9 +87,8 @@ impl ContactSpec {
 
     pub(crate) fn instantiate(&self, ctx: &ResolveContext<'_>) -> Result<ContactTask, SpecError> {
         self.check_upstream_kinds(ctx)?;
-        let (lower, upper, material_flow) = self.materials(ctx)?;
-        let flow_pressure = self.flow_pressure(ctx, material_flow)?;
-        let pressures = self.pressures(ctx, flow_pressure)?;
+        let material = self.material(ctx)?;
+        let pressures = self.pressures(ctx, material.flow_pressure())?;
         let periodic = match &self.periodic {
             Some(p) => ctx.resolve(p, "periodic")?,
             None => true,
@@ -115,9 +115,7 @@ impl ContactSpec {
         let surface_bytes = ctx.upstream(0).map_or(1 << 30, |t| t.memory_estimate());
         let memory_estimate = surface_bytes.saturating_mul(if periodic { 2 } else { 8 });
         Ok(ContactTask {
-            lower,
-            upper,
-            flow_pressure,
+            material,
             pressures,
             periodic,
             tolerance,
@@ -146,22 +144,13 @@ impl ContactSpec {
         Ok(())
     }
 
-    /// The elastic constants (E, ν) of both bodies (the upper `None` for a rigid flat) and the
-    /// smaller flow pressure the materials give.
-    fn materials(&self, ctx: &ResolveContext<'_>) -> Result<ElasticPair, SpecError> {
+    /// The material pair (the upper body rigid without `upper`) and its flow pressure: the
+    /// explicit field, else the pair's ([`MaterialPair::flow_pressure`]), else +∞ (purely
+    /// elastic).
+    fn material(&self, ctx: &ResolveContext<'_>) -> Result<ContactMaterial, SpecError> {
         let lower = self.lower_material.resolve(ctx, "lower_material")?;
-        let (e1, nu1) = (lower.youngs_modulus, lower.poisson_ratio);
-        let mut material_flow = lower.flow_pressure;
         let upper = match (&self.upper, &self.upper_material) {
-            (Some(_), Some(m)) => {
-                let upper = m.resolve(ctx, "upper_material")?;
-                let (e2, nu2) = (upper.youngs_modulus, upper.poisson_ratio);
-                material_flow = match (material_flow, upper.flow_pressure) {
-                    (Some(a), Some(b)) => Some(a.min(b)),
-                    (a, b) => a.or(b),
-                };
-                Some((e2, nu2))
-            }
+            (Some(_), Some(m)) => Some(m.resolve(ctx, "upper_material")?),
             (Some(u), None) => {
                 return Err(spec_error(
                     u.location,
@@ -182,30 +171,19 @@ impl ContactSpec {
             }
             (None, None) => None,
         };
-        Ok(((e1, nu1), upper, material_flow))
-    }
-
-    /// The flow pressure p_lim (Pa): the explicit field, else the materials' (+∞ without
-    /// either: purely elastic).
-    fn flow_pressure(
-        &self,
-        ctx: &ResolveContext<'_>,
-        material_flow: Option<f64>,
-    ) -> Result<f64, SpecError> {
-        let explicit = match &self.flow_pressure {
-            Some(p) => Some(
-                ctx.resolve_checked(p, "flow_pressure", |q| {
-                    if q.si() > 0.0 {
-                        Ok(())
-                    } else {
-                        Err(String::from("is out of range: must be > 0 Pa"))
-                    }
-                })?
-                .si(),
-            ),
-            None => None,
+        let pair = MaterialPair::new(lower, upper);
+        let Some(p) = &self.flow_pressure else {
+            return Ok(ContactMaterial::new(pair));
         };
-        Ok(explicit.or(material_flow).unwrap_or(f64::INFINITY))
+        let flow_pressure = ctx
+            .resolve_checked(p, "flow_pressure", |q| {
+                bounds::contact_flow_pressure(q.si())
+                    .map(|_| ())
+                    .map_err(|e| e.range_message())
+            })?
+            .si();
+        ContactMaterial::with_flow_pressure(pair, flow_pressure)
+            .map_err(|e| spec_error(p.location(), "flow_pressure", e.range_message()))
     }
 
     /// The load steps to solve (Pa): the listed nominal pressures, at least one, ascending, > 0
@@ -249,10 +227,6 @@ impl ContactSpec {
     }
 }
 
-/// (E, ν) of the lower body, of the upper body (`None`: rigid flat), and the materials' flow
-/// pressure.
-type ElasticPair = ((f64, f64), Option<(f64, f64)>, Option<f64>);
-
 fn spec_error(location: SourceLocation, field: &str, message: String) -> SpecError {
     SpecError {
         location,
@@ -264,12 +238,8 @@ fn spec_error(location: SourceLocation, field: &str, message: String) -> SpecErr
 /// A resolved contact node.
 #[derive(Debug, Clone)]
 pub struct ContactTask {
-    /// (E, ν) of the lower body.
-    lower: (f64, f64),
-    /// (E, ν) of the upper body; `None`: a rigid flat.
-    upper: Option<(f64, f64)>,
-    /// p_lim (Pa); +∞: purely elastic.
-    flow_pressure: f64,
+    /// The material pair (the upper body rigid: a flat) and p_lim (Pa; +∞: purely elastic).
+    material: ContactMaterial,
     /// The load steps solved (Pa): every listed one, or only the last when no written table
     /// shows the others (`ContactSpec::pressures`).
     pressures: Vec<f64>,
@@ -285,35 +255,35 @@ impl ContactTask {
     /// load steps and the solver settings, in SI. The memory estimate is not part of it.
     fn key_fields(&self) -> Vec<Field> {
         let Self {
-            lower: (e1, nu1),
-            upper,
-            flow_pressure,
+            material,
             pressures,
             periodic,
             tolerance,
             fields,
             memory_estimate: _,
         } = self;
-        let mut key = vec![
-            Field::float("lower_youngs_modulus", *e1, Dimension::Pressure),
-            Field::float("lower_poisson_ratio", *nu1, Dimension::Dimensionless),
-        ];
-        if let Some((e2, nu2)) = upper {
-            key.push(Field::float(
-                "upper_youngs_modulus",
-                *e2,
-                Dimension::Pressure,
-            ));
-            key.push(Field::float(
-                "upper_poisson_ratio",
-                *nu2,
-                Dimension::Dimensionless,
-            ));
+        let pair = material.pair();
+        let mut key = Vec::with_capacity(9);
+        for (side, body) in [("lower", Some(pair.lower())), ("upper", pair.upper())] {
+            if let Some(body) = body {
+                key.extend([
+                    Field::float(
+                        format!("{side}_youngs_modulus"),
+                        body.youngs_modulus(),
+                        Dimension::Pressure,
+                    ),
+                    Field::float(
+                        format!("{side}_poisson_ratio"),
+                        body.poisson_ratio(),
+                        Dimension::Dimensionless,
+                    ),
+                ]);
+            }
         }
-        if flow_pressure.is_finite() {
+        if material.flow_pressure().is_finite() {
             key.push(Field::float(
                 "flow_pressure",
-                *flow_pressure,
+                material.flow_pressure(),
                 Dimension::Pressure,
             ));
         }
@@ -336,16 +306,9 @@ impl ContactTask {
         self.periodic
     }
 
-    /// The composite compliance Σ (1 − ν²)/E of the two bodies (1/Pa; a rigid flat adds 0): the
-    /// elastic constants the contact was solved with.
-    pub(crate) fn compliance(&self) -> f64 {
-        let body = |(e, nu): (f64, f64)| half_space_compliance(e, nu);
-        body(self.lower) + self.upper.map_or(0.0, body)
-    }
-
-    /// The flow pressure p_lim the contact was solved with (Pa; infinite when purely elastic).
-    pub(crate) fn flow_pressure(&self) -> f64 {
-        self.flow_pressure
+    /// The material pair and flow pressure the contact was solved with.
+    pub(crate) fn material(&self) -> &ContactMaterial {
+        &self.material
     }
 }
 
@@ -400,7 +363,7 @@ impl NodeTask for ContactTask {
         };
         artifact
             .tables
-            .insert(String::from("load_curve"), load_curve_table(&curve));
+            .insert(String::from(tables::LOAD_CURVE), load_curve_table(&curve));
         if let Some(z) = setup.composite {
             artifact
                 .arrays
@@ -463,38 +426,26 @@ impl ContactTask {
                 .ok_or_else(|| NodeError::new("no lower surface"))?,
             "lower",
         )?;
-        let (gap, upper_body, composite) = match (self.upper, inputs.get(1)) {
-            (Some((e2, nu2)), Some(input)) => {
+        let (gap, composite) = match (self.material.pair().upper(), inputs.get(1)) {
+            (Some(_), Some(input)) => {
                 let upper = height_map(input, "upper")?;
                 let gap =
                     CompositeGap::from_surfaces(&lower, &upper).map_err(|e| fail("gap", &e))?;
-                let composite = self.fields.then(|| lower.heights() + upper.heights());
-                let body = BodyElasticity::Isotropic {
-                    youngs_modulus: e2,
-                    poisson_ratio: nu2,
-                };
-                (gap, body, composite)
+                (gap, self.fields.then(|| lower.heights() + upper.heights()))
             }
             _ => (
                 CompositeGap::against_flat(&lower).map_err(|e| fail("gap", &e))?,
-                BodyElasticity::Rigid,
                 self.fields.then(|| lower.heights().clone()),
             ),
         };
-        let lower_body = BodyElasticity::Isotropic {
-            youngs_modulus: self.lower.0,
-            poisson_ratio: self.lower.1,
-        };
-        let material = ContactMaterial::new(lower_body, upper_body, self.flow_pressure)
-            .map_err(|e| fail("material", &e))?;
         let boundary = if self.periodic {
             Boundary::Periodic
         } else {
             Boundary::NonPeriodic
         };
         Ok(ProblemSetup {
-            problem: ContactProblem::new(gap, material, boundary),
-            composite_modulus: material.composite_modulus(),
+            problem: ContactProblem::new(gap, self.material, boundary),
+            composite_modulus: self.material.composite_modulus(),
             spacing: (lower.dx(), lower.dy()),
             composite,
         })

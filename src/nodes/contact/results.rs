@@ -9,6 +9,7 @@ use crate::contact::{LoadCurve, LoadStep};
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::value::Field;
 use crate::units::Dimension;
+use crate::vocabulary::metrics::{MEAN_CONTACT_PRESSURE, STRESS_RATIO};
 
 /// The `contacts` row: the final load step, the composite modulus and the grid (also the
 /// scalars of the Python package's `contact`).
@@ -22,11 +23,11 @@ pub fn final_step_metrics(
         Field::float(NOMINAL_PRESSURE, last.nominal_pressure, Dimension::Pressure),
         Field::float(AREA_FRACTION, last.area_fraction, Dimension::Dimensionless),
         Field::float(
-            "mean_contact_pressure",
+            MEAN_CONTACT_PRESSURE,
             last.mean_contact_pressure,
             Dimension::Pressure,
         ),
-        Field::float("stress_ratio", last.stress_ratio, Dimension::Dimensionless),
+        Field::float(STRESS_RATIO, last.stress_ratio, Dimension::Dimensionless),
         Field::float(
             "plastic_area_share",
             last.plastic_area_share,
@@ -55,16 +56,14 @@ type StepColumn = (&'static str, Dimension, fn(&LoadStep) -> f64);
 pub(super) fn load_curve_table(curve: &LoadCurve) -> Table {
     let column = |f: fn(&LoadStep) -> f64| curve.steps.iter().map(f).collect();
     let steps: [StepColumn; 8] = [
-        ("nominal_pressure", Dimension::Pressure, |s| {
+        (NOMINAL_PRESSURE, Dimension::Pressure, |s| {
             s.nominal_pressure
         }),
-        ("area_fraction", Dimension::Dimensionless, |s| {
-            s.area_fraction
-        }),
-        ("mean_contact_pressure", Dimension::Pressure, |s| {
+        (AREA_FRACTION, Dimension::Dimensionless, |s| s.area_fraction),
+        (MEAN_CONTACT_PRESSURE, Dimension::Pressure, |s| {
             s.mean_contact_pressure
         }),
-        ("stress_ratio", Dimension::Dimensionless, |s| s.stress_ratio),
+        (STRESS_RATIO, Dimension::Dimensionless, |s| s.stress_ratio),
         ("plastic_area_share", Dimension::Dimensionless, |s| {
             s.plastic_area_share
         }),

@@ -9,7 +9,6 @@ use crate::units::format_number;
 use super::material_pair::MaterialPair;
 use super::spec_fields::spec_error;
 use super::FrictionSpec;
-use crate::materials::half_space_compliance;
 use crate::nodes::contact::ContactTask;
 use crate::nodes::validity;
 
@@ -86,9 +85,11 @@ pub(super) fn contact_solution(
         ));
     }
     check_same_modulus(spec, contact_task, &name.value, pair)?;
-    let flag =
-        validity::cross::flow_pressure_match(contact_task.flow_pressure(), pair.material.hardness)
-            .map_err(|message| spec_error(name.location, "contact", message))?;
+    let flag = validity::cross::flow_pressure_match(
+        contact_task.material().flow_pressure(),
+        pair.material.hardness,
+    )
+    .map_err(|message| spec_error(name.location, "contact", message))?;
     Ok((index, contact_task.periodic(), flag))
 }
 
@@ -100,10 +101,8 @@ fn check_same_modulus(
     name: &str,
     pair: &MaterialPair,
 ) -> Result<(), SpecError> {
-    let compliance =
-        |body: Option<(f64, f64)>| body.map_or(0.0, |(e, nu)| half_space_compliance(e, nu));
-    let ours = compliance(Some(pair.lower)) + compliance(pair.upper);
-    let theirs = contact.compliance();
+    let ours = pair.bodies.composite().compliance;
+    let theirs = contact.material().pair().composite().compliance;
     if (ours - theirs).abs() > 1e-9 * theirs.abs() {
         return Err(spec_error(
             spec.lower_material.location(),

@@ -1,26 +1,22 @@
-//! The material pair of a friction node: the friction [`Material`] of the softer body against
-//! the composite modulus, both bodies' elastic constants and the softer body's strengths.
-//!
-//! Material rule: the composite modulus is 1/E = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂ (a rigid counter-body
-//! when `upper_material` is omitted); H and ν are those of the softer body (the lower hardness; the
-//! lower body against a rigid one), which must have a hardness.
+//! The material pair of a friction node: the [`MaterialPair`] of `lower_material` against
+//! `upper_material` (a rigid counter-body when it is omitted), the friction [`Material`] built
+//! from it ([`Material::from_pair`]: the pair's composite modulus, H and ν of the softer body,
+//! which must have a hardness) and the softer body's strengths (given, or by the default rules
+//! of [`crate::materials::BodyMaterial`]).
 
 use crate::engine::study::{ResolveContext, SpecError};
 use crate::friction::Material;
-use crate::materials::half_space_compliance;
+use crate::materials;
 
 use super::spec_fields::spec_error;
 use super::FrictionSpec;
 
-/// Young's modulus (Pa) and Poisson's ratio of one body.
-type Body = (f64, f64);
-
-/// The resolved material pair: the friction [`Material`], both bodies' elastic constants and the
-/// softer body's strengths.
+/// The resolved materials of a friction node.
 pub(super) struct MaterialPair {
+    /// What the asperity laws see: E*, and H and ν of the softer body.
     pub material: Material,
-    pub lower: Body,
-    pub upper: Option<Body>,
+    /// Both bodies.
+    pub bodies: materials::MaterialPair,
     /// Yield strength Y of the softer body (Pa): given, or Tabor's H/2.8.
     pub yield_strength: f64,
     /// Shear strength k of the softer body (Pa): given, or von Mises Y/√3.
@@ -37,39 +33,28 @@ pub(super) fn resolve_material(
         Some(m) => Some(m.resolve(ctx, "upper_material")?),
         None => None,
     };
-    let mut total = half_space_compliance(lower.youngs_modulus, lower.poisson_ratio);
-    let mut softer = (
-        lower.hardness,
-        lower.poisson_ratio,
-        "lower_material",
-        &lower,
-    );
-    if let Some(u) = &upper {
-        total += half_space_compliance(u.youngs_modulus, u.poisson_ratio);
-        if let Some(hu) = u.hardness {
-            if lower.hardness.is_none_or(|hl| hu < hl) {
-                softer = (Some(hu), u.poisson_ratio, "upper_material", u);
-            }
-        }
-    }
-    let strengths = (softer.3.yield_strength, softer.3.shear_strength);
-    let Some(hardness) = softer.0 else {
-        return Err(spec_error(
+    let bodies = materials::MaterialPair::new(lower, upper);
+    let (side, softer) = bodies.softer();
+    let error = |message: String| {
+        spec_error(
             spec.lower_material.location(),
-            softer.2,
-            "the softer body needs a hardness: use a built-in material (e.g. `s235jr`) or add `hardness` (e.g. `{youngs_modulus: 210 GPa, poisson_ratio: 0.3, hardness: 2 GPa}`)",
-        ));
+            side.material_field(),
+            message,
+        )
     };
-    let material = Material::new(1.0 / total, hardness, softer.1)
-        .map_err(|e| spec_error(spec.lower_material.location(), softer.2, e.to_string()))?;
-    let yield_strength = strengths
-        .0
-        .unwrap_or_else(|| material.tabor_yield_strength());
+    let strengths = (softer.hardness())
+        .and(softer.yield_strength())
+        .zip(softer.shear_strength());
+    let Some((yield_strength, shear_strength)) = strengths else {
+        return Err(error(String::from(
+            "the softer body needs a hardness: use a built-in material (e.g. `s235jr`) or add `hardness` (e.g. `{youngs_modulus: 210 GPa, poisson_ratio: 0.3, hardness: 2 GPa}`)",
+        )));
+    };
+    let material = Material::from_pair(&bodies).map_err(|e| error(e.to_string()))?;
     Ok(MaterialPair {
         material,
-        lower: (lower.youngs_modulus, lower.poisson_ratio),
-        upper: upper.map(|u| (u.youngs_modulus, u.poisson_ratio)),
+        bodies,
         yield_strength,
-        shear_strength: strengths.1.unwrap_or(yield_strength / 3f64.sqrt()),
+        shear_strength,
     })
 }

@@ -49,8 +49,8 @@ mod setup;
 mod spec_fields;
 mod statistical;
 
-pub(crate) const KIND: &str = "friction";
-pub(crate) const TABLE: &str = "friction";
+pub(crate) use crate::vocabulary::kinds::FRICTION as KIND;
+pub(crate) use crate::vocabulary::tables::FRICTION as TABLE;
 
 /// Implementation version of the `friction` kind; bump whenever its numerics change (4: keys
 /// derived from the law registry; the values are those of version 3).

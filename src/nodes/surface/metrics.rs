@@ -35,7 +35,7 @@ use crate::surface::{
 use crate::units::Dimension;
 
 /// The long table of the material ratio curve (`surfaces_material_ratio`).
-pub(crate) const MATERIAL_RATIO_TABLE: &str = "material_ratio";
+pub(crate) use crate::vocabulary::tables::MATERIAL_RATIO as MATERIAL_RATIO_TABLE;
 
 /// Below this coefficient of determination the PSD band is not a power law: no Hurst exponent.
 const MIN_HURST_FIT_R_SQUARED: f64 = 0.9;

@@ -30,8 +30,8 @@ pub use lateral_scale::{apply_lateral_calibration, LateralCalibration};
 use measured::MeasuredSource;
 use twin::TwinSource;
 
-pub(crate) const KIND: &str = "surface";
-pub(crate) const TABLE: &str = "surfaces";
+pub(crate) use crate::vocabulary::kinds::SURFACE as KIND;
+pub(crate) use crate::vocabulary::tables::SURFACES as TABLE;
 /// The column that says where a file surface's height unit came from (`file`, `study`,
 /// `assumed`).
 pub(crate) const HEIGHT_UNIT_SOURCE: &str = "height_unit_source";

@@ -1,9 +1,9 @@
 //! Errors of the contact solver.
 
 use super::gap::GapError;
-use super::material::MaterialError;
 use super::options::{BadOption, Residuals, Termination};
 use crate::fft2::FftFailure;
+use crate::materials::MaterialError;
 
 /// Why a contact problem could not be set up or solved.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -26,11 +26,12 @@ mod work;
 mod workspace;
 
 pub use crate::fft2::{FftFailure, RealFft2d};
+pub use crate::materials::MaterialError;
 pub use error::ContactError;
 pub use gap::{CompositeGap, GapError, GapSource};
 pub use influence::Boundary;
 pub use load_curve::{ContactFields, LoadCurve, LoadStep};
-pub use material::{BodyElasticity, ContactMaterial, MaterialError};
+pub use material::ContactMaterial;
 pub use options::{
     BadOption, FieldRequest, Residuals, SolvePath, SolveStrategy, SolverOptions, Termination,
     MAX_TOLERANCE, MIN_TOLERANCE,

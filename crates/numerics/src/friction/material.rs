@@ -1,9 +1,10 @@
 //! Material of a contact pair and the critical (first-yield) values of a spherical asperity.
 //!
-//! Composite modulus 1/E = (1 − ν1²)/E1 + (1 − ν2²)/E2 (Hertz); hardness H and Poisson ratio ν of
-//! the softer body; hardness factor K = 0.454 + 0.41 ν (Chang, Etsion & Bogy, J. Tribol. 109
-//! (1987) 257: the peak Hertz pressure at first yield is K·H). Critical values of a sphere of
-//! radius R on a flat (Kogut & Etsion, J. Appl. Mech. 69 (2002) 657):
+//! Composite modulus E of the pair ([`MaterialPair::composite`]); hardness H and Poisson ratio ν
+//! of the softer body ([`MaterialPair::softer`]); hardness factor K = 0.454 + 0.41 ν (Chang,
+//! Etsion & Bogy, J. Tribol. 109 (1987) 257: the peak Hertz pressure at first yield is K·H).
+//! Critical values of a sphere of radius R on a flat (Kogut & Etsion, J. Appl. Mech. 69 (2002)
+//! 657):
 //!
 //! ```text
 //! ω_c = (π K H / (2E))² R      P_c = (2/3) π K H R ω_c      A_c = π R ω_c
@@ -13,11 +14,8 @@
 //! standard deviation σ_s (as KE 2003/2004 do), so that ω_c/σ_s = 1/ψ².
 
 use super::error::{require_positive, FrictionError};
-use crate::materials::half_space_compliance;
-
-/// Tabor's constraint factor: hardness H ≈ 2.8 × yield strength Y of a metal (Tabor, The Hardness
-/// of Metals, 1951), the rule used for Y when a material gives only H.
-pub const TABOR_FACTOR: f64 = 2.8;
+pub use crate::materials::TABOR_FACTOR;
+use crate::materials::{bounds, MaterialPair};
 
 /// Elastic and plastic properties of a contact pair (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,21 +39,10 @@ pub struct CriticalValues {
     pub area: f64,
 }
 
-fn require_poisson(name: &'static str, nu: f64) -> Result<f64, FrictionError> {
-    if nu.is_finite() && nu > -1.0 && nu < 0.5 {
-        Ok(nu)
-    } else {
-        Err(FrictionError::InvalidParameter {
-            name,
-            value: nu,
-            expected: "a Poisson ratio in (-1, 0.5)",
-        })
-    }
-}
-
 impl Material {
     /// Material from the composite modulus E (Pa), the softer body's hardness H (Pa) and Poisson
-    /// ratio ν. Requires E > 0, 0 < H < E, −1 < ν < 0.5.
+    /// ratio ν. Requires E > 0, 0 < H < E and ν within the material bounds, [0, 0.5]
+    /// ([`crate::materials::bounds`]).
     pub fn new(
         composite_modulus: f64,
         hardness: f64,
@@ -70,7 +57,12 @@ impl Material {
                 expected: "a hardness below the composite modulus",
             });
         }
-        let poisson_ratio = require_poisson("poisson_ratio", poisson_ratio)?;
+        let poisson_ratio =
+            bounds::poisson_ratio(poisson_ratio).map_err(|_| FrictionError::InvalidParameter {
+                name: "poisson_ratio",
+                value: poisson_ratio,
+                expected: "a Poisson ratio in [0, 0.5] (the material bounds)",
+            })?;
         Ok(Self {
             composite_modulus,
             hardness,
@@ -78,23 +70,17 @@ impl Material {
         })
     }
 
-    /// Material from both bodies: E1, ν1, E2, ν2 (Pa, –), the hardness H (Pa) of the softer body
-    /// and `softer_is_first` choosing whose ν enters K.
-    pub fn from_bodies(
-        e1: f64,
-        nu1: f64,
-        e2: f64,
-        nu2: f64,
-        hardness: f64,
-        softer_is_first: bool,
-    ) -> Result<Self, FrictionError> {
-        let e1 = require_positive("e1", e1)?;
-        let e2 = require_positive("e2", e2)?;
-        let nu1 = require_poisson("nu1", nu1)?;
-        let nu2 = require_poisson("nu2", nu2)?;
-        let compliance = half_space_compliance(e1, nu1) + half_space_compliance(e2, nu2);
-        let nu = if softer_is_first { nu1 } else { nu2 };
-        Self::new(1.0 / compliance, hardness, nu)
+    /// Material of a pair: its composite modulus ([`MaterialPair::composite`]) and the softer
+    /// body's ([`MaterialPair::softer`]) hardness and Poisson ratio; the softer body must have a
+    /// hardness.
+    pub fn from_pair(pair: &MaterialPair) -> Result<Self, FrictionError> {
+        let (_, softer) = pair.softer();
+        let hardness = softer.hardness().ok_or(FrictionError::InvalidParameter {
+            name: "hardness",
+            value: f64::NAN,
+            expected: "the hardness of the softer body (none given)",
+        })?;
+        Self::new(pair.composite().modulus, hardness, softer.poisson_ratio())
     }
 
     /// Yield strength by Tabor's rule, Y = H/2.8 ([`TABOR_FACTOR`]).

@@ -231,7 +231,8 @@ fn swapping_the_surfaces_gives_the_same_answer() {
         s.solve(100e6).unwrap()
     };
     let ab = solve(&a, &b, material);
-    let ba = solve(&b, &a, material.swapped());
+    let swapped = ContactMaterial::from_young_poisson(70e9, 0.33, 210e9, 0.3, 3e9).unwrap();
+    let ba = solve(&b, &a, swapped);
     assert_eq!(ab.area_fraction, ba.area_fraction);
     assert_eq!(ab.approach, ba.approach);
     let (fa, fb) = (ab.fields.unwrap(), ba.fields.unwrap());

@@ -3,6 +3,7 @@
 use asperity_numerics::friction::{
     gw_function, FrictionError, Material, SpectralMoments, SummitStatistics,
 };
+use asperity_numerics::materials::{BodyConstants, BodyMaterial, MaterialPair};
 
 /// Reference value printed with a given number of significant digits: the tolerance is half a unit
 /// in the last printed digit (plus 1 % of it for the rounding of our own value).
@@ -118,8 +119,10 @@ fn bandwidth_below_mccool_bound_is_a_typed_error() {
 /// K = 0.454 + 0.41·0.3; ω_c/σ_s = 1/ψ² (identities, 1e-12).
 #[test]
 fn material_composite_modulus_and_critical_values() {
-    let m =
-        Material::from_bodies(210e9, 0.3, 210e9, 0.3, 2e9, true).unwrap_or_else(|e| panic!("{e}"));
+    let steel = BodyMaterial::new(BodyConstants::with_hardness(210e9, 0.3, 2e9))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let m = Material::from_pair(&MaterialPair::new(steel, Some(steel)))
+        .unwrap_or_else(|e| panic!("{e}"));
     assert!((m.composite_modulus / (210e9 / (2.0 * 0.91)) - 1.0).abs() < 1e-12);
     assert!((m.hardness_factor() - 0.577).abs() < 1e-12);
     let (sigma_s, radius) = (0.9e-6, 2e-4);
@@ -159,9 +162,22 @@ fn material_inputs_are_validated() {
             ..
         })
     ));
+    // The material bounds: ν in [0, 0.5], the incompressible 0.5 included.
+    assert!(Material::new(115e9, 2e9, 0.5).is_ok());
     assert!(matches!(
-        Material::from_bodies(210e9, 0.3, 0.0, 0.3, 2e9, true),
-        Err(FrictionError::InvalidParameter { name: "e2", .. })
+        Material::new(115e9, 2e9, -0.1),
+        Err(FrictionError::InvalidParameter {
+            name: "poisson_ratio",
+            ..
+        })
+    ));
+    let elastic = BodyMaterial::elastic(210e9, 0.3).unwrap_or_else(|e| panic!("{e}"));
+    assert!(matches!(
+        Material::from_pair(&MaterialPair::against_rigid(elastic)),
+        Err(FrictionError::InvalidParameter {
+            name: "hardness",
+            ..
+        })
     ));
     assert!(matches!(
         asperity_numerics::friction::AdhesionParameters::new(0.5, 0.0),

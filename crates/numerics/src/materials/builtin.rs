@@ -3,8 +3,8 @@
 //! Pure data and a name lookup (no YAML, no engine): studies use the names through
 //! `nodes::material_spec`, and may override any value.
 //!
-//! Every entry gives Young's modulus E, Poisson's ratio ν, a hardness H and the plastic flow
-//! pressure p_lim of the elastic–perfectly-plastic contact model. Conventions:
+//! Every entry gives Young's modulus E, Poisson's ratio ν and a hardness H; the plastic flow
+//! pressure p_lim of the elastic–perfectly-plastic contact model follows from H. Conventions:
 //!
 //! * **Hardness** is the Vickers hardness expressed as a pressure, H = HV · 9.80665 MPa (HV in
 //!   kgf/mm²). Where a source gives Rockwell C or Brinell values they are converted to HV with
@@ -13,18 +13,13 @@
 //! * **Flow pressure rule: p_lim = H.** The mean pressure under a fully plastic indenter is the
 //!   hardness (Tabor, *The Hardness of Metals*, 1951: H ≈ 2.8 σ_y), and the elastic–perfectly-
 //!   plastic half-space model caps the local pressure at that value; the reference workflow also
-//!   takes p_lim from (ultra-micro-)hardness measurements. Every entry below follows this rule;
-//!   a study can override p_lim separately.
+//!   takes p_lim from (ultra-micro-)hardness measurements. Every entry below follows this rule
+//!   (the default of [`BodyMaterial`](super::BodyMaterial)); a study can override p_lim separately.
 //! * Values are bulk handbook values unless stated; surface layers (grinding, work hardening,
 //!   indentation size effect at small depths) can differ substantially, so measured
 //!   near-surface values should override them where available.
 
-/// Half-space compliance c = (1 − ν²)/E (1/Pa) of an isotropic elastic body: the composite
-/// modulus of two bodies is E* = 1/(c₁ + c₂) (Johnson, Contact Mechanics, 1985, eq. 4.22), a
-/// rigid body adding 0. The one definition every stage uses.
-pub fn half_space_compliance(youngs_modulus: f64, poisson_ratio: f64) -> f64 {
-    (1.0 - poisson_ratio * poisson_ratio) / youngs_modulus
-}
+use super::body::BodyConstants;
 
 /// One built-in material (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,14 +30,9 @@ pub struct BuiltinMaterial {
     pub aliases: &'static [&'static str],
     /// One-line description (grade, condition).
     pub description: &'static str,
-    /// Young's modulus E (Pa).
-    pub youngs_modulus: f64,
-    /// Poisson's ratio ν.
-    pub poisson_ratio: f64,
-    /// Hardness H (Pa), Vickers hardness as a pressure.
-    pub hardness: f64,
-    /// Plastic flow pressure p_lim (Pa) of the half-space contact model (= H, see module docs).
-    pub flow_pressure: f64,
+    /// E, ν and the hardness H (Vickers hardness as a pressure); p_lim = H and the other
+    /// strengths by the default rules of [`BodyMaterial`](super::BodyMaterial).
+    pub constants: BodyConstants,
     /// Literature source of the values and the assumptions made.
     pub source: &'static str,
 }
@@ -71,10 +61,7 @@ pub const BUILTIN_MATERIALS: &[BuiltinMaterial] = &[
         name: "s235jr",
         aliases: &["1.0037", "s235"],
         description: "structural steel S235JR (EN 10025-2), ground specimens",
-        youngs_modulus: 210.0e9,
-        poisson_ratio: 0.30,
-        hardness: 200.0 * HV,
-        flow_pressure: 200.0 * HV,
+        constants: BodyConstants::with_hardness(210.0e9, 0.30, 200.0 * HV),
         source: "E, nu: EN 1993-1-1:2005 3.2.6; bulk ~130 HV from Rm 360-510 MPa (EN 10025-2); \
                  near-surface H = 200 HV assumed (~1.5 x bulk: grinding work hardening and \
                  indentation size effect of ultra-micro-hardness); p_lim = H",
@@ -83,10 +70,7 @@ pub const BUILTIN_MATERIALS: &[BuiltinMaterial] = &[
         name: "aisi52100",
         aliases: &["52100", "100cr6", "1.3505"],
         description: "bearing steel AISI 52100 / 100Cr6, through-hardened 61 HRC",
-        youngs_modulus: 210.0e9,
-        poisson_ratio: 0.30,
-        hardness: 720.0 * HV,
-        flow_pressure: 720.0 * HV,
+        constants: BodyConstants::with_hardness(210.0e9, 0.30, 720.0 * HV),
         source: "ASM Handbook Vol. 1 (1990): E = 210 GPa, nu = 0.3, 58-65 HRC; 61 HRC = 720 HV \
                  (ASTM E140); p_lim = H",
     },
@@ -94,10 +78,7 @@ pub const BUILTIN_MATERIALS: &[BuiltinMaterial] = &[
         name: "17-4ph",
         aliases: &["174ph", "1.4542", "aisi630"],
         description: "precipitation-hardening stainless steel 17-4PH, condition H900",
-        youngs_modulus: 196.0e9,
-        poisson_ratio: 0.272,
-        hardness: 434.0 * HV,
-        flow_pressure: 434.0 * HV,
+        constants: BodyConstants::with_hardness(196.0e9, 0.272, 434.0 * HV),
         source: "AK Steel 17-4 PH product data bulletin: E = 196 GPa (28.5e6 psi), nu = 0.272, \
                  H900 44 HRC = 434 HV (ASTM E140); p_lim = H",
     },
@@ -105,20 +86,14 @@ pub const BUILTIN_MATERIALS: &[BuiltinMaterial] = &[
         name: "al6061-t6",
         aliases: &["6061-t6", "6061", "aa6061-t6"],
         description: "aluminium alloy 6061-T6",
-        youngs_modulus: 68.9e9,
-        poisson_ratio: 0.33,
-        hardness: 107.0 * HV,
-        flow_pressure: 107.0 * HV,
+        constants: BodyConstants::with_hardness(68.9e9, 0.33, 107.0 * HV),
         source: "ASM Handbook Vol. 2 (1990): E = 68.9 GPa, nu = 0.33, 95 HB = 107 HV; p_lim = H",
     },
     BuiltinMaterial {
         name: "ti6al4v",
         aliases: &["ti-6al-4v", "grade5", "3.7165"],
         description: "titanium alloy Ti-6Al-4V (grade 5), annealed",
-        youngs_modulus: 113.8e9,
-        poisson_ratio: 0.342,
-        hardness: 349.0 * HV,
-        flow_pressure: 349.0 * HV,
+        constants: BodyConstants::with_hardness(113.8e9, 0.342, 349.0 * HV),
         source: "ASM Materials Properties Handbook: Titanium Alloys (1994): E = 113.8 GPa, \
                  nu = 0.342, 349 HV; p_lim = H",
     },
@@ -177,13 +152,14 @@ mod tests {
             assert!(!names[i + 1..].contains(n), "duplicate name {n}");
         }
         for m in BUILTIN_MATERIALS {
-            assert!(
-                m.youngs_modulus > m.hardness && m.hardness > 0.0,
-                "{}",
+            let body = super::super::BodyMaterial::new(m.constants);
+            assert!(body.is_ok(), "{}: {body:?}", m.name);
+            assert!(m.constants.hardness.is_some(), "{}", m.name);
+            assert_eq!(
+                m.constants.flow_pressure, None,
+                "{}: rule p_lim = H",
                 m.name
             );
-            assert!((0.0..0.5).contains(&m.poisson_ratio), "{}", m.name);
-            assert_eq!(m.flow_pressure, m.hardness, "{}: rule p_lim = H", m.name);
         }
     }
 }
