@@ -5,11 +5,11 @@
 //! the node's numbers bit for bit.
 
 use asperity::contact::{
-    BodyElasticity, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
-    FieldRequest, LoadStep, SolverOptions,
+    Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver, FieldRequest, LoadStep,
+    SolverOptions,
 };
 use asperity::engine::value::Value;
-use asperity::materials::find_material;
+use asperity::materials::{find_material, BodyMaterial, MaterialPair};
 use asperity::nodes::final_step_metrics;
 use numpy::{IntoPyArray, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -31,20 +31,18 @@ fn material<'py>(py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyDict>> {
     let m = find_material(name).map_err(|e| value_error("material", e))?;
     let d = PyDict::new(py);
     d.set_item("name", m.name)?;
-    d.set_item("youngs_modulus", m.youngs_modulus)?;
-    d.set_item("poisson_ratio", m.poisson_ratio)?;
-    d.set_item("hardness", m.hardness)?;
-    d.set_item("flow_pressure", m.flow_pressure)?;
+    let body = BodyMaterial::new(m.constants).map_err(|e| value_error("material", e))?;
+    d.set_item("youngs_modulus", body.youngs_modulus())?;
+    d.set_item("poisson_ratio", body.poisson_ratio())?;
+    d.set_item("hardness", body.hardness())?;
+    d.set_item("flow_pressure", body.flow_pressure())?;
     d.set_item("source", m.source)?;
     Ok(d)
 }
 
-/// A body `(E, ν)` in Pa and 1.
-fn body((youngs_modulus, poisson_ratio): (f64, f64)) -> BodyElasticity {
-    BodyElasticity::Isotropic {
-        youngs_modulus,
-        poisson_ratio,
-    }
+/// A body `(E, ν)` in Pa and 1; `field` names it in errors.
+fn body((youngs_modulus, poisson_ratio): (f64, f64), field: &str) -> PyResult<BodyMaterial> {
+    BodyMaterial::elastic(youngs_modulus, poisson_ratio).map_err(|e| value_error(field, e))
 }
 
 /// The contact problem: lower map (against a flat, or against the upper map), the bodies and
@@ -65,15 +63,16 @@ fn setup(
     let (gap, upper_body) = match &upper {
         Some((map, e)) => (
             CompositeGap::from_surfaces(&lower, map).map_err(|e| value_error("upper", e))?,
-            body(*e),
+            Some(body(*e, "upper_body")?),
         ),
         None => (
             CompositeGap::against_flat(&lower).map_err(|e| value_error("lower", e))?,
-            BodyElasticity::Rigid,
+            None,
         ),
     };
-    let material = ContactMaterial::new(body(lower_body), upper_body, flow_pressure)
-        .map_err(|e| value_error("lower_material", e))?;
+    let pair = MaterialPair::new(body(lower_body, "lower_body")?, upper_body);
+    let material = ContactMaterial::with_flow_pressure(pair, flow_pressure)
+        .map_err(|e| value_error("flow_pressure", e))?;
     let boundary = if periodic {
         Boundary::Periodic
     } else {

@@ -2,6 +2,7 @@
 
 #[path = "../common/mod.rs"]
 mod common;
+mod every_shared_file;
 mod readers_a;
 #[path = "../readers_a_common/mod.rs"]
 mod readers_a_common;

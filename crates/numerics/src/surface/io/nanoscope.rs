@@ -211,13 +211,16 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
         )));
     }
 
-    let scan = field(image, "Scan Size", name).or_else(|_| {
-        sections
-            .iter()
-            .find_map(|s| s.fields.get("Scan Size"))
-            .map(String::as_str)
-            .ok_or_else(|| ParseError::malformed("Nanoscope header has no `\\Scan Size`"))
-    })?;
+    // The image's own `\Scan Size`, else the scan list's; older headers write `\Scan size`.
+    let scan = std::iter::once(*image)
+        .chain(sections.iter())
+        .find_map(|s| {
+            s.fields
+                .iter()
+                .find(|(k, _)| k.eq_ignore_ascii_case("Scan Size"))
+                .map(|(_, v)| v.as_str())
+        })
+        .ok_or_else(|| ParseError::malformed("Nanoscope header has no `\\Scan Size`"))?;
     let (lx, ly) = scan_size(scan, image)?;
     let values: Vec<f64> = data
         .chunks_exact(bpp)
