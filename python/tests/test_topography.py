@@ -10,11 +10,11 @@ import asperity
 UNITS = {"m": 1.0, "mm": 1e-3, "µm": 1e-6, "um": 1e-6, "nm": 1e-9}
 
 
-# Files of a format asperity reads that its reader refuses (SurfaceTopography reads them): the
-# Nanoscope header without `\Scan Size`, the two-column text with a one-value first line. Each
-# must still raise, naming the cause; a reader that learns them fails this test until the entry
-# goes.
-REFUSED = {"di/di-2.di": "Scan Size", "xyz/xy-2.txt": "values"}
+# Files of a format asperity reads that its reader refuses although SurfaceTopography reads them,
+# with the cause the error must name (none today: the Nanoscope `\Scan size` header and the
+# two-column text with a count line are read). A reader that refuses one fails this test until
+# the entry is added.
+REFUSED: dict = {}
 
 
 def reference_sq(entry, height_unit_from_file):
