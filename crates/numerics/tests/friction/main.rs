@@ -6,4 +6,6 @@ mod friction_full_stick;
 mod friction_gw_summits;
 mod friction_integrals;
 mod friction_per_summit;
+mod friction_ploughing;
+mod friction_sliding_direction;
 mod friction_static_solve;
