@@ -23,9 +23,10 @@
 //! 4-neighbour in it) just outside. The boundary height `z_b` and distance `r_b` (from the
 //! highest point, m) are the means of the edge's and the ring's means.
 //!
-//! **Attack slope** (the flank). `tan α = (z_peak − z_b)/r_b`. For a cone whose apex is the
-//! highest point it is the flank slope exactly, at any resolution; for a paraboloid cap about
-//! `a/(2R)`; for a one-pixel spot the slope to its four neighbours.
+//! **Attack slope** (the flank). `tan α = (z_peak − z_b)/r_b`, with `z_peak − z_b` the height of
+//! the cap (the spot's penetration). For a cone whose apex is the highest point it is the flank
+//! slope exactly, at any resolution; for a paraboloid cap about `a/(2R)`; for a one-pixel spot
+//! the slope to its four neighbours.
 //!
 //! **Groove ploughing ratio** (Bowden–Tabor, measured). The cross-section of the groove the spot
 //! would plough along `d` is the silhouette of its cap above `z_b` seen along `d`. It is sampled
@@ -101,7 +102,10 @@ pub struct SpotSlope {
     pub plane_points: usize,
     /// Whether the plane took the 8-neighbour ring too (the footprint alone was collinear).
     pub dilated: bool,
-    /// `tan α = (z_peak − z_b)/r_b`; `None` without a ring (a spot covering a periodic grid).
+    /// Height of the cap `z_peak − z_b` (m): the spot's penetration; `None` without a ring (a
+    /// spot covering a periodic grid).
+    pub cap_height: Option<f64>,
+    /// `tan α = (z_peak − z_b)/r_b`; `None` without a ring.
     pub attack_slope: Option<f64>,
     /// Groove cross-section along the sliding direction over half the footprint, `2 A_side/A`;
     /// `None` without a ring.
@@ -292,6 +296,7 @@ impl Grid<'_> {
             tilt: gradient.map(|g| self.direction.along(g)),
             plane_points: plane.n as usize,
             dilated,
+            cap_height: boundary.map(|(z, _)| -z),
             attack_slope: boundary.map(|(z, r)| -z / r),
             groove_ratio: boundary
                 .map(|(z, _)| self.groove_ratio(id, points, z))

@@ -192,8 +192,14 @@ fn rigid_plastic_cone_ploughs_as_the_textbook_cone() {
     };
     let slopes = section.slopes(0.0);
     assert_eq!(slopes.len(), 1);
-    // Every edge point lies on the cone: the ratio of means is tan α up to rounding.
+    // Every edge and ring point lies on the cone: the ratio of means is tan α up to rounding.
     assert!(rel(slopes[0].attack_slope.unwrap(), attack) < 1e-12);
+    // The cap's height is the drop to the boundary, half a pixel outside the edge on average.
+    let cap = slopes[0].cap_height.unwrap() / attack;
+    assert!(
+        cap > a - 1e-6 && cap < a + 1e-6,
+        "boundary at {cap} m, disc radius {a} m"
+    );
     // The symmetric footprint has no tilt (rounding of the fit only).
     let (gx, gy) = slopes[0].gradient.unwrap();
     assert!(gx.abs() < 1e-12 && gy.abs() < 1e-12);
