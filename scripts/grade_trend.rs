@@ -69,7 +69,11 @@ fn run() -> Result<(), String> {
     let (path, filter) = match args.as_slice() {
         [path] => (path, ""),
         [path, filter] => (path, filter.as_str()),
-        _ => return Err(String::from("usage: grade_trend SUMMARY.parquet [METRIC_SUBSTRING]")),
+        _ => {
+            return Err(String::from(
+                "usage: grade_trend SUMMARY.parquet [METRIC_SUBSTRING]",
+            ))
+        }
     };
     let file = File::open(path).map_err(|e| format!("{path}: {e}"))?;
     let frame = ParquetReader::new(file)
@@ -80,9 +84,7 @@ fn run() -> Result<(), String> {
         .iter()
         .map(|n| n.to_string())
         .collect();
-    let group = names
-        .first()
-        .ok_or_else(|| format!("{path}: no columns"))?;
+    let group = names.first().ok_or_else(|| format!("{path}: no columns"))?;
     let groups = column(&frame, group)?;
     let mut order: Vec<usize> = (0..groups.len()).collect();
     order.sort_by(|&a, &b| groups[a].total_cmp(&groups[b]));
@@ -91,7 +93,10 @@ fn run() -> Result<(), String> {
     }
     let sorted = |v: Vec<f64>| order.iter().map(|&i| v[i]).collect::<Vec<f64>>();
     println!("groups by {group}: {:?}", sorted(groups.clone()));
-    for n_name in names.iter().filter(|n| n.ends_with("_n") && n.contains(filter)) {
+    for n_name in names
+        .iter()
+        .filter(|n| n.ends_with("_n") && n.contains(filter))
+    {
         let metric = &n_name[..n_name.len() - 2];
         let with_prefix = |suffix: &str| {
             names
@@ -111,7 +116,11 @@ fn run() -> Result<(), String> {
         let d = series
             .effect_size()
             .map_or_else(|| String::from("-"), |d| format!("{d:+.2}"));
-        println!("{metric}: {} ({}), d = {d}", means.join(" / "), series.order());
+        println!(
+            "{metric}: {} ({}), d = {d}",
+            means.join(" / "),
+            series.order()
+        );
     }
     Ok(())
 }

@@ -23,7 +23,7 @@ def issue_cases(quickstart):
     edit("sq 64 um", lambda d: d["parameters"]["product"].update(sq=["64 um"]))
     edit("sq 1e-300 m", lambda d: d["parameters"]["product"].update(sq=["1e-300 m"]))
     edit("sq 1e308 um", lambda d: d["parameters"]["product"].update(sq=["1e308 um"]))
-    edit("junction_shear interface_factor 1e308", lambda d: nodes(d)["junction_shear"]["friction"].update(interface_factor=1e308))
+    edit("junction_shear interface_factor 1e308", lambda d: nodes(d)["junction_shear"]["friction"].update(model={"junction_shear": {"interface_factor": 1e308}}))
     edit("contact flow_pressure 21 MPa", lambda d: nodes(d)["contact"]["contact"].update(flow_pressure="21 MPa"))
     for n in (2, 3):
         edit(f"grid {n}x{n}", lambda d, n=n: nodes(d)["lower"]["surface"]["synthetic"].update(grid=[n, n]))

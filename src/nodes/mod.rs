@@ -22,7 +22,7 @@ use crate::engine::value::Field;
 use crate::units::format_number;
 
 pub use contact::{ContactSpec, ContactTask, CONTACT_KIND_VERSION};
-pub use friction::{FrictionSpec, FrictionTask, FRICTION_KIND_VERSION};
+pub use friction::{friction_models_markdown, FrictionSpec, FrictionTask, FRICTION_KIND_VERSION};
 pub use material_spec::{MaterialMapping, MaterialSpec, ResolvedMaterial};
 pub use surface::{
     AnisotropySpec, FileSpec, SurfaceSpec, SurfaceTask, SyntheticSpec, SURFACE_KIND_VERSION,

@@ -153,7 +153,7 @@ const CASES: &[(&str, &str, &str)] = &[
     (
         "f",
         "[20 MPa]",
-        "[20 MPa]\n      static_friction_form: clipped",
+        "[20 MPa]\n      model: {kogut_etsion: {static_friction_form: clipped}}",
     ),
     ("f", "[20 MPa]", "[20 MPa]\n      model: chang_etsion_bogy"),
     ("p", "model: full_stick", "model: junction_shear"),
@@ -161,7 +161,7 @@ const CASES: &[(&str, &str, &str)] = &[
     (
         "p",
         "model: full_stick",
-        "model: full_stick\n      stick_law: {a: 0.3, b: 0.35}",
+        "model: {full_stick: {a: 0.3, b: 0.35}}",
     ),
     (
         "p",
@@ -192,7 +192,7 @@ const CASES: &[(&str, &str, &str)] = &[
     (
         "j",
         "model: junction_shear",
-        "model: junction_shear\n      interface_factor: 0.5",
+        "model: {junction_shear: {interface_factor: 0.5}}",
     ),
 ];
 

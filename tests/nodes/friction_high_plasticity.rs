@@ -5,7 +5,7 @@
 use crate::nodes_common;
 use asperity::engine::execute::NodeOutcome;
 use asperity::friction::{
-    static_friction, AdhesionParameters, AsperityModel, FullStickOptions, Material, ModelOptions,
+    static_friction, AdhesionBeyondFits, AdhesionParameters, FullStick, FullStickOptions, Material,
     SolveSettings, SpectralMoments, StatisticalModel, SummitStatistics,
 };
 use asperity::materials::find_material;
@@ -114,21 +114,18 @@ fn statistical_full_stick_equals_the_library() {
     let s235 = find_material("s235jr").unwrap();
     let (e, nu) = (s235.youngs_modulus, s235.poisson_ratio);
     let material = Material::from_bodies(e, nu, e, nu, s235.hardness, true).unwrap();
-    let options = ModelOptions {
-        full_stick: FullStickOptions {
-            yield_strength: Some(material.tabor_yield_strength()),
-            ..FullStickOptions::default()
-        },
-        ..ModelOptions::default()
+    let options = FullStickOptions {
+        yield_strength: Some(material.tabor_yield_strength()),
+        ..FullStickOptions::default()
     };
     let area = 53.4e-6 * 53.4e-6;
     let model = StatisticalModel::new(
-        AsperityModel::FullStick,
+        std::sync::Arc::new(FullStick::new(&material, options).unwrap()),
         summits,
         material,
         AdhesionParameters::new(0.5, 0.158e-9).unwrap(),
         area,
-        options,
+        AdhesionBeyondFits::default(),
     )
     .unwrap();
     let load = float(stick, "external_load");
@@ -147,11 +144,18 @@ fn per_spot_rows_are_consistent_with_their_spots() {
     let (plan, report) = run(GROUND, "ground-spots");
     let rows = outcomes(&plan, &report, "friction");
     let shear = by_model(&rows, "per_spot", "junction_shear");
-    let expected =
-        float(shear, "shear_strength") * float(shear, "real_area") / float(shear, "external_load");
-    assert!((float(shear, "mu_s") - expected).abs() <= 1e-12 * expected);
     let k = find_material("s235jr").unwrap().hardness / 2.8 / 3f64.sqrt();
-    assert_eq!(float(shear, "shear_strength"), k);
+    let expected = k * float(shear, "real_area") / float(shear, "external_load");
+    assert!((float(shear, "mu_s") - expected).abs() <= 1e-12 * expected);
+    // τ_s = c·k with c = 1 is the law's parameter column.
+    let params = plan
+        .nodes
+        .iter()
+        .map(|n| n.task.params())
+        .find(|p| p.iter().any(|f| f.name == "interface_factor"))
+        .unwrap();
+    let tau = params.iter().find(|f| f.name == "shear_strength").unwrap();
+    assert_eq!(tau.value, asperity::engine::value::Value::Float(k));
     let stick = by_model(&rows, "per_spot", "full_stick");
     let loads = column(stick, "spots", "normal_force");
     assert_eq!(loads.len() as i64, int(stick, "spot_count"));
@@ -215,7 +219,7 @@ fn spec_errors_name_the_field_and_the_fix() {
                 "friction: {method: per_spot, contact: pair,",
                 "friction: {method: per_spot, stick_law: {a: 0.3}, contact: pair,",
             ),
-            "is used by `model: full_stick` only",
+            "has moved into the model's parameter block: write `model: {full_stick: {a: 0.27, b: 0.35}}`",
         ),
         (
             GROUND.replace(

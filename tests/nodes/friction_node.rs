@@ -7,8 +7,8 @@ use asperity::engine::execute::NodeOutcome;
 use asperity::engine::plan::Plan;
 use asperity::engine::value::Value;
 use asperity::friction::{
-    static_friction, AdhesionParameters, AsperityModel, Material, ModelOptions, SolveSettings,
-    SpectralMoments, StatisticalModel, SummitStatistics,
+    static_friction, AdhesionBeyondFits, AdhesionParameters, KogutEtsion, Material, SolveSettings,
+    SpectralMoments, StaticFrictionForm, StatisticalModel, SummitStatistics,
 };
 use asperity::materials::find_material;
 use nodes_common::{boolean, column, float, outcomes, plan_error, run, study, text};
@@ -29,12 +29,12 @@ fn s235_pair() -> Material {
 
 fn library_mu(summits: SummitStatistics, area: f64, load: f64) -> f64 {
     let model = StatisticalModel::new(
-        AsperityModel::KogutEtsion,
+        std::sync::Arc::new(KogutEtsion::new(s235_pair(), StaticFrictionForm::Literal)),
         summits,
         s235_pair(),
         AdhesionParameters::new(0.5, 0.158e-9).unwrap(),
         area,
-        ModelOptions::default(),
+        AdhesionBeyondFits::default(),
     )
     .unwrap();
     static_friction(&model, load, &SolveSettings::default())
@@ -262,4 +262,19 @@ fn materials_can_be_swept_and_give_the_contact_its_flow_pressure() {
         .map(|n| find_material(n).unwrap().hardness)
         .collect();
     assert_eq!(flow, expected);
+}
+
+/// The models table of `docs/study-format.md` is the registry's, as written by
+/// `friction_models_markdown()`.
+#[test]
+fn every_friction_model_is_in_the_documentation() {
+    let docs = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/study-format.md"),
+    )
+    .unwrap();
+    let table = asperity::nodes::friction_models_markdown();
+    assert!(
+        docs.contains(&table),
+        "docs/study-format.md must hold the models table as written by friction_models_markdown():\n{table}"
+    );
 }

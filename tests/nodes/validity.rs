@@ -115,7 +115,7 @@ fn an_interface_factor_above_one_is_refused_at_validate() {
     for c in ["1e308", "1.5", "-0.1"] {
         let text = BASE.replace(
             "model: junction_shear",
-            &format!("model: junction_shear\n      interface_factor: {c}"),
+            &format!("model: {{junction_shear: {{interface_factor: {c}}}}}"),
         );
         let e = plan_error(&text);
         assert!(
@@ -125,7 +125,7 @@ fn an_interface_factor_above_one_is_refused_at_validate() {
     }
     let text = BASE.replace(
         "model: junction_shear",
-        "model: junction_shear\n      interface_factor: 1",
+        "model: {junction_shear: {interface_factor: 1}}",
     );
     assert_eq!(plan_error(&text), "");
 }

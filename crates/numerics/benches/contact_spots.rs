@@ -17,7 +17,7 @@ use asperity_numerics::friction::contact_spots::{
     adhesion_from_gap, contact_spots, label_spots, Connectivity,
 };
 use asperity_numerics::friction::{
-    per_spot_friction, AdhesionParameters, FullStickLaw, SpotLaw, SpotLoad, StickFrictionLaw,
+    per_spot_friction, AdhesionParameters, FullStick, FullStickOptions, Material, SpotLoad,
 };
 use asperity_numerics::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
 use criterion::{criterion_group, criterion_main, Bencher, Criterion, SamplingMode};
@@ -68,14 +68,10 @@ fn per_spot_model(z: &Array2<f64>, p: &Array2<f64>, gap: &Array2<f64>, dx: f64) 
     let spots = contact_spots(p.view(), z.view(), dx, dx, true, Connectivity::Eight).ok()?;
     let adhesion = AdhesionParameters::new(0.5, 0.158e-9).ok()?;
     let f_a = adhesion_from_gap(gap.view(), p.view(), dx, dx, adhesion).ok()?;
-    let e = 210e9 / (2.0 * (1.0 - 0.09));
-    let law = FullStickLaw::new(1.96e9 / 2.8, e, 0.3, StickFrictionLaw::default()).ok()?;
+    let material = Material::new(210e9 / (2.0 * (1.0 - 0.09)), 1.96e9, 0.3).ok()?;
+    let law = FullStick::new(&material, FullStickOptions::default()).ok()?;
     let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
-    let spot_law = SpotLaw::FullStick {
-        law,
-        composite_modulus: e,
-    };
-    per_spot_friction(&loads, &spot_law, f_a).ok()?.mu_s
+    per_spot_friction(&loads, &law, f_a).ok()?.mu_s
 }
 
 fn median(runs: &mut [Duration]) -> Duration {

@@ -5,16 +5,26 @@
 //! time and error are read side by side.
 //! Run: `cargo bench -p asperity-numerics --bench friction`.
 
+use std::sync::Arc;
+
 use asperity_numerics::friction::{
-    static_friction, static_friction_curve, AdhesionParameters, AsperityModel, Material,
-    ModelOptions, SolveSettings, StatisticalModel, SummitStatistics,
+    static_friction, static_friction_curve, AdhesionBeyondFits, AdhesionParameters, AsperityLaws,
+    FullStick, FullStickOptions, KogutEtsion, Material, SolveSettings, StaticFrictionForm,
+    StatisticalModel, SummitStatistics,
 };
+
+/// The two laws benchmarked.
+#[derive(Clone, Copy)]
+enum Kind {
+    KogutEtsion,
+    FullStick,
+}
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 
 /// Steel-like pair: E = 115 GPa composite, H = 2 GPa, ν = 0.3, σ = 1 µm, β = 0.04, plasticity
 /// index `psi`, Δγ = 0.5 N/m, ε = 0.158 nm, A_n = 1 cm².
-fn steel_model(kind: AsperityModel, psi: f64) -> Option<StatisticalModel> {
+fn steel_model(kind: Kind, psi: f64) -> Option<StatisticalModel> {
     let material = Material::new(115e9, 2e9, 0.3).ok()?;
     let sigma = 1e-6;
     let beta: f64 = 0.04;
@@ -24,13 +34,17 @@ fn steel_model(kind: AsperityModel, psi: f64) -> Option<StatisticalModel> {
     let radius = sigma_s * c * c / (psi * psi);
     let summits = SummitStatistics::from_explicit(sigma, radius, beta / (radius * sigma)).ok()?;
     let adhesion = AdhesionParameters::new(0.5, 0.158e-9).ok()?;
+    let laws: Arc<dyn AsperityLaws> = match kind {
+        Kind::KogutEtsion => Arc::new(KogutEtsion::new(material, StaticFrictionForm::Literal)),
+        Kind::FullStick => Arc::new(FullStick::new(&material, FullStickOptions::default()).ok()?),
+    };
     StatisticalModel::new(
-        kind,
+        laws,
         summits,
         material,
         adhesion,
         1e-4,
-        ModelOptions::default(),
+        AdhesionBeyondFits::default(),
     )
     .ok()
 }
@@ -55,7 +69,7 @@ fn bench_single_load(c: &mut Criterion, name: &str, model: &StatisticalModel, lo
 }
 
 fn bench_friction(c: &mut Criterion) {
-    let Some(model) = steel_model(AsperityModel::KogutEtsion, 2.0) else {
+    let Some(model) = steel_model(Kind::KogutEtsion, 2.0) else {
         return;
     };
     let settings = SolveSettings::default();
@@ -67,7 +81,7 @@ fn bench_friction(c: &mut Criterion) {
         1e-4,
     );
     for psi in [2.0, 50.0] {
-        if let Some(stick) = steel_model(AsperityModel::FullStick, psi) {
+        if let Some(stick) = steel_model(Kind::FullStick, psi) {
             let name = format!("mu_s single load (full stick, psi {psi}, F/AnH = 1e-2)");
             bench_single_load(c, &name, &stick, 1e-2);
         }

@@ -4,63 +4,33 @@
 //! fails to compile until it is placed in the key or explicitly left out).
 
 use crate::engine::value::Field;
-use crate::friction::{
-    AsperityModel, Connectivity, FullStickOptions, Material, ModelOptions, StickFrictionLaw,
-    SummitStatistics,
-};
+use crate::friction::laws::{ParameterValue, ReportedValue, Unit};
+use crate::friction::{Connectivity, Material, SummitStatistics};
 use crate::nodes::number_list;
 use crate::units::Dimension;
 
 use super::per_spot::Section;
-use super::{
-    form_name, FrictionMethod, FrictionModel, FrictionTask, Loads, MethodSetup, Roughness,
-};
+use super::{FrictionTask, Loads, MethodSetup, Roughness};
 
 impl FrictionTask {
     /// The resolved parameters that enter the key and the `friction` table row.
     pub(super) fn key_fields(&self) -> Vec<Field> {
         let Self {
-            model,
+            law,
             material,
-            junction_shear,
             adhesion,
-            options,
             setup,
             // Derived from the upstream contact's parameters (in its key) and the hardness.
             input_flags: _,
         } = self;
-        // `adhesion_beyond_fits` is not a study field: every friction node uses its default.
-        let ModelOptions {
-            static_friction_form,
-            adhesion_beyond_fits: _,
-            full_stick,
-        } = options;
         // Room for the fields of every setup.
         let mut key = Vec::with_capacity(24);
         key.extend([
-            Field::text("method", method_of(setup).name()),
-            Field::text("model", model.name()),
+            Field::text("method", setup.method().name()),
+            Field::text("model", law.descriptor().name),
         ]);
-        if *model == FrictionModel::Asperity(AsperityModel::KogutEtsion) {
-            key.push(Field::text(
-                "static_friction_form",
-                form_name(*static_friction_form),
-            ));
-        }
         key.extend(material_fields(material));
-        if *model == FrictionModel::Asperity(AsperityModel::FullStick) {
-            key.extend(full_stick_fields(full_stick));
-        }
-        if let Some(j) = junction_shear {
-            key.extend([
-                Field::float(
-                    "interface_factor",
-                    j.interface_factor,
-                    Dimension::Dimensionless,
-                ),
-                Field::float("shear_strength", j.shear_strength, Dimension::Pressure),
-            ]);
-        }
+        key.extend(law.reported_values().iter().map(reported_field));
         key.extend([
             Field::float("adhesion_energy", adhesion.energy, Dimension::SurfaceEnergy),
             Field::float(
@@ -74,11 +44,15 @@ impl FrictionTask {
     }
 }
 
-fn method_of(setup: &MethodSetup) -> FrictionMethod {
-    match setup {
-        MethodSetup::Statistical { .. } => FrictionMethod::Statistical,
-        MethodSetup::PerSummit { .. } => FrictionMethod::PerSummit,
-        MethodSetup::PerSpot { .. } => FrictionMethod::PerSpot,
+/// A law's parameter or derived value as a key field.
+fn reported_field(value: &ReportedValue) -> Field {
+    let dimension = match value.unit {
+        Unit::Dimensionless => Dimension::Dimensionless,
+        Unit::Pressure => Dimension::Pressure,
+    };
+    match value.value {
+        ParameterValue::Number(v) => Field::float(value.column, v, dimension),
+        ParameterValue::Choice(c) => Field::text(value.column, c),
     }
 }
 
@@ -93,23 +67,6 @@ fn material_fields(material: &Material) -> [Field; 3] {
         Field::float("hardness", hardness, Dimension::Pressure),
         Field::float("poisson_ratio", poisson_ratio, Dimension::Dimensionless),
     ]
-}
-
-/// The μ(P*) law and the yield strength of full stick (the yield strength is always resolved:
-/// given, or Tabor's H/2.8).
-fn full_stick_fields(options: &FullStickOptions) -> Vec<Field> {
-    let FullStickOptions {
-        yield_strength,
-        friction_law: StickFrictionLaw { a, b },
-    } = *options;
-    let mut fields = vec![
-        Field::float("stick_law_a", a, Dimension::Dimensionless),
-        Field::float("stick_law_b", b, Dimension::Dimensionless),
-    ];
-    if let Some(y) = yield_strength {
-        fields.push(Field::float("yield_strength", y, Dimension::Pressure));
-    }
-    fields
 }
 
 /// The nominal area (when given) and what the method reads: explicit roughness and loads, or

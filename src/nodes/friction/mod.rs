@@ -1,6 +1,6 @@
 //! The `friction` node kind: the static friction coefficient μ_s of a rough contact (stage 3).
-//! Models: `kogut_etsion` (default), `chang_etsion_bogy`, `full_stick` and `junction_shear`
-//! (`docs/friction-models.md`).
+//! Models: every law of the registry [`crate::friction::LAWS`] (`model_spec` reads `model:`
+//! against it; `docs/friction-models.md`).
 //!
 //! * `method: statistical` — KE 2004, CEB or full stick on Greenwood–Williamson summit statistics
 //!   (`friction::static_friction`): roughness from one or two upstream surface nodes (isotropic
@@ -12,9 +12,8 @@
 //!   topography an upstream contact node solved (`fields: true`), with each summit's interference
 //!   from the contact's deformation there (`friction::per_summit_friction`); optional long table
 //!   `friction_summits`.
-//! * `method: per_spot` — the law per contact spot of that solution (full stick, KE/CEB, or
-//!   junction shear, whose only method it is; `friction::per_spot_friction`); optional long table
-//!   `friction_spots`.
+//! * `method: per_spot` — the law per contact spot of that solution
+//!   (`friction::per_spot_friction`); optional long table `friction_spots`.
 //!
 //! Every row says how far to trust it: `model_basis`, `load_share_beyond_fit`, and `mu_s` is
 //! never negative (`mu_s_computed`, `mu_s_floored` keep what the model gave).
@@ -27,19 +26,23 @@ use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
 use crate::engine::study::{Param, ResolveContext, SpannedName, SpecError};
 use crate::engine::value::{Field, Value};
-use crate::friction::{
-    AdhesionParameters, AsperityModel, Material, ModelBasis, ModelOptions, StaticFrictionForm,
-    SummitStatistics,
-};
+use std::sync::Arc;
+
+use crate::engine::study::Located;
+use crate::friction::{AdhesionParameters, FrictionLaw, Material, Method, SummitStatistics};
 use crate::units::{Area, Dimension, Force, Length, Pressure, Quantity, SurfaceEnergy};
 
 use super::contact_view::ContactView;
 use super::material_spec::MaterialSpec;
 use super::validity;
+use model_spec::{MethodSpec, ModelSpec};
+pub use models_doc::friction_models_markdown;
 
+mod contact_input;
 mod key;
 mod material_pair;
-mod model_setup;
+mod model_spec;
+mod models_doc;
 mod per_spot;
 mod per_summit;
 mod setup;
@@ -49,9 +52,9 @@ mod statistical;
 pub(crate) const KIND: &str = "friction";
 pub(crate) const TABLE: &str = "friction";
 
-/// Implementation version of the `friction` kind; bump whenever its numerics change (3: the
-/// validity rules fail impossible values and flag assumptions the inputs stretch).
-pub const FRICTION_KIND_VERSION: u32 = 3;
+/// Implementation version of the `friction` kind; bump whenever its numerics change (4: keys
+/// derived from the law registry; the values are those of version 3).
+pub const FRICTION_KIND_VERSION: u32 = 4;
 
 /// Default adhesion energy Δγ (N/m): "somewhat clean" metal surfaces, the value of the static
 /// friction experiments on 17-4PH compared with the KE model (reference workflow; the range
@@ -65,17 +68,16 @@ pub const DEFAULT_EQUILIBRIUM_DISTANCE: f64 = 0.158e-9;
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionSpec {
-    /// `statistical` (GW summit statistics; the default), `per_summit` (summits of a contact
-    /// node's composite topography with the contact's deformation) or `per_spot` (each contact
-    /// spot of a contact node's solution with its exact load and area; the default and only
-    /// method of `junction_shear`).
+    /// `statistical` (GW summit statistics), `per_summit` (summits of a contact node's
+    /// composite topography with the contact's deformation) or `per_spot` (each contact spot of a
+    /// contact node's solution with its exact load and area). Default: the model's first method
+    /// (`statistical`; `per_spot` for `junction_shear`, its only method).
     #[serde(default)]
-    pub method: Option<FrictionMethod>,
-    /// Model: `kogut_etsion` (default), `chang_etsion_bogy` (baseline), `full_stick`
-    /// (Brizmer–Kligerman–Etsion full-stick laws with Jackson–Green beyond their range; for high
-    /// plasticity index) or `junction_shear` (Bowden–Tabor τ_s·A_true on a contact solution).
+    pub method: Option<MethodSpec>,
+    /// The friction law: a name (`kogut_etsion`, the default; `chang_etsion_bogy`, `full_stick`,
+    /// `junction_shear`) or the name with its parameters, `{full_stick: {a: 0.3, b: 0.35}}`.
     #[serde(default)]
-    pub model: Option<Param<String>>,
+    pub model: Option<ModelSpec>,
     /// Statistical: upstream surface node of the lower body (roughness from its spectral moments).
     #[serde(default)]
     pub lower: Option<SpannedName>,
@@ -110,22 +112,9 @@ pub struct FrictionSpec {
     /// Statistical: external normal loads (ascending, > 0), instead of `nominal_pressures`.
     #[serde(default)]
     pub loads: Option<Vec<Param<Quantity<Force>>>>,
-    /// Form of the KE 2004 Q_max polynomial on 1 < x ≤ 6: `literal` (default, as published,
-    /// negative for 4.29 < x ≤ 6) or `clipped` (max(0, ·)).
-    #[serde(default)]
-    pub static_friction_form: Option<Param<String>>,
     /// Per summit: also write the long table `friction_summits` (one row per summit).
     #[serde(default)]
     pub summits_table: Option<Param<bool>>,
-    /// Full stick: the single-asperity friction law μ(P*) = a coth(a P*^b); defaults
-    /// `{a: 0.27, b: 0.35}` attributed to Brizmer, Kligerman & Etsion (2007), not confirmed.
-    #[serde(default)]
-    pub stick_law: Option<Box<StickLawSpec>>,
-    /// Junction shear: interface factor c in [0, 1] of the shear strength, τ_s = c·k of the
-    /// softer body (default 1, a clean metal junction; smaller for contaminated or lubricated
-    /// ones; a junction stronger than the body would shear inside the body).
-    #[serde(default)]
-    pub interface_factor: Option<Param<f64>>,
     /// Per spot: grid neighbours that join contact points into one spot, 4 (edges, default) or
     /// 8 (edges and corners).
     #[serde(default)]
@@ -133,62 +122,18 @@ pub struct FrictionSpec {
     /// Per spot: also write the long table `friction_spots` (one row per contact spot).
     #[serde(default)]
     pub spots_table: Option<Param<bool>>,
-}
-
-/// `stick_law: {a, b}` — μ(P*) = a coth(a P*^b) of a sticking asperity.
-#[derive(Debug, Deserialize, schemars::JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct StickLawSpec {
-    /// a > 0, the large-load limit of μ (default 0.27).
+    /// Moved into `model: {kogut_etsion: {static_friction_form: ...}}` (refused here).
     #[serde(default)]
-    pub a: Option<Param<f64>>,
-    /// b in (0, 1), the load exponent (default 0.35).
+    #[schemars(skip)]
+    pub static_friction_form: Option<Located<serde::de::IgnoredAny>>,
+    /// Moved into `model: {full_stick: {a: ..., b: ...}}` (refused here).
     #[serde(default)]
-    pub b: Option<Param<f64>>,
-}
-
-/// Which friction method a node uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum FrictionMethod {
-    /// Greenwood–Williamson summit statistics with the KE/CEB integrals.
-    Statistical,
-    /// The single-asperity laws per summit of a contact node's solution.
-    PerSummit,
-    /// The single-asperity law per contact spot of a contact node's solution.
-    PerSpot,
-}
-
-impl FrictionMethod {
-    /// The name written to tables.
-    pub(crate) fn name(self) -> &'static str {
-        match self {
-            Self::Statistical => "statistical",
-            Self::PerSummit => "per_summit",
-            Self::PerSpot => "per_spot",
-        }
-    }
-}
-
-/// A friction model: single-asperity laws driven by interference, or junction shear.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum FrictionModel {
-    /// Kogut–Etsion, CEB or full stick.
-    Asperity(AsperityModel),
-    /// Bowden–Tabor junction shear, μ_s = τ_s A_true/(F_n − F_a).
-    JunctionShear,
-}
-
-impl FrictionModel {
-    /// The name written to tables (and accepted in studies).
-    pub(crate) fn name(self) -> &'static str {
-        match self {
-            Self::Asperity(AsperityModel::KogutEtsion) => "kogut_etsion",
-            Self::Asperity(AsperityModel::ChangEtsionBogy) => "chang_etsion_bogy",
-            Self::Asperity(AsperityModel::FullStick) => "full_stick",
-            Self::JunctionShear => "junction_shear",
-        }
-    }
+    #[schemars(skip)]
+    pub stick_law: Option<Located<serde::de::IgnoredAny>>,
+    /// Moved into `model: {junction_shear: {interface_factor: ...}}` (refused here).
+    #[serde(default)]
+    #[schemars(skip)]
+    pub interface_factor: Option<Located<serde::de::IgnoredAny>>,
 }
 
 /// Explicit summit statistics of the equivalent rough surface.
@@ -262,31 +207,13 @@ pub(crate) enum MethodSetup {
 /// A resolved friction node.
 #[derive(Debug, Clone)]
 pub struct FrictionTask {
-    model: FrictionModel,
+    /// The law, built for the material with its parameters.
+    law: Arc<dyn FrictionLaw>,
     material: Material,
     /// Flags found when the node was resolved (a contact flow pressure that differs from H).
     input_flags: Vec<String>,
-    /// The interface of `model: junction_shear`.
-    junction_shear: Option<JunctionShear>,
     adhesion: AdhesionParameters,
-    options: ModelOptions,
     setup: MethodSetup,
-}
-
-/// The interface of junction shear: τ_s = c·k of the softer body.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct JunctionShear {
-    /// Interface factor c (1: a clean metal junction).
-    pub interface_factor: f64,
-    /// Interfacial shear strength τ_s (Pa).
-    pub shear_strength: f64,
-}
-
-pub(crate) fn form_name(form: StaticFrictionForm) -> &'static str {
-    match form {
-        StaticFrictionForm::Literal => "literal",
-        StaticFrictionForm::Clipped => "clipped",
-    }
 }
 
 /// A float metric of an upstream artifact.
@@ -348,15 +275,11 @@ impl NodeTask for FrictionTask {
     }
 
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
-        let method = match self.setup {
-            MethodSetup::Statistical { .. } => FrictionMethod::Statistical,
-            MethodSetup::PerSummit { .. } => FrictionMethod::PerSummit,
-            MethodSetup::PerSpot { .. } => FrictionMethod::PerSpot,
-        };
+        let law = self.law.descriptor();
         let mut metrics = vec![
-            Field::text("method", method.name()),
-            Field::text("model", self.model.name()),
-            Field::text("model_basis", self.basis().name()),
+            Field::text("method", self.setup.method().name()),
+            Field::text("model", law.name),
+            Field::text("model_basis", law.basis.name()),
         ];
         let mut tables = std::collections::BTreeMap::<String, Table>::new();
         if let MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } =
@@ -418,26 +341,27 @@ impl NodeTask for FrictionTask {
     }
 }
 
-impl FrictionTask {
-    /// How far the model's constants are confirmed.
-    fn basis(&self) -> ModelBasis {
-        match self.model {
-            FrictionModel::Asperity(AsperityModel::FullStick) => {
-                ModelBasis::ParameterisedUnverified
-            }
-            FrictionModel::Asperity(_) => ModelBasis::PublishedFits,
-            FrictionModel::JunctionShear => ModelBasis::TextbookLaw,
+impl MethodSetup {
+    /// The method this setup is for.
+    pub(crate) fn method(&self) -> Method {
+        match self {
+            Self::Statistical { .. } => Method::Statistical,
+            Self::PerSummit { .. } => Method::PerSummit,
+            Self::PerSpot { .. } => Method::PerSpot,
         }
     }
+}
 
-    /// The asperity model (junction shear has none).
-    fn asperity_model(&self) -> Result<AsperityModel, NodeError> {
-        match self.model {
-            FrictionModel::Asperity(m) => Ok(m),
-            FrictionModel::JunctionShear => Err(NodeError::new(
-                "junction shear has no single-asperity laws: use `method: per_spot`",
-            )),
-        }
+impl FrictionTask {
+    /// The single-asperity laws of the law (the statistical and per-summit methods); the setup
+    /// checked that the law has them ([`model_spec`]).
+    fn asperity_laws(&self) -> Result<Arc<dyn crate::friction::AsperityLaws>, NodeError> {
+        Arc::clone(&self.law).asperity_laws().ok_or_else(|| {
+            NodeError::new(format!(
+                "`model: {}` has no single-asperity laws: use `method: per_spot`",
+                self.law.descriptor().name
+            ))
+        })
     }
 }
 

@@ -21,12 +21,10 @@ use crate::engine::node::NodeError;
 use crate::engine::value::Field;
 use crate::friction::contact_spots::{adhesion_from_gap, contact_spots, Connectivity, ContactSpot};
 use crate::friction::per_summit::quantile;
-use crate::friction::{
-    per_spot_friction, AsperityModel, ModelLaws, PerSpotResult, SpotLaw, SpotLoad,
-};
+use crate::friction::{per_spot_friction, PerSpotResult, SpotLoad};
 use crate::units::Dimension;
 
-use super::{beyond_fit_field, coefficient_fields, FrictionModel, FrictionTask};
+use super::{beyond_fit_field, coefficient_fields, FrictionTask};
 use crate::nodes::contact_view::ContactView;
 
 /// How the section is read.
@@ -36,29 +34,6 @@ pub(crate) struct Section {
     pub periodic: bool,
     pub connectivity: Connectivity,
     pub spots_table: bool,
-}
-
-impl FrictionTask {
-    /// The law applied to each spot.
-    fn spot_law(&self) -> Result<SpotLaw, NodeError> {
-        let fail = |e: crate::friction::FrictionError| NodeError::new(format!("friction law: {e}"));
-        Ok(match self.model {
-            FrictionModel::JunctionShear => SpotLaw::JunctionShear {
-                shear_strength: self
-                    .junction_shear
-                    .ok_or_else(|| NodeError::new("junction shear without a shear strength"))?
-                    .shear_strength,
-            },
-            FrictionModel::Asperity(AsperityModel::FullStick) => SpotLaw::FullStick {
-                law: self.options.full_stick.law(&self.material).map_err(fail)?,
-                composite_modulus: self.material.composite_modulus,
-            },
-            FrictionModel::Asperity(model) => SpotLaw::Interference {
-                laws: ModelLaws::new(model, &self.material, self.options).map_err(fail)?,
-                material: self.material,
-            },
-        })
-    }
 }
 
 pub(super) fn compute(
@@ -87,7 +62,7 @@ pub(super) fn compute(
         adhesion_from_gap(gap, pressure, dx, dy, task.adhesion).map_err(|e| fail("adhesion", e))?;
     let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
     let result =
-        per_spot_friction(&loads, &task.spot_law()?, adhesion).map_err(|e| fail("law", e))?;
+        per_spot_friction(&loads, task.law.as_ref(), adhesion).map_err(|e| fail("law", e))?;
     let mu_s = result.mu_s.ok_or_else(|| {
         NodeError::new(format!(
             "no compressive net force on the contact spots (sum P = {} N, F_a = {} N): the section carries no friction",
@@ -110,13 +85,6 @@ pub(super) fn compute(
         nominal_pressure * area,
     );
     push_spot_statistics(metrics, &spots, &result, section_area, area);
-    if let Some(j) = task.junction_shear {
-        metrics.push(Field::float(
-            "shear_strength",
-            j.shear_strength,
-            Dimension::Pressure,
-        ));
-    }
     if section.spots_table {
         tables.insert(String::from("spots"), spots_table(&spots, &result, dx, dy));
     }

@@ -31,7 +31,9 @@ use crate::engine::node::NodeError;
 use crate::engine::value::Field;
 use crate::friction::per_summit::quantile;
 use crate::friction::per_summit::PerSummitResult;
-use crate::friction::{per_summit_friction, DeformationState, SummitContact, SummitFriction};
+use crate::friction::{
+    per_summit_friction, AdhesionBeyondFits, DeformationState, SummitContact, SummitFriction,
+};
 use crate::surface::{find_summits, Boundary, HeightMap, Summit, SummitOptions, Summits};
 use crate::units::Dimension;
 
@@ -95,10 +97,10 @@ pub(super) fn compute(
         .collect::<Result<Vec<_>, NodeError>>()?;
     let result = per_summit_friction(
         &contacts,
-        task.asperity_model()?,
+        task.asperity_laws()?.as_ref(),
         &task.material,
         &task.adhesion,
-        &task.options,
+        AdhesionBeyondFits::default(),
     )
     .map_err(|e| NodeError::new(format!("per-summit friction: {e}")))?;
     let mu_s = result.mu_s.ok_or_else(|| {

@@ -1,20 +1,20 @@
 //! Resolution of a `friction` spec into a [`FrictionTask`]: upstream checks, materials
 //! (`material_pair`), adhesion, roughness, loads.
 
-use crate::engine::study::{ResolveContext, SourceLocation, SpecError};
-use crate::friction::{
-    AdhesionParameters, AsperityModel, ModelOptions, StaticFrictionForm, SummitStatistics,
-};
+use crate::engine::study::{Located, ResolveContext, SourceLocation, SpecError};
+use crate::friction::laws::{find_law, LawInputs};
+use crate::friction::{AdhesionParameters, Method, SummitStatistics};
 
+use super::contact_input;
 use super::material_pair::{resolve_material, MaterialPair};
-use super::model_setup;
-use super::spec_fields::{positive, resolve_choice, spec_error};
+use super::model_spec::resolve_law;
+use super::spec_fields::{positive, spec_error};
 use crate::nodes::validity;
 use crate::units::format_number;
 
 use super::{
-    FrictionMethod, FrictionModel, FrictionSpec, FrictionTask, Loads, MethodSetup, Roughness,
-    DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE,
+    FrictionSpec, FrictionTask, Loads, MethodSetup, Roughness, DEFAULT_ADHESION_ENERGY,
+    DEFAULT_EQUILIBRIUM_DISTANCE,
 };
 
 fn resolve_loads(
@@ -114,11 +114,22 @@ pub(super) fn instantiate(
     ctx: &ResolveContext<'_>,
 ) -> Result<FrictionTask, SpecError> {
     check_upstream(spec, ctx)?;
+    refuse_moved_fields(spec)?;
     let location = location_of(spec);
-    let (model, method) = model_setup::model_and_method(spec, ctx, location)?;
-    let form = static_friction_form(spec, ctx, model, location)?;
     let pair = resolve_material(spec, ctx)?;
-    let (full_stick, junction_shear) = model_setup::model_inputs(spec, ctx, model, &pair)?;
+    let inputs = LawInputs {
+        material: pair.material,
+        yield_strength: pair.yield_strength,
+        shear_strength: pair.shear_strength,
+        parameters: crate::friction::laws::default_law().default_parameters(),
+    };
+    let (law, method) = resolve_law(
+        spec.model.as_ref(),
+        spec.method.as_ref(),
+        ctx,
+        inputs,
+        location,
+    )?;
     check_method_fields(spec, method, location)?;
     let adhesion = adhesion(spec, ctx, location)?;
     let nominal_area = match &spec.nominal_area {
@@ -130,45 +141,49 @@ pub(super) fn instantiate(
     };
     let (setup, input_flag) = method_setup(spec, ctx, method, &pair, nominal_area)?;
     Ok(FrictionTask {
-        model,
+        law,
         material: pair.material,
         input_flags: input_flag.into_iter().collect(),
-        junction_shear,
         adhesion,
-        options: ModelOptions {
-            static_friction_form: form,
-            full_stick,
-            ..ModelOptions::default()
-        },
         setup,
     })
 }
 
-/// `static_friction_form` (KE only; literal by default).
-fn static_friction_form(
-    spec: &FrictionSpec,
-    ctx: &ResolveContext<'_>,
-    model: FrictionModel,
-    location: SourceLocation,
-) -> Result<StaticFrictionForm, SpecError> {
-    let form = resolve_choice(
-        ctx,
+/// Fields that moved into a law's parameter block, and the law whose block now holds them.
+const MOVED_FIELDS: [(&str, &str); 3] = [
+    ("static_friction_form", "kogut_etsion"),
+    ("stick_law", "full_stick"),
+    ("interface_factor", "junction_shear"),
+];
+
+/// A moved field is refused with its new place, written out from the registry's defaults
+/// (`model: {full_stick: {a: 0.27, b: 0.35}}`).
+fn refuse_moved_fields(spec: &FrictionSpec) -> Result<(), SpecError> {
+    let given = [
         &spec.static_friction_form,
-        "static_friction_form",
-        &[
-            ("literal", StaticFrictionForm::Literal),
-            ("clipped", StaticFrictionForm::Clipped),
-        ],
-    )?;
-    let ke = model == FrictionModel::Asperity(AsperityModel::KogutEtsion);
-    if form.is_some() && !ke {
+        &spec.stick_law,
+        &spec.interface_factor,
+    ];
+    for ((field, law), value) in MOVED_FIELDS.iter().zip(given) {
+        let Some(Located { location, .. }) = value else {
+            continue;
+        };
+        let block = find_law(law).map_or_else(String::new, |law| {
+            law.parameters
+                .iter()
+                .map(|p| format!("{}: {}", p.name, super::model_spec::default_text(p)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        });
         return Err(spec_error(
-            location,
-            "static_friction_form",
-            "is used by `model: kogut_etsion` only; remove it",
+            *location,
+            field,
+            format!(
+                "has moved into the model's parameter block: write `model: {{{law}: {{{block}}}}}` (the defaults shown) and remove `{field}`"
+            ),
         ));
     }
-    Ok(form.unwrap_or_default())
+    Ok(())
 }
 
 /// The adhesion energy Δγ and equilibrium distance ε (defaults: see the constants).
@@ -205,7 +220,7 @@ fn adhesion(
 fn method_setup(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
-    method: FrictionMethod,
+    method: Method,
     pair: &MaterialPair,
     nominal_area: Option<f64>,
 ) -> Result<(MethodSetup, Option<String>), SpecError> {
@@ -214,7 +229,7 @@ fn method_setup(
     let contact = spec.contact.as_ref().map(|_| surfaces);
     let mut flag = None;
     let setup = match method {
-        FrictionMethod::Statistical => {
+        Method::Statistical => {
             let roughness = roughness(spec, ctx, nominal_area, location)?;
             let loads = resolve_loads(spec, ctx, contact, location)?;
             check_pressures_within_flow(spec, &loads, pair)?;
@@ -224,9 +239,9 @@ fn method_setup(
                 loads,
             }
         }
-        FrictionMethod::PerSummit => {
+        Method::PerSummit => {
             let (contact, periodic, mismatch) =
-                model_setup::contact_solution(spec, ctx, location, contact, pair, method)?;
+                contact_input::contact_solution(spec, ctx, location, contact, pair, method)?;
             let summits_table = match &spec.summits_table {
                 Some(p) => ctx.resolve(p, "summits_table")?,
                 None => false,
@@ -239,10 +254,10 @@ fn method_setup(
                 summits_table,
             }
         }
-        FrictionMethod::PerSpot => {
+        Method::PerSpot => {
             let (contact, periodic, mismatch) =
-                model_setup::contact_solution(spec, ctx, location, contact, pair, method)?;
-            let (connectivity, spots_table) = model_setup::spot_options(spec, ctx)?;
+                contact_input::contact_solution(spec, ctx, location, contact, pair, method)?;
+            let (connectivity, spots_table) = contact_input::spot_options(spec, ctx)?;
             flag = mismatch;
             MethodSetup::PerSpot {
                 contact,
@@ -335,24 +350,20 @@ fn roughness(
 /// Fields that only one method uses are refused with the others.
 fn check_method_fields(
     spec: &FrictionSpec,
-    method: FrictionMethod,
+    method: Method,
     location: SourceLocation,
 ) -> Result<(), SpecError> {
     let only = [
         (
             "summits_table",
             spec.summits_table.is_some(),
-            FrictionMethod::PerSummit,
+            Method::PerSummit,
         ),
-        (
-            "spots_table",
-            spec.spots_table.is_some(),
-            FrictionMethod::PerSpot,
-        ),
+        ("spots_table", spec.spots_table.is_some(), Method::PerSpot),
         (
             "spot_connectivity",
             spec.spot_connectivity.is_some(),
-            FrictionMethod::PerSpot,
+            Method::PerSpot,
         ),
     ];
     for (field, given, owner) in only {

@@ -16,8 +16,8 @@ use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::NodeError;
 use crate::engine::value::Field;
 use crate::friction::{
-    static_friction_curve, SolveSettings, SpectralMoments, StaticFrictionResult, StatisticalModel,
-    SummitStatistics,
+    static_friction_curve, AdhesionBeyondFits, SolveSettings, SpectralMoments,
+    StaticFrictionResult, StatisticalModel, SummitStatistics,
 };
 use crate::nodes::contact_view::NOMINAL_PRESSURE;
 use crate::nodes::surface_view::SurfaceView;
@@ -84,12 +84,12 @@ pub(super) fn compute(
 ) -> Result<(), NodeError> {
     let (summits, area) = roughness_and_area(inputs, roughness, nominal_area)?;
     let model = StatisticalModel::new(
-        task.asperity_model()?,
+        task.asperity_laws()?,
         summits,
         task.material,
         task.adhesion,
         area,
-        task.options,
+        AdhesionBeyondFits::default(),
     )
     .map_err(|e| NodeError::new(format!("friction model: {e}")))?;
     let forces: Vec<f64> = match loads {

@@ -32,10 +32,6 @@ pub const FLOW_PRESSURE_FLAG: f64 = 0.01;
 /// input error, not a material property.
 pub const FLOW_PRESSURE_FAIL: f64 = 10.0;
 
-/// Largest interface factor c of junction shear (τ_s = c·k): a junction stronger than the softer
-/// body's own shear strength k would shear inside that body instead (Bowden–Tabor).
-pub const MAX_INTERFACE_FACTOR: f64 = 1.0;
-
 /// The cross-input checks, as the documentation lists them.
 pub const CHECKS: &[CrossCheck] = &[
     CrossCheck {
@@ -79,13 +75,6 @@ pub const CHECKS: &[CrossCheck] = &[
         rule: "≥ 8 points a side",
         outcome: "fails",
         why: "summits need the 8-neighbourhood and spots a ring around them; below 8 points no section holds two resolved spots",
-    },
-    CrossCheck {
-        kind: "friction",
-        columns: "`interface_factor`",
-        rule: "[0, 1] (at `validate`)",
-        outcome: "fails",
-        why: "τ_s = c·k: a junction stronger than the softer body's shear strength k would shear inside that body",
     },
     CrossCheck {
         kind: "friction",
@@ -211,17 +200,5 @@ pub fn moments_grid(nx: usize, ny: usize) -> Result<(), String> {
         "the surface's {nx}×{ny} grid is too coarse for summit statistics: its slopes and \
          curvatures (spectral moments m2, m4) come from a few differences (at least {MIN_GRID} \
          points a side): use a finer grid or give `roughness` explicitly"
-    ))
-}
-
-/// Junction shear: the interface factor must lie in [0, [`MAX_INTERFACE_FACTOR`]].
-pub fn interface_factor(c: f64) -> Result<(), String> {
-    if (0.0..=MAX_INTERFACE_FACTOR).contains(&c) {
-        return Ok(());
-    }
-    Err(String::from(
-        "is out of range: the interface factor c of τ_s = c·k lies in [0, 1] (1 for a clean metal \
-         junction; a junction stronger than the softer body's shear strength k would shear \
-         inside that body)",
     ))
 }

@@ -43,6 +43,20 @@
 //!   the KE elastic fit 0.52 x^0.982 for x ≤ 1 and 0 above (so the baseline isolates the effect
 //!   of "only elastic asperities carry tangential load").
 
+/// x = 1: the first-yield interference, end of the elastic (Hertz) range of every law.
+pub const ELASTIC_LIMIT: f64 = 1.0;
+
+/// x = 6: the break between the two elastic–plastic Kogut–Etsion fits, and where the KE 2004
+/// Q_max fit ends.
+pub const KE_SECOND_FIT_START: f64 = 6.0;
+
+/// x = 110: the onset of the fully plastic Kogut–Etsion branch (and of the last adhesion fit's
+/// end).
+pub const KE_FULLY_PLASTIC_ONSET: f64 = 110.0;
+
+/// The breaks of the KE 2002 load and area fits and of the KE 2003 adhesion fits.
+pub const KE_BREAKPOINTS: [f64; 3] = [ELASTIC_LIMIT, KE_SECOND_FIT_START, KE_FULLY_PLASTIC_ONSET];
+
 /// Deformation state of an asperity by its dimensionless interference x = ω/ω_c.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum DeformationState {
@@ -61,26 +75,14 @@ impl DeformationState {
     pub fn from_interference_ratio(x: f64) -> Self {
         if x <= 0.0 {
             Self::NotInContact
-        } else if x <= 1.0 {
+        } else if x <= ELASTIC_LIMIT {
             Self::Elastic
-        } else if x <= 110.0 {
+        } else if x <= KE_FULLY_PLASTIC_ONSET {
             Self::ElasticPlastic
         } else {
             Self::FullyPlastic
         }
     }
-}
-
-/// Which single-asperity normal-contact and tangential laws a model uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum AsperityModel {
-    /// Kogut–Etsion 2002 load/area fits with the KE 2004 static friction force.
-    KogutEtsion,
-    /// Chang–Etsion–Bogy: Hertz + volume-conserving plastic cap; only elastic asperities carry Q.
-    ChangEtsionBogy,
-    /// Full stick: Brizmer–Kligerman–Etsion stick load fit (Jackson–Green beyond ω* = 110),
-    /// Jackson–Green area, Q_max = μ(P*) P ([`super::full_stick`]).
-    FullStick,
 }
 
 /// Form of the KE 2004 Q_max polynomial on 1 < x ≤ 6.
@@ -107,11 +109,11 @@ pub enum AdhesionBeyondFits {
 pub fn ke_load_ratio(x: f64, k: f64) -> f64 {
     if x <= 0.0 {
         0.0
-    } else if x <= 1.0 {
+    } else if x <= ELASTIC_LIMIT {
         x.powf(1.5)
-    } else if x <= 6.0 {
+    } else if x <= KE_SECOND_FIT_START {
         1.03 * x.powf(1.425)
-    } else if x <= 110.0 {
+    } else if x <= KE_FULLY_PLASTIC_ONSET {
         1.40 * x.powf(1.263)
     } else {
         3.0 / k * x
@@ -122,11 +124,11 @@ pub fn ke_load_ratio(x: f64, k: f64) -> f64 {
 pub fn ke_area_ratio(x: f64) -> f64 {
     if x <= 0.0 {
         0.0
-    } else if x <= 1.0 {
+    } else if x <= ELASTIC_LIMIT {
         x
-    } else if x <= 6.0 {
+    } else if x <= KE_SECOND_FIT_START {
         0.93 * x.powf(1.136)
-    } else if x <= 110.0 {
+    } else if x <= KE_FULLY_PLASTIC_ONSET {
         0.94 * x.powf(1.146)
     } else {
         2.0 * x
@@ -137,7 +139,7 @@ pub fn ke_area_ratio(x: f64) -> f64 {
 pub fn ceb_load_ratio(x: f64) -> f64 {
     if x <= 0.0 {
         0.0
-    } else if x <= 1.0 {
+    } else if x <= ELASTIC_LIMIT {
         x.powf(1.5)
     } else {
         1.5 * (2.0 * x - 1.0)
@@ -148,7 +150,7 @@ pub fn ceb_load_ratio(x: f64) -> f64 {
 pub fn ceb_area_ratio(x: f64) -> f64 {
     if x <= 0.0 {
         0.0
-    } else if x <= 1.0 {
+    } else if x <= ELASTIC_LIMIT {
         x
     } else {
         2.0 * x - 1.0
@@ -163,9 +165,9 @@ pub const KE_STATIC_FRICTION_ZERO: f64 = 4.294_625_761_688_716_5;
 pub fn ke_static_friction_ratio(x: f64, form: StaticFrictionForm) -> f64 {
     if x <= 0.0 {
         0.0
-    } else if x <= 1.0 {
+    } else if x <= ELASTIC_LIMIT {
         0.52 * x.powf(0.982)
-    } else if x <= 6.0 {
+    } else if x <= KE_SECOND_FIT_START {
         let base = x.powf(1.425);
         let poly = base * (0.85 + x * (-0.4 + x * (0.09 - 0.01 * x)));
         match form {
@@ -179,7 +181,7 @@ pub fn ke_static_friction_ratio(x: f64, form: StaticFrictionForm) -> f64 {
 
 /// CEB-baseline Q_max/P_c: the elastic fit 0.52 x^0.982 for x ≤ 1, 0 for plastic asperities.
 pub fn ceb_static_friction_ratio(x: f64) -> f64 {
-    if x <= 0.0 || x > 1.0 {
+    if x <= 0.0 || x > ELASTIC_LIMIT {
         0.0
     } else {
         0.52 * x.powf(0.982)
@@ -191,15 +193,15 @@ pub fn ceb_static_friction_ratio(x: f64) -> f64 {
 pub fn contacting_adhesion_ratio(x: f64, eps_over_omega_c: f64, beyond: AdhesionBeyondFits) -> f64 {
     let (a, b, c, x_eval) = if x <= 0.0 {
         return 0.0;
-    } else if x <= 1.0 {
+    } else if x <= ELASTIC_LIMIT {
         (0.98, 0.298, -0.29, x)
-    } else if x <= 6.0 {
+    } else if x <= KE_SECOND_FIT_START {
         (0.79, 0.356, -0.321, x)
-    } else if x <= 110.0 {
+    } else if x <= KE_FULLY_PLASTIC_ONSET {
         (1.19, 0.093, -0.332, x)
     } else {
         match beyond {
-            AdhesionBeyondFits::HoldAtX110 => (1.19, 0.093, -0.332, 110.0),
+            AdhesionBeyondFits::HoldAtX110 => (1.19, 0.093, -0.332, KE_FULLY_PLASTIC_ONSET),
             AdhesionBeyondFits::ExtendLastFit => (1.19, 0.093, -0.332, x),
         }
     };
@@ -216,7 +218,7 @@ pub fn contacting_adhesion_ratio_max(
     match beyond {
         AdhesionBeyondFits::ExtendLastFit => None,
         AdhesionBeyondFits::HoldAtX110 => Some(
-            [1.0, 6.0, 110.0]
+            KE_BREAKPOINTS
                 .into_iter()
                 .map(|x| contacting_adhesion_ratio(x, eps_over_omega_c, beyond))
                 .fold(0.0, f64::max),

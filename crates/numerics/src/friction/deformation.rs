@@ -33,7 +33,7 @@
 //! junction (`φ_i + θ_i ≥ 90°`) — then `μ_deformation` is a lower bound and the row says so.
 
 use super::error::FrictionError;
-use super::model_laws::ModelBasis;
+use super::laws::ModelBasis;
 use super::ploughing_laws::{cone_ploughing, sphere_ploughing, tilted_junction};
 use super::spot_slope::contact_radius;
 

@@ -12,8 +12,9 @@
 //! * [`jackson_green`] — Jackson–Green 2005 elastic–plastic sphere (load, area, hardness);
 //! * [`full_stick`] — Brizmer–Kligerman–Etsion full-stick critical values and stick load fit,
 //!   the Jackson–Green hand-over beyond ω* = 110, and the parameterised μ(P*) = a coth(a P*^b);
-//! * [`model_laws`] — each model's laws as ratios to the KE critical values, its validated range
-//!   and how far its constants are confirmed ([`ModelBasis`]);
+//! * [`laws`] — the friction laws as an open set: the [`FrictionLaw`] trait, the single-asperity
+//!   laws as ratios to the KE critical values ([`AsperityLaws`]), each law's descriptor (name,
+//!   [`ModelBasis`], methods, parameters) and the one registry [`laws::LAWS`];
 //! * [`statistical_integrals`] — P(d*), A(d*), F_s(d*), Q_max(d*), N(d*) and the load beyond the
 //!   validated range, for every model;
 //! * [`net_load_grid`] — P − F_s on a d* grid, evaluated lazily (most points need P only);
@@ -22,7 +23,7 @@
 //!   homogenization to the whole surface;
 //! * [`contact_spots`] — connected contact spots of a contact solution with their load, area and
 //!   radius, and the Lennard-Jones adhesion across its gap;
-//! * [`per_spot`] — a single-asperity law (full stick, KE, CEB) or junction shear per contact spot;
+//! * [`per_spot`] — a law's tangential capacity per contact spot, summed over a section;
 //! * [`spot_slope`] — each spot's tilt along a sliding direction and its attack slope;
 //! * [`ploughing_laws`] — cone and sphere ploughing (Bowden–Tabor), the inclined junction;
 //! * [`deformation`] — those laws per contact spot, added to an adhesion part;
@@ -40,9 +41,8 @@ pub mod error;
 pub mod full_stick;
 pub mod gw_functions;
 pub mod jackson_green;
+pub mod laws;
 pub mod material;
-pub mod model_laws;
-pub mod model_options;
 pub mod net_load_grid;
 mod paraboloid_fit;
 pub mod per_spot;
@@ -56,7 +56,7 @@ pub mod static_friction;
 pub mod statistical_integrals;
 pub mod summit_statistics;
 
-pub use asperity_laws::{AdhesionBeyondFits, AsperityModel, DeformationState, StaticFrictionForm};
+pub use asperity_laws::{AdhesionBeyondFits, DeformationState, StaticFrictionForm};
 pub use contact_spots::{Connectivity, ContactSpot, SpotLabels};
 pub use deformation::{
     deformation_friction, DeformationLaw, DeformationResult, DeformationSpot, SpotDeformation,
@@ -65,11 +65,13 @@ pub use error::FrictionError;
 pub use full_stick::{FullStickLaw, StickFrictionLaw};
 pub use gw_functions::{gw_function, upper_tail_probability, INTEGRAL_REL_TOL};
 pub use jackson_green::JacksonGreenLaw;
+pub use laws::{
+    find_law, law_names, AsperityLaws, ChangEtsionBogy, FrictionLaw, FullStick, FullStickOptions,
+    JunctionShear, KogutEtsion, LawDescriptor, LawInputs, Method, ModelBasis, LAWS,
+};
 pub use material::{AdhesionParameters, CriticalValues, Material, TABOR_FACTOR};
-pub use model_laws::{ModelBasis, ModelLaws};
-pub use model_options::{FullStickOptions, ModelOptions};
 pub use net_load_grid::{net_load, GridEvaluations, NetLoadGrid};
-pub use per_spot::{per_spot_friction, PerSpotResult, SpotFriction, SpotLaw, SpotLoad};
+pub use per_spot::{per_spot_friction, PerSpotResult, SpotFriction, SpotLoad};
 pub use per_summit::{
     per_summit_friction, summit_friction, PerSummitResult, SummitContact, SummitFriction,
 };

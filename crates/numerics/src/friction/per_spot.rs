@@ -4,8 +4,8 @@
 //!
 //! A contact spot is a connected set of points with p > 0 ([`super::contact_spots`]); its load
 //! P_i = Σ p dA and area A_i are exact results of the contact solution and its radius R_i comes
-//! from the composite topography. Each spot gets the tangential capacity Q_i of the chosen
-//! single-asperity law ([`SpotLaw`]):
+//! from the composite topography. Each spot gets the tangential capacity Q_i of the chosen law
+//! ([`FrictionLaw::spot_friction`]), e.g.:
 //!
 //! * **full stick**: Q_i = μ(P_i*) P_i with P_i* = P_i/L_c(R_i), L_c = L̄_c P_c(R_i)
 //!   ([`super::full_stick`]);
@@ -21,14 +21,13 @@
 //! topography gives no convex radius cannot be assigned a radius-dependent law: it carries no Q
 //! (a lower bound) and its load is reported (`load_without_radius`). Spots beyond the validated
 //! range of the law add their load to `load_beyond_fit`: full stick P_i* above the stick load fit
-//! at ω* = 110; KE/CEB x_i above [`super::ModelLaws::fit_limit`]; junction shear has no fitted
+//! at ω* = 110; KE/CEB x_i above [`AsperityLaws::fit_limit`]; junction shear has no fitted
 //! range. One-pixel spots are resolution-limited: their number and load are reported.
 
 use super::contact_spots::ContactSpot;
 use super::error::FrictionError;
-use super::full_stick::FullStickLaw;
+use super::laws::{AsperityLaws, FrictionLaw};
 use super::material::Material;
-use super::model_laws::ModelLaws;
 
 /// One contact spot as the per-spot model needs it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,30 +40,6 @@ pub struct SpotLoad {
     pub radius: Option<f64>,
     /// Number of grid points in the spot.
     pub pixels: usize,
-}
-
-/// The single-asperity law applied to each spot.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SpotLaw {
-    /// Full stick with the composite modulus E' (Pa).
-    FullStick {
-        /// The laws.
-        law: FullStickLaw,
-        /// Composite modulus E' (Pa).
-        composite_modulus: f64,
-    },
-    /// Junction shear with the interfacial shear strength τ_s (Pa).
-    JunctionShear {
-        /// τ_s (Pa).
-        shear_strength: f64,
-    },
-    /// An interference-driven model (Kogut–Etsion or CEB) inverted for each spot's load.
-    Interference {
-        /// The model's laws.
-        laws: ModelLaws,
-        /// The material (critical values).
-        material: Material,
-    },
 }
 
 /// Friction of one spot.
@@ -116,46 +91,27 @@ impl From<&ContactSpot> for SpotLoad {
     }
 }
 
-impl SpotLaw {
-    /// Q and the load measure of one spot; `None` when the law needs a radius (every law but
-    /// junction shear) and the spot has none.
-    fn friction(&self, spot: &SpotLoad, radius: Option<f64>) -> Option<SpotFriction> {
-        Some(match self {
-            Self::FullStick {
-                law,
-                composite_modulus,
-            } => {
-                let radius = radius?;
-                let stick_load =
-                    law.stick_load_factor * law.critical_values(radius, *composite_modulus).load;
-                let p_star = spot.load / stick_load;
-                SpotFriction {
-                    friction_force: stick_load * law.friction_law.friction_ratio(p_star),
-                    load_measure: Some(p_star),
-                    beyond_fit: p_star > law.load_at_fit_limit(),
-                }
-            }
-            Self::JunctionShear { shear_strength } => SpotFriction {
-                friction_force: shear_strength * spot.area,
-                load_measure: None,
-                beyond_fit: false,
-            },
-            Self::Interference { laws, material } => {
-                let critical = material.critical_values(radius?).load;
-                let x = interference_for_load(laws, spot.load / critical);
-                SpotFriction {
-                    friction_force: critical * laws.friction_ratio(x),
-                    load_measure: Some(x),
-                    beyond_fit: x > laws.fit_limit(),
-                }
-            }
-        })
-    }
+/// Q and x of one spot under an interference-driven law (Kogut–Etsion, CEB): the interference
+/// x_i that gives P_i under the law's load law (smallest x with P_c(R_i)·(P/P_c)(x) ≥ P_i), then
+/// Q_i = P_c(R_i)·(Q/P_c)(x_i); beyond the fit when x_i exceeds [`AsperityLaws::fit_limit`].
+/// `None` without a radius.
+pub fn interference_spot_friction(
+    laws: &dyn AsperityLaws,
+    material: &Material,
+    spot: &SpotLoad,
+) -> Option<SpotFriction> {
+    let critical = material.critical_values(spot.radius?).load;
+    let x = interference_for_load(laws, spot.load / critical);
+    Some(SpotFriction {
+        friction_force: critical * laws.friction_ratio(x),
+        load_measure: Some(x),
+        beyond_fit: x > laws.fit_limit(),
+    })
 }
 
 /// The smallest x with (P/P_c)(x) ≥ `load_ratio` (bisection to rounding; the load laws of KE and
 /// CEB rise monotonically with upward jumps).
-pub fn interference_for_load(laws: &ModelLaws, load_ratio: f64) -> f64 {
+pub fn interference_for_load(laws: &dyn AsperityLaws, load_ratio: f64) -> f64 {
     if load_ratio <= 0.0 {
         return 0.0;
     }
@@ -182,7 +138,7 @@ pub fn interference_for_load(laws: &ModelLaws, load_ratio: f64) -> f64 {
 /// (N, ≥ 0). Errors on a non-finite or negative spot load or area.
 pub fn per_spot_friction(
     spots: &[SpotLoad],
-    law: &SpotLaw,
+    law: &dyn FrictionLaw,
     adhesion_force: f64,
 ) -> Result<PerSpotResult, FrictionError> {
     let mut result = PerSpotResult {
@@ -200,8 +156,11 @@ pub fn per_spot_friction(
     };
     for spot in spots {
         check_spot(spot)?;
-        let radius = spot.radius.filter(|r| r.is_finite() && *r > 0.0);
-        let friction = match law.friction(spot, radius) {
+        let usable = SpotLoad {
+            radius: spot.radius.filter(|r| r.is_finite() && *r > 0.0),
+            ..*spot
+        };
+        let friction = match law.spot_friction(&usable) {
             Some(friction) => friction,
             None => {
                 result.load_without_radius += spot.load;

@@ -5,7 +5,7 @@
 //! solution at the summit position (ω_i ≤ 0: not in contact, gap g_i = −ω_i). With
 //! ω_c,i = (πKH/2E)² R_i and x_i = ω_i/ω_c,i, each summit gets
 //!
-//! * F_n = P_c,i · (P/P_c)(x_i) (KE 2002 fits, CEB or full stick, [`super::model_laws`]), 0 when
+//! * F_n = P_c,i · (P/P_c)(x_i) (the law's [`AsperityLaws`]), 0 when
 //!   not in contact;
 //! * F_a = 2πR_iΔγ · (KE 2003 contacting fit at x_i, ε/ω_c,i) in contact, or the DMT/LJ force
 //!   2πR_iΔγ [(4/3)(ε/h)² − (1/3)(ε/h)⁸] with h = ε + g_i out of contact;
@@ -29,12 +29,11 @@
 //! concentrated the friction capacity is.
 
 use super::asperity_laws::{
-    contacting_adhesion_ratio, lennard_jones_adhesion_ratio, AsperityModel, DeformationState,
+    contacting_adhesion_ratio, lennard_jones_adhesion_ratio, AdhesionBeyondFits, DeformationState,
 };
 use super::error::{require_positive, FrictionError};
+use super::laws::AsperityLaws;
 use super::material::{AdhesionParameters, Material};
-use super::model_laws::ModelLaws;
-use super::model_options::ModelOptions;
 
 /// One identified summit with its interference from the contact solution.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -97,7 +96,7 @@ pub struct PerSummitResult {
     /// Counts of summits by state: [not in contact, elastic, elastic-plastic, fully plastic].
     pub state_counts: [usize; 4],
     /// ΣF_n of the summits beyond the validated range of the friction law (N; x above
-    /// [`ModelLaws::fit_limit`]).
+    /// [`AsperityLaws::fit_limit`]).
     pub load_beyond_fit: f64,
     /// Summary of the local μ values (None when no summit has F_n − F_a > 0).
     pub local_mu_summary: Option<DistributionSummary>,
@@ -137,10 +136,10 @@ pub fn summarize(values: &[f64]) -> Option<DistributionSummary> {
 /// Per-summit forces of one summit.
 pub fn summit_friction(
     summit: &SummitContact,
-    model: AsperityModel,
+    laws: &dyn AsperityLaws,
     material: &Material,
     adhesion: &AdhesionParameters,
-    options: &ModelOptions,
+    beyond: AdhesionBeyondFits,
 ) -> Result<SummitFriction, FrictionError> {
     // Material and adhesion have public fields: re-validate them (cheap) before use.
     let material = &Material::new(
@@ -149,17 +148,16 @@ pub fn summit_friction(
         material.poisson_ratio,
     )?;
     let adhesion = &AdhesionParameters::new(adhesion.energy, adhesion.equilibrium_distance)?;
-    let laws = ModelLaws::new(model, material, *options)?;
-    forces_of(summit, &laws, material, adhesion, options)
+    forces_of(summit, laws, material, adhesion, beyond)
 }
 
 /// [`summit_friction`] with validated inputs and the model's laws built once.
 fn forces_of(
     summit: &SummitContact,
-    laws: &ModelLaws,
+    laws: &dyn AsperityLaws,
     material: &Material,
     adhesion: &AdhesionParameters,
-    options: &ModelOptions,
+    beyond: AdhesionBeyondFits,
 ) -> Result<SummitFriction, FrictionError> {
     let radius = require_positive("summit radius", summit.radius)?;
     if !summit.interference.is_finite() {
@@ -177,7 +175,7 @@ fn forces_of(
         contacting_adhesion_ratio(
             x,
             adhesion.equilibrium_distance / critical.interference,
-            options.adhesion_beyond_fits,
+            beyond,
         )
     } else {
         lennard_jones_adhesion_ratio(1.0 - summit.interference / adhesion.equilibrium_distance)
@@ -199,10 +197,10 @@ fn forces_of(
 /// Per-summit model of a section: per-summit forces, force-weighted μ and the local-μ summary.
 pub fn per_summit_friction(
     summits: &[SummitContact],
-    model: AsperityModel,
+    laws: &dyn AsperityLaws,
     material: &Material,
     adhesion: &AdhesionParameters,
-    options: &ModelOptions,
+    beyond: AdhesionBeyondFits,
 ) -> Result<PerSummitResult, FrictionError> {
     let material = Material::new(
         material.composite_modulus,
@@ -211,10 +209,9 @@ pub fn per_summit_friction(
     )?;
     let adhesion = AdhesionParameters::new(adhesion.energy, adhesion.equilibrium_distance)?;
     let (material, adhesion) = (&material, &adhesion);
-    let laws = ModelLaws::new(model, material, *options)?;
     let per: Vec<SummitFriction> = summits
         .iter()
-        .map(|s| forces_of(s, &laws, material, adhesion, options))
+        .map(|s| forces_of(s, laws, material, adhesion, beyond))
         .collect::<Result<_, _>>()?;
     let total_normal_force: f64 = per.iter().map(|s| s.normal_force).sum();
     let total_adhesion_force: f64 = per.iter().map(|s| s.adhesion_force).sum();

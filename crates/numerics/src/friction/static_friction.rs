@@ -23,7 +23,6 @@
 //! The table only ever holds exact evaluations, so root counting stays valid (refinement can only
 //! reveal sign changes, never invent them).
 
-use super::asperity_laws::AsperityModel;
 use super::error::FrictionError;
 use super::net_load_grid::NetLoadGrid;
 use super::root_finding::{brent, BrentTolerances};
@@ -52,8 +51,6 @@ pub struct SolveStatus {
 /// Static friction of a statistical model at one external load.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StaticFrictionResult {
-    /// Model used.
-    pub model: AsperityModel,
     /// External load F (N, compressive positive).
     pub external_load: f64,
     /// μ_s = Q_max / F (None for F ≤ 0).
@@ -81,7 +78,7 @@ pub struct StaticFrictionResult {
     /// Real contact area (m²).
     pub real_contact_area: f64,
     /// The part of the contact load carried by summits beyond the validated range of the
-    /// model's friction law (N; see [`super::ModelLaws::fit_limit`]).
+    /// model's friction law (N; see [`super::AsperityLaws::fit_limit`]).
     pub load_beyond_fit: f64,
     /// Solver diagnostics.
     pub status: SolveStatus,
@@ -249,7 +246,6 @@ fn evaluate_at(
     let net = p.value - fs.total();
     let sigma = model.summits.sigma;
     Ok(StaticFrictionResult {
-        model: model.model,
         external_load: load,
         mu_s: (load > 0.0).then(|| q.value / load),
         contact_load: p.value,

@@ -1,4 +1,4 @@
-//! Greenwood–Williamson statistical integrals of the Kogut–Etsion (2003/2004) and CEB models:
+//! Greenwood–Williamson statistical integrals of any interference-driven law ([`AsperityLaws`]):
 //! contact load P(d*), real contact area A(d*), adhesion force F_s(d*) (contacting and
 //! non-contacting summits), static friction force Q_max(d*) and the number of contacts N(d*).
 //!
@@ -23,27 +23,26 @@
 //! integral is adaptive Gauss–Kronrod 7/15 to relative tolerance [`INTEGRAL_REL_TOL`] (1e-10)
 //! with no absolute tolerance (only an exactly-zero integrand stops on error = 0).
 
+use std::sync::Arc;
+
 use super::asperity_laws::{
     contacting_adhesion_ratio, contacting_adhesion_ratio_max, lennard_jones_adhesion_ratio,
-    AsperityModel,
+    AdhesionBeyondFits, KE_BREAKPOINTS,
 };
 use super::error::{require_positive, FrictionError};
 use super::gw_functions::{
     normal_pdf, upper_tail_probability, GAUSSIAN_CUT, GAUSSIAN_FEATURES, INTEGRAL_REL_TOL,
 };
+use super::laws::AsperityLaws;
 use super::material::{AdhesionParameters, CriticalValues, Material};
-use super::model_laws::ModelLaws;
-use super::model_options::ModelOptions;
 use super::quadrature::{
     breakpoints, integrate, pieces_graded_at_start, Grading, Piece, QuadratureOutcome,
 };
 use super::summit_statistics::SummitStatistics;
 
 /// A statistical static-friction model ready to evaluate its integrals.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct StatisticalModel {
-    /// Which single-asperity laws.
-    pub model: AsperityModel,
     /// Summit statistics of the equivalent surface.
     pub summits: SummitStatistics,
     /// Material of the pair.
@@ -52,14 +51,14 @@ pub struct StatisticalModel {
     pub adhesion: AdhesionParameters,
     /// Nominal area A_n (m²).
     pub nominal_area: f64,
-    /// Options.
-    pub options: ModelOptions,
+    /// Contacting adhesion beyond x = 110 (no published fit there).
+    pub adhesion_beyond_fits: AdhesionBeyondFits,
     /// Critical values at the mean summit radius.
     pub critical: CriticalValues,
     /// Plasticity index ψ (with σ_s).
     pub plasticity_index: f64,
-    /// The single-asperity laws of `model`.
-    pub laws: ModelLaws,
+    /// The single-asperity laws.
+    pub laws: Arc<dyn AsperityLaws>,
 }
 
 /// An integral in SI units with its quadrature diagnostics.
@@ -112,12 +111,12 @@ fn finished(
 impl StatisticalModel {
     /// Build a model; validates the nominal area (> 0). ψ and the critical values use σ_s and R.
     pub fn new(
-        model: AsperityModel,
+        laws: Arc<dyn AsperityLaws>,
         summits: SummitStatistics,
         material: Material,
         adhesion: AdhesionParameters,
         nominal_area: f64,
-        options: ModelOptions,
+        adhesion_beyond_fits: AdhesionBeyondFits,
     ) -> Result<Self, FrictionError> {
         let nominal_area = require_positive("nominal_area", nominal_area)?;
         // The component types have public fields: re-validate them here.
@@ -130,15 +129,13 @@ impl StatisticalModel {
         let summits = summits.validated()?;
         let critical = material.critical_values(summits.radius);
         let plasticity_index = material.plasticity_index(summits.sigma_s, summits.radius);
-        let laws = ModelLaws::new(model, &material, options)?;
         Ok(Self {
             laws,
-            model,
             summits,
             material,
             adhesion,
             nominal_area,
-            options,
+            adhesion_beyond_fits,
             critical,
             plasticity_index,
         })
@@ -211,7 +208,7 @@ impl StatisticalModel {
     }
 
     /// The part of the contact load P(d*) (N) carried by summits beyond the validated range of
-    /// the model's friction law (x > [`ModelLaws::fit_limit`]).
+    /// the model's friction law (x > [`AsperityLaws::fit_limit`]).
     pub fn load_beyond_fit(&self, d_star: f64) -> Result<IntegralValue, FrictionError> {
         let laws = &self.laws;
         let outcome = self.contact_integral(
@@ -275,11 +272,11 @@ impl StatisticalModel {
         }
         let scale = self.adhesion_scale();
         let eps_over_wc = self.adhesion.equilibrium_distance / self.critical.interference;
-        let beyond = self.options.adhesion_beyond_fits;
+        let beyond = self.adhesion_beyond_fits;
         let contacting = self.contact_integral(
             d_star,
             &|x| contacting_adhesion_ratio(x, eps_over_wc, beyond),
-            &[1.0, 6.0, 110.0],
+            &KE_BREAKPOINTS,
             (0.0, f64::INFINITY),
         );
         let contacting = finished(contacting, scale, "contacting adhesion force")?;
@@ -303,8 +300,7 @@ impl StatisticalModel {
             return Some(0.0);
         }
         let eps_over_wc = self.adhesion.equilibrium_distance / self.critical.interference;
-        let contacting =
-            contacting_adhesion_ratio_max(eps_over_wc, self.options.adhesion_beyond_fits)?;
+        let contacting = contacting_adhesion_ratio_max(eps_over_wc, self.adhesion_beyond_fits)?;
         Some(self.adhesion_scale() * contacting.max(1.0))
     }
 

@@ -6,8 +6,9 @@
 use asperity_numerics::friction::full_stick::{stick_factors, STICK_LOAD_FIT_LIMIT};
 use asperity_numerics::friction::per_spot::interference_for_load;
 use asperity_numerics::friction::{
-    per_spot_friction, AsperityModel, FrictionError, FullStickLaw, JacksonGreenLaw, Material,
-    ModelLaws, ModelOptions, SpotLaw, SpotLoad, StickFrictionLaw, TABOR_FACTOR,
+    per_spot_friction, AsperityLaws, FrictionError, FullStick, FullStickLaw, FullStickOptions,
+    JacksonGreenLaw, JunctionShear, KogutEtsion, Material, SpotLoad, StaticFrictionForm,
+    StickFrictionLaw, TABOR_FACTOR,
 };
 
 /// S235JR-like pair: E' = E/(2(1 − ν²)) for two 210 GPa bodies, H = 1.96 GPa, Y = H/2.8.
@@ -196,9 +197,9 @@ fn junction_shear_closed_form_on_fully_plastic_contact() {
         .collect();
     for c in [1.0, 0.5] {
         let tau = c * HARDNESS / TABOR_FACTOR / 3f64.sqrt();
-        let law = SpotLaw::JunctionShear {
-            shear_strength: tau,
-        };
+        let law = JunctionShear::new(c, HARDNESS / TABOR_FACTOR / 3f64.sqrt())
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert!(close(law.shear_strength(), tau, 1e-15));
         let result = per_spot_friction(&spots, &law, 0.0).unwrap_or_else(|e| panic!("{e}"));
         let expected = c / (TABOR_FACTOR * 3f64.sqrt());
         assert!(close(result.mu_s.unwrap_or(0.0), expected, 1e-12));
@@ -229,10 +230,10 @@ fn full_stick_per_spot_values() {
             pixels: 1,
         },
     ];
-    let spot_law = SpotLaw::FullStick {
-        law,
-        composite_modulus: E_PRIME,
-    };
+    let material = Material::new(E_PRIME, HARDNESS, 0.3).unwrap_or_else(|e| panic!("{e}"));
+    let spot_law =
+        FullStick::new(&material, FullStickOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(spot_law.law(), &law);
     let adhesion = 0.5 * stick_load;
     let result = per_spot_friction(&spots, &spot_law, adhesion).unwrap_or_else(|e| panic!("{e}"));
     let q = law.friction_law.mu(10.0) * 10.0 * stick_load;
@@ -253,12 +254,7 @@ fn full_stick_per_spot_values() {
 #[test]
 fn kogut_etsion_per_spot_inverts_the_load_law() {
     let material = Material::new(E_PRIME, HARDNESS, 0.3).unwrap_or_else(|e| panic!("{e}"));
-    let laws = ModelLaws::new(
-        AsperityModel::KogutEtsion,
-        &material,
-        ModelOptions::default(),
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    let laws = KogutEtsion::new(material, StaticFrictionForm::Literal);
     for x in [0.3, 0.999, 2.5, 5.0, 50.0, 500.0] {
         let back = interference_for_load(&laws, laws.load_ratio(x));
         assert!(close(back, x, 1e-12), "{x} -> {back}");

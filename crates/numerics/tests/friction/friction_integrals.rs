@@ -9,12 +9,21 @@ use asperity_numerics::friction::asperity_laws::{
     ke_area_ratio, ke_load_ratio, ke_static_friction_ratio, lennard_jones_adhesion_ratio,
 };
 use asperity_numerics::friction::{
-    AdhesionBeyondFits, AdhesionParameters, AsperityModel, Material, ModelOptions,
-    StaticFrictionForm, StatisticalModel, SummitStatistics,
+    AdhesionBeyondFits, AdhesionParameters, Material, StaticFrictionForm, StatisticalModel,
+    SummitStatistics,
 };
 
+use super::law_support::{statistical, Model, Options};
+
+/// A statistical model with the law and options it was built with.
+struct Case {
+    kind: Model,
+    options: Options,
+    m: StatisticalModel,
+}
+
 /// Steel-like model with a prescribed plasticity index (σ = 1 µm, β = 0.04, E = 115 GPa, H = 2 GPa).
-fn model(psi: f64, kind: AsperityModel, options: ModelOptions) -> StatisticalModel {
+fn model(psi: f64, kind: Model, options: Options) -> Case {
     let material = Material::new(115e9, 2e9, 0.3).unwrap_or_else(|e| panic!("{e}"));
     let sigma = 1e-6;
     let beta: f64 = 0.04;
@@ -25,8 +34,9 @@ fn model(psi: f64, kind: AsperityModel, options: ModelOptions) -> StatisticalMod
     let summits = SummitStatistics::from_explicit(sigma, radius, beta / (radius * sigma))
         .unwrap_or_else(|e| panic!("{e}"));
     let adhesion = AdhesionParameters::new(0.5, 0.158e-9).unwrap_or_else(|e| panic!("{e}"));
-    StatisticalModel::new(kind, summits, material, adhesion, 1e-4, options)
-        .unwrap_or_else(|e| panic!("{e}"))
+    let m = statistical(kind, summits, material, adhesion, 1e-4, options)
+        .unwrap_or_else(|e| panic!("{e}"));
+    Case { kind, options, m }
 }
 
 /// A single-asperity law x ↦ ratio.
@@ -67,13 +77,14 @@ fn simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, n: usize, graded: bool) -> (f
 /// and around the Gaussian peak. Simpson evaluates segment end points, where the fits jump: the law
 /// is evaluated at x clamped 1e-12 of the segment width inside the segment, so each segment sees
 /// its own branch (the Gaussian factor uses the exact x).
-fn slow_contact(m: &StatisticalModel, d: f64, law: &dyn Fn(f64) -> f64) -> (f64, f64) {
+fn slow_contact(c: &Case, d: f64, law: &dyn Fn(f64) -> f64) -> (f64, f64) {
+    let m = &c.m;
     let s = m.summit_std_star();
     let wc = m.critical_interference_star();
     let x_max = (d.max(0.0) + 40.0 * s - d) / wc;
     let mut cuts: Vec<f64> = vec![1.0, 6.0, 110.0];
     // The full-stick laws break at ω* = 1, 110 (stick fit) and ω*_JG = 1.9, elsewhere in x.
-    if m.model == AsperityModel::FullStick {
+    if c.kind == Model::FullStick {
         cuts.extend(m.laws.load_breaks());
     }
     cuts.extend(
@@ -127,35 +138,37 @@ fn assert_agrees(what: &str, library: f64, slow: (f64, f64)) {
     );
 }
 
-fn check_all(m: &StatisticalModel, d: f64) {
+fn check_all(c: &Case, d: f64) {
+    let m = &c.m;
     let count = m.summits.density * m.nominal_area;
     let k = m.material.hardness_factor();
     let load_scale = count * m.critical.load;
     let area_scale = count * m.critical.area;
     let adhesion_scale = count * 2.0 * std::f64::consts::PI * m.summits.radius * m.adhesion.energy;
     let eps_wc = m.adhesion.equilibrium_distance / m.critical.interference;
-    let beyond = m.options.adhesion_beyond_fits;
-    let form = m.options.static_friction_form;
-    let tag = format!("{:?} psi={:.2} d*={d}", m.model, m.plasticity_index);
-    let (p_law, a_law, q_law): (Law, Law, Law) = match m.model {
-        AsperityModel::KogutEtsion => (
+    let beyond = c.options.adhesion_beyond_fits;
+    let form = c.options.static_friction_form;
+    let tag = format!("{:?} psi={:.2} d*={d}", c.kind, m.plasticity_index);
+    let (p_law, a_law, q_law): (Law, Law, Law) = match c.kind {
+        Model::KogutEtsion => (
             Box::new(move |x| ke_load_ratio(x, k)),
             Box::new(ke_area_ratio),
             Box::new(move |x| ke_static_friction_ratio(x, form)),
         ),
-        AsperityModel::ChangEtsionBogy => (
+        Model::ChangEtsionBogy => (
             Box::new(ceb_load_ratio),
             Box::new(ceb_area_ratio),
             Box::new(ceb_static_friction_ratio),
         ),
-        AsperityModel::FullStick => {
+        Model::FullStick => {
             // The laws themselves are checked in friction_full_stick.rs; here only the
             // integration over the summit heights.
-            let laws = m.laws;
+            let laws = std::sync::Arc::clone(&m.laws);
+            let (area, friction) = (laws.clone(), laws.clone());
             (
                 Box::new(move |x| laws.load_ratio(x)),
-                Box::new(move |x| laws.area_ratio(x)),
-                Box::new(move |x| laws.friction_ratio(x)),
+                Box::new(move |x| area.area_ratio(x)),
+                Box::new(move |x| friction.friction_ratio(x)),
             )
         }
     };
@@ -164,22 +177,22 @@ fn check_all(m: &StatisticalModel, d: f64) {
         asperity_numerics::friction::FrictionError,
     >| { r.map(|v| v.value).unwrap_or_else(|e| panic!("{tag}: {e}")) };
     let p = lib(m.contact_load(d));
-    let sp = slow_contact(m, d, &*p_law);
+    let sp = slow_contact(c, d, &*p_law);
     assert_agrees(&format!("P {tag}"), p / load_scale, sp);
     let a = lib(m.contact_area(d));
     assert_agrees(
         &format!("A {tag}"),
         a / area_scale,
-        slow_contact(m, d, &*a_law),
+        slow_contact(c, d, &*a_law),
     );
     let q = lib(m.static_friction_force(d));
     assert_agrees(
         &format!("Q {tag}"),
         q / load_scale,
-        slow_contact(m, d, &*q_law),
+        slow_contact(c, d, &*q_law),
     );
     let fs = m.adhesion_force(d).unwrap_or_else(|e| panic!("{tag}: {e}"));
-    let sc = slow_contact(m, d, &|x| contacting_adhesion_ratio(x, eps_wc, beyond));
+    let sc = slow_contact(c, d, &|x| contacting_adhesion_ratio(x, eps_wc, beyond));
     assert_agrees(
         &format!("Fs contacting {tag}"),
         fs.contacting.value / adhesion_scale,
@@ -195,7 +208,7 @@ fn check_all(m: &StatisticalModel, d: f64) {
 #[test]
 fn kogut_etsion_integrals_match_simpson() {
     for &psi in &[0.5, 2.0, 8.0] {
-        let m = model(psi, AsperityModel::KogutEtsion, ModelOptions::default());
+        let m = model(psi, Model::KogutEtsion, Options::default());
         for &d in &[-1.0, 0.7, 2.5] {
             check_all(&m, d);
         }
@@ -204,12 +217,11 @@ fn kogut_etsion_integrals_match_simpson() {
 
 #[test]
 fn kogut_etsion_options_match_simpson() {
-    let options = ModelOptions {
+    let options = Options {
         static_friction_form: StaticFrictionForm::Clipped,
         adhesion_beyond_fits: AdhesionBeyondFits::ExtendLastFit,
-        ..ModelOptions::default()
     };
-    let m = model(30.0, AsperityModel::KogutEtsion, options);
+    let m = model(30.0, Model::KogutEtsion, options);
     for &d in &[-0.5, 1.5] {
         check_all(&m, d);
     }
@@ -218,7 +230,7 @@ fn kogut_etsion_options_match_simpson() {
 #[test]
 fn ceb_integrals_match_simpson() {
     for &psi in &[0.8, 4.0] {
-        let m = model(psi, AsperityModel::ChangEtsionBogy, ModelOptions::default());
+        let m = model(psi, Model::ChangEtsionBogy, Options::default());
         for &d in &[-0.5, 1.5, 3.5] {
             check_all(&m, d);
         }
@@ -230,7 +242,7 @@ fn ceb_integrals_match_simpson() {
 #[test]
 fn full_stick_integrals_match_simpson() {
     for &psi in &[0.5, 8.0, 45.0] {
-        let m = model(psi, AsperityModel::FullStick, ModelOptions::default());
+        let m = model(psi, Model::FullStick, Options::default());
         for &d in &[-1.0, 0.7, 2.5] {
             check_all(&m, d);
         }

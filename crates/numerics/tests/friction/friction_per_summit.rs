@@ -5,8 +5,8 @@ use asperity_numerics::friction::asperity_laws::{
     lennard_jones_adhesion_ratio,
 };
 use asperity_numerics::friction::{
-    per_summit_friction, AdhesionBeyondFits, AdhesionParameters, AsperityModel, DeformationState,
-    FrictionError, Material, ModelOptions, StaticFrictionForm, SummitContact,
+    per_summit_friction, AdhesionBeyondFits, AdhesionParameters, ChangEtsionBogy, DeformationState,
+    FrictionError, KogutEtsion, Material, StaticFrictionForm, SummitContact,
 };
 
 fn material() -> Material {
@@ -36,9 +36,9 @@ fn summits(m: &Material) -> Vec<SummitContact> {
 fn per_summit_forces_follow_the_laws() {
     let m = material();
     let adhesion = AdhesionParameters::new(0.5, 0.158e-9).unwrap_or_else(|e| panic!("{e}"));
-    let options = ModelOptions::default();
     let input = summits(&m);
-    let r = per_summit_friction(&input, AsperityModel::KogutEtsion, &m, &adhesion, &options)
+    let ke = KogutEtsion::new(m, StaticFrictionForm::Literal);
+    let r = per_summit_friction(&input, &ke, &m, &adhesion, AdhesionBeyondFits::default())
         .unwrap_or_else(|e| panic!("{e}"));
     let k = m.hardness_factor();
     for (s, out) in input.iter().zip(&r.summits) {
@@ -99,10 +99,10 @@ fn zero_adhesion_and_ceb_baseline() {
     let adhesion = AdhesionParameters::new(0.0, 0.158e-9).unwrap_or_else(|e| panic!("{e}"));
     let r = per_summit_friction(
         &summits(&m),
-        AsperityModel::ChangEtsionBogy,
+        &ChangEtsionBogy::new(m),
         &m,
         &adhesion,
-        &ModelOptions::default(),
+        AdhesionBeyondFits::default(),
     )
     .unwrap_or_else(|e| panic!("{e}"));
     assert!(r.summits.iter().all(|s| s.adhesion_force == 0.0));
@@ -122,10 +122,10 @@ fn invalid_summits_are_typed_errors() {
     assert!(matches!(
         per_summit_friction(
             &bad,
-            AsperityModel::KogutEtsion,
+            &KogutEtsion::new(m, StaticFrictionForm::Literal),
             &m,
             &adhesion,
-            &ModelOptions::default()
+            AdhesionBeyondFits::default()
         ),
         Err(FrictionError::InvalidParameter {
             name: "summit radius",
@@ -138,18 +138,18 @@ fn invalid_summits_are_typed_errors() {
     }];
     assert!(per_summit_friction(
         &bad,
-        AsperityModel::KogutEtsion,
+        &KogutEtsion::new(m, StaticFrictionForm::Literal),
         &m,
         &adhesion,
-        &ModelOptions::default()
+        AdhesionBeyondFits::default()
     )
     .is_err());
     let empty = per_summit_friction(
         &[],
-        AsperityModel::KogutEtsion,
+        &KogutEtsion::new(m, StaticFrictionForm::Literal),
         &m,
         &adhesion,
-        &ModelOptions::default(),
+        AdhesionBeyondFits::default(),
     )
     .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(empty.mu_s, None);

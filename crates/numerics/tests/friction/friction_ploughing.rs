@@ -9,7 +9,7 @@ use asperity_numerics::friction::ploughing_laws::{
 };
 use asperity_numerics::friction::{
     deformation_friction, per_spot_friction, spot_slopes, DeformationLaw, DeformationResult,
-    DeformationSpot, SlidingDirection, SpotLaw, SpotLoad, SpotSlope,
+    DeformationSpot, JunctionShear, SlidingDirection, SpotLoad, SpotSlope,
 };
 use ndarray::Array2;
 use std::f64::consts::{FRAC_2_PI, PI};
@@ -128,9 +128,7 @@ impl Section {
         let spots = measure_spots(&labels, p.view(), self.z.view(), DX, DY).unwrap();
         let slopes = self.slopes(psi);
         let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
-        let shear = SpotLaw::JunctionShear {
-            shear_strength: TAU,
-        };
+        let shear = JunctionShear::new(1.0, TAU).unwrap();
         let adhesion = per_spot_friction(&loads, &shear, 0.0).unwrap();
         let input: Vec<DeformationSpot> = spots
             .iter()

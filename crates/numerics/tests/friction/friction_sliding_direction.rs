@@ -7,7 +7,7 @@
 use asperity_numerics::friction::contact_spots::{label_spots, measure_spots, Connectivity};
 use asperity_numerics::friction::{
     deformation_friction, per_spot_friction, spot_slopes, ContactSpot, DeformationLaw,
-    DeformationSpot, SlidingDirection, SpotLabels, SpotLaw, SpotLoad, SpotSlope,
+    DeformationSpot, JunctionShear, SlidingDirection, SpotLabels, SpotLoad, SpotSlope,
 };
 use asperity_numerics::surface::synthetic::{
     generate_synthetic_surface, Anisotropy, SyntheticSurfaceSpec,
@@ -57,9 +57,7 @@ impl Contact {
         let labels = label_spots(p.view(), true, Connectivity::Four).unwrap();
         let spots = measure_spots(&labels, p.view(), z.view(), d, d).unwrap();
         let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
-        let shear = SpotLaw::JunctionShear {
-            shear_strength: TAU,
-        };
+        let shear = JunctionShear::new(1.0, TAU).unwrap();
         let adhesion = per_spot_friction(&loads, &shear, 0.0).unwrap();
         let adhesion = adhesion.spots.iter().map(|a| a.friction_force).collect();
         Self {

@@ -2,13 +2,15 @@
 
 use asperity_numerics::friction::{
     net_load, static_friction, static_friction_at_pressure, static_friction_curve,
-    static_friction_on_grid, AdhesionParameters, AsperityModel, FrictionError, Material,
-    ModelOptions, NetLoadGrid, SolveSettings, StatisticalModel, SummitStatistics,
+    static_friction_on_grid, AdhesionBeyondFits, AdhesionParameters, FrictionError, Material,
+    NetLoadGrid, SolveSettings, StatisticalModel, SummitStatistics,
 };
+
+use super::law_support::{laws, statistical, Model, Options};
 
 /// Steel-like model (σ = 1 µm, β = 0.04, E = 115 GPa, H = 2 GPa, ν = 0.3, A_n = 1 cm²) with a
 /// prescribed plasticity index ψ and adhesion energy Δγ (N/m).
-fn model(psi: f64, energy: f64, kind: AsperityModel) -> StatisticalModel {
+fn model(psi: f64, energy: f64, kind: Model) -> StatisticalModel {
     let material = Material::new(115e9, 2e9, 0.3).unwrap_or_else(|e| panic!("{e}"));
     let sigma = 1e-6;
     let beta: f64 = 0.04;
@@ -19,15 +21,8 @@ fn model(psi: f64, energy: f64, kind: AsperityModel) -> StatisticalModel {
     let summits = SummitStatistics::from_explicit(sigma, radius, beta / (radius * sigma))
         .unwrap_or_else(|e| panic!("{e}"));
     let adhesion = AdhesionParameters::new(energy, 0.158e-9).unwrap_or_else(|e| panic!("{e}"));
-    StatisticalModel::new(
-        kind,
-        summits,
-        material,
-        adhesion,
-        1e-4,
-        ModelOptions::default(),
-    )
-    .unwrap_or_else(|e| panic!("{e}"))
+    statistical(kind, summits, material, adhesion, 1e-4, Options::default())
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn an_h(m: &StatisticalModel) -> f64 {
@@ -38,7 +33,7 @@ fn an_h(m: &StatisticalModel) -> f64 {
 /// keep the residual well below 1e-8.
 #[test]
 fn solution_balances_the_load() {
-    let m = model(1.0, 0.5, AsperityModel::KogutEtsion);
+    let m = model(1.0, 0.5, Model::KogutEtsion);
     let load = 1e-4 * an_h(&m);
     let r = static_friction(&m, load, &SolveSettings::default()).unwrap_or_else(|e| panic!("{e}"));
     assert!(r.status.relative_residual < 1e-8);
@@ -62,24 +57,20 @@ fn solution_balances_the_load() {
 #[test]
 fn zero_adhesion_energy_removes_adhesion() {
     let settings = SolveSettings::default();
-    let m0 = model(1.0, 0.0, AsperityModel::KogutEtsion);
+    let m0 = model(1.0, 0.0, Model::KogutEtsion);
     let load = 1e-4 * an_h(&m0);
     let r0 = static_friction(&m0, load, &settings).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(r0.adhesion_force, 0.0);
     assert!(((r0.contact_load) / load - 1.0).abs() < 1e-8);
-    let f1 = model(1.0, 0.25, AsperityModel::KogutEtsion)
+    let f1 = model(1.0, 0.25, Model::KogutEtsion)
         .adhesion_force(1.0)
         .unwrap_or_else(|e| panic!("{e}"));
-    let f2 = model(1.0, 0.5, AsperityModel::KogutEtsion)
+    let f2 = model(1.0, 0.5, Model::KogutEtsion)
         .adhesion_force(1.0)
         .unwrap_or_else(|e| panic!("{e}"));
     assert!((f2.total() / f1.total() - 2.0).abs() < 1e-12);
-    let small = static_friction(
-        &model(1.0, 1e-6, AsperityModel::KogutEtsion),
-        load,
-        &settings,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    let small = static_friction(&model(1.0, 1e-6, Model::KogutEtsion), load, &settings)
+        .unwrap_or_else(|e| panic!("{e}"));
     let (mu0, mu_small) = (r0.mu_s.unwrap_or(f64::NAN), small.mu_s.unwrap_or(f64::NAN));
     assert!((mu_small / mu0 - 1.0).abs() < 1e-5);
     assert!(mu_small != mu0);
@@ -90,7 +81,7 @@ fn zero_adhesion_energy_removes_adhesion() {
 /// 2x·A_c = H). Within 2 %: the summits with x ≤ 110 lie in a band of 110/ψ² σ_s = 0.7 % of σ_s.
 #[test]
 fn very_high_plasticity_index_reaches_fully_plastic_branch() {
-    let m = model(120.0, 0.0, AsperityModel::KogutEtsion);
+    let m = model(120.0, 0.0, Model::KogutEtsion);
     let r = static_friction(&m, 1e-3 * an_h(&m), &SolveSettings::default())
         .unwrap_or_else(|e| panic!("{e}"));
     let mean_pressure = r.contact_load / r.real_contact_area;
@@ -99,7 +90,7 @@ fn very_high_plasticity_index_reaches_fully_plastic_branch() {
         "{mean_pressure:e}"
     );
     // Low ψ is far from it: mostly elastic, mean pressure well below H.
-    let low = model(0.5, 0.0, AsperityModel::KogutEtsion);
+    let low = model(0.5, 0.0, Model::KogutEtsion);
     let rl = static_friction(&low, 1e-3 * an_h(&low), &SolveSettings::default())
         .unwrap_or_else(|e| panic!("{e}"));
     assert!(rl.contact_load / rl.real_contact_area < 0.5 * low.material.hardness);
@@ -109,7 +100,7 @@ fn very_high_plasticity_index_reaches_fully_plastic_branch() {
 /// solves (μ_s is None) with two roots on the grid (the stable one, smallest d*, is taken).
 #[test]
 fn load_below_pull_off_is_a_typed_error() {
-    let m = model(0.5, 1.0, AsperityModel::KogutEtsion);
+    let m = model(0.5, 1.0, Model::KogutEtsion);
     let settings = SolveSettings::default();
     let mut grid = NetLoadGrid::new(&m, &settings).unwrap_or_else(|e| panic!("{e}"));
     let pull_off = grid.pull_off_load(&m).unwrap_or_else(|e| panic!("{e}"));
@@ -135,7 +126,7 @@ fn load_below_pull_off_is_a_typed_error() {
 
 #[test]
 fn invalid_and_out_of_range_loads_are_typed_errors() {
-    let m = model(1.0, 0.5, AsperityModel::KogutEtsion);
+    let m = model(1.0, 0.5, Model::KogutEtsion);
     let settings = SolveSettings::default();
     assert!(matches!(
         static_friction(&m, 0.0, &settings),
@@ -165,7 +156,7 @@ fn steel_like_magnitudes_and_trends() {
     let settings = SolveSettings::default();
     let mut previous_psi_mu = f64::INFINITY;
     for &psi in &[0.5, 1.0, 2.0] {
-        let m = model(psi, 0.5, AsperityModel::KogutEtsion);
+        let m = model(psi, 0.5, Model::KogutEtsion);
         let loads: Vec<f64> = [1e-5, 1e-4, 1e-3].iter().map(|f| f * an_h(&m)).collect();
         let curve = static_friction_curve(&m, &loads, &settings).unwrap_or_else(|e| panic!("{e}"));
         let mus: Vec<f64> = curve
@@ -183,7 +174,7 @@ fn steel_like_magnitudes_and_trends() {
         assert!(mus[1] < previous_psi_mu);
         previous_psi_mu = mus[1];
         let ceb = static_friction(
-            &model(psi, 0.5, AsperityModel::ChangEtsionBogy),
+            &model(psi, 0.5, Model::ChangEtsionBogy),
             loads[1],
             &settings,
         )
@@ -196,7 +187,7 @@ fn steel_like_magnitudes_and_trends() {
 /// converge d* to 1e-11 and integrals to 1e-10).
 #[test]
 fn curve_matches_independent_solves() {
-    let m = model(1.5, 0.5, AsperityModel::KogutEtsion);
+    let m = model(1.5, 0.5, Model::KogutEtsion);
     let settings = SolveSettings::default();
     // The repeated load is solved on a table already refined around its root: still one root.
     let loads: Vec<f64> = [3e-5, 2e-4, 5e-3, 2e-2, 2e-4]
@@ -216,17 +207,17 @@ fn curve_matches_independent_solves() {
 /// Hand-built inconsistent inputs and bad settings are typed errors, not NaN.
 #[test]
 fn inconsistent_inputs_and_settings_are_rejected() {
-    let m = model(1.0, 0.5, AsperityModel::KogutEtsion);
+    let m = model(1.0, 0.5, Model::KogutEtsion);
     let mut summits = m.summits;
     summits.sigma_s = 2.0 * summits.sigma;
     assert!(matches!(
         StatisticalModel::new(
-            m.model,
+            m.laws.clone(),
             summits,
             m.material,
             m.adhesion,
             1e-4,
-            ModelOptions::default()
+            AdhesionBeyondFits::default()
         ),
         Err(FrictionError::InvalidParameter {
             name: "summit statistics",
@@ -235,14 +226,19 @@ fn inconsistent_inputs_and_settings_are_rejected() {
     ));
     let mut material = m.material;
     material.poisson_ratio = f64::NAN;
-    assert!(StatisticalModel::new(
-        m.model,
+    assert!(laws(
+        Model::KogutEtsion,
+        &material,
+        asperity_numerics::friction::StaticFrictionForm::Literal
+    )
+    .and_then(|laws| StatisticalModel::new(
+        laws,
         m.summits,
         material,
         m.adhesion,
         1e-4,
-        ModelOptions::default()
-    )
+        AdhesionBeyondFits::default()
+    ))
     .is_err());
     let bad = SolveSettings {
         grid_step: 0.0,
@@ -269,11 +265,11 @@ fn inconsistent_inputs_and_settings_are_rejected() {
 fn lazy_grid_gives_the_fully_tabulated_solution() {
     let settings = SolveSettings::default();
     let cases = [
-        (model(2.0, 0.5, AsperityModel::KogutEtsion), 1e-4),
-        (model(2.0, 0.5, AsperityModel::FullStick), 1e-2),
-        (model(50.0, 0.5, AsperityModel::FullStick), 1e-2),
-        (model(0.5, 0.5, AsperityModel::ChangEtsionBogy), 1e-6),
-        (model(1.0, 0.0, AsperityModel::KogutEtsion), 1e-4),
+        (model(2.0, 0.5, Model::KogutEtsion), 1e-4),
+        (model(2.0, 0.5, Model::FullStick), 1e-2),
+        (model(50.0, 0.5, Model::FullStick), 1e-2),
+        (model(0.5, 0.5, Model::ChangEtsionBogy), 1e-6),
+        (model(1.0, 0.0, Model::KogutEtsion), 1e-4),
     ];
     for (m, ratio) in cases {
         for load in [ratio * an_h(&m), 1e-3 * ratio * an_h(&m)] {
@@ -282,12 +278,12 @@ fn lazy_grid_gives_the_fully_tabulated_solution() {
             full.pull_off_load(&m).unwrap_or_else(|e| panic!("{e}"));
             let a = static_friction_on_grid(&m, &mut lazy, load, &settings);
             let b = static_friction_on_grid(&m, &mut full, load, &settings);
-            assert_eq!(a, b, "{:?} psi {} load {load}", m.model, m.plasticity_index);
+            assert_eq!(a, b, "{:?} psi {} load {load}", m.laws, m.plasticity_index);
             let evaluated = lazy.evaluations();
             assert!(
                 evaluated.net_load < evaluated.points / 2,
                 "{:?} psi {}: {evaluated:?}",
-                m.model,
+                m.laws,
                 m.plasticity_index
             );
             // Brute force: every grid point evaluated, sign changes counted.
@@ -304,7 +300,7 @@ fn lazy_grid_gives_the_fully_tabulated_solution() {
         }
     }
     // A tensile load between pull-off and 0 needs every point (and finds two roots).
-    let m = model(1.0, 0.5, AsperityModel::KogutEtsion);
+    let m = model(1.0, 0.5, Model::KogutEtsion);
     let mut lazy = NetLoadGrid::new(&m, &settings).unwrap_or_else(|e| panic!("{e}"));
     let mut full = lazy.clone();
     let pull_off = full.pull_off_load(&m).unwrap_or_else(|e| panic!("{e}"));
@@ -319,19 +315,15 @@ fn lazy_grid_gives_the_fully_tabulated_solution() {
 #[test]
 fn load_laws_drop_by_at_most_their_bound() {
     for (kind, psi) in [
-        (AsperityModel::KogutEtsion, 2.0),
-        (AsperityModel::ChangEtsionBogy, 2.0),
-        (AsperityModel::FullStick, 2.0),
-        (AsperityModel::FullStick, 50.0),
+        (Model::KogutEtsion, 2.0),
+        (Model::ChangEtsionBogy, 2.0),
+        (Model::FullStick, 2.0),
+        (Model::FullStick, 50.0),
     ] {
         let laws = model(psi, 0.5, kind).laws;
         let kappa = laws.load_drop_bound();
         assert!(kappa > 0.0 && kappa <= 1.0, "{kind:?}: {kappa}");
-        assert_eq!(
-            kappa < 1.0,
-            kind == AsperityModel::FullStick,
-            "{kind:?}: {kappa}"
-        );
+        assert_eq!(kappa < 1.0, kind == Model::FullStick, "{kind:?}: {kappa}");
         let mut running_max: f64 = 0.0;
         for i in 0..=40_000 {
             let x = 1e-3 * 10f64.powf(8.0 * f64::from(i) / 40_000.0);
