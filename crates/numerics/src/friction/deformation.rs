@@ -51,9 +51,25 @@ pub enum DeformationLaw {
 }
 
 impl DeformationLaw {
+    /// Every law with its name in studies and tables.
+    pub const NAMED: [(&'static str, DeformationLaw); 4] = [
+        ("groove", Self::GroovePloughing),
+        ("cone", Self::ConePloughing),
+        ("sphere", Self::SpherePloughing),
+        ("tilted_junction", Self::TiltedJunction),
+    ];
+
     /// How far the law's constants are confirmed: textbook laws without fitted constants.
     pub fn basis(self) -> ModelBasis {
         ModelBasis::TextbookLaw
+    }
+
+    /// The law called `name` in [`Self::NAMED`].
+    pub fn named(name: &str) -> Option<Self> {
+        Self::NAMED
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|&(_, law)| law)
     }
 }
 
@@ -124,8 +140,8 @@ pub struct DeformationResult {
 }
 
 impl DeformationLaw {
-    /// Q_d of one spot, or why it has none.
-    fn deformation(self, spot: &DeformationSpot) -> Result<f64, Unassigned> {
+    /// Q_d of one spot, or why it has none (inputs as checked by [`deformation_friction`]).
+    pub fn spot_deformation(self, spot: &DeformationSpot) -> Result<f64, Unassigned> {
         match self {
             Self::SpherePloughing => {
                 let radius = spot.radius.ok_or(Unassigned::NoGeometry)?;
@@ -181,7 +197,7 @@ pub fn deformation_friction(
             radius: spot.radius.filter(|r| r.is_finite() && *r > 0.0),
             ..*spot
         };
-        let (deformation_friction, unassigned) = match law.deformation(&spot) {
+        let (deformation_friction, unassigned) = match law.spot_deformation(&spot) {
             Ok(q) => (q, None),
             Err(why) => {
                 let (count, load) = match why {

@@ -67,11 +67,13 @@ pub use gw_functions::{gw_function, upper_tail_probability, INTEGRAL_REL_TOL};
 pub use jackson_green::JacksonGreenLaw;
 pub use laws::{
     find_law, law_names, AsperityLaws, ChangEtsionBogy, FrictionLaw, FullStick, FullStickOptions,
-    JunctionShear, KogutEtsion, LawDescriptor, LawInputs, Method, ModelBasis, LAWS,
+    JunctionShear, KogutEtsion, LawDescriptor, LawInputs, Method, ModelBasis, Ploughing, LAWS,
 };
 pub use material::{AdhesionParameters, CriticalValues, Material, TABOR_FACTOR};
 pub use net_load_grid::{net_load, GridEvaluations, NetLoadGrid};
-pub use per_spot::{per_spot_friction, PerSpotResult, SpotFriction, SpotLoad};
+pub use per_spot::{
+    per_spot_friction, per_spot_friction_on_slopes, PerSpotResult, SpotFriction, SpotLoad,
+};
 pub use per_summit::{
     per_summit_friction, summit_friction, PerSummitResult, SummitContact, SummitFriction,
 };
