@@ -52,14 +52,17 @@ pub const SLIDING_DIRECTION: ParameterSpec = ParameterSpec {
                   write it with its unit, e.g. `90 deg`)",
     kind: ParameterKind::Number {
         default: 0.0,
-        range: NumberRange {
-            min: -TAU,
-            min_inclusive: true,
-            max: TAU,
-            max_inclusive: true,
-        },
+        range: DIRECTION_RANGE,
         unit: Unit::Angle,
     },
+};
+
+/// ψ ∈ [−2π, 2π].
+const DIRECTION_RANGE: NumberRange = NumberRange {
+    min: -TAU,
+    min_inclusive: true,
+    max: TAU,
+    max_inclusive: true,
 };
 
 /// Junction shear and a deformation law along one sliding direction.
@@ -79,11 +82,19 @@ fn build(inputs: &LawInputs) -> Result<Box<dyn FrictionLaw>, FrictionError> {
         value: f64::NAN,
         expected: "groove, cone, sphere or tilted_junction",
     })?;
+    let angle = inputs.parameters.number(SLIDING_DIRECTION.name)?;
+    if !DIRECTION_RANGE.contains(angle) {
+        return Err(FrictionError::InvalidParameter {
+            name: SLIDING_DIRECTION.name,
+            value: angle,
+            expected: "an angle in [-2π, 2π] rad",
+        });
+    }
     Ok(Box::new(Ploughing {
         adhesion: JunctionShear::new(c, inputs.shear_strength)?,
         deformation,
         deformation_name: name,
-        direction: SlidingDirection::new(inputs.parameters.number(SLIDING_DIRECTION.name)?)?,
+        direction: SlidingDirection::new(angle)?,
     }))
 }
 
