@@ -6,6 +6,7 @@ mod common;
 mod contact_node;
 mod friction_high_plasticity;
 mod friction_node;
+mod friction_ploughing;
 #[path = "../nodes_common/mod.rs"]
 mod nodes_common;
 mod surface_functional_node;

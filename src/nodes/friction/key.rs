@@ -49,6 +49,7 @@ fn reported_field(value: &ReportedValue) -> Field {
     let dimension = match value.unit {
         Unit::Dimensionless => Dimension::Dimensionless,
         Unit::Pressure => Dimension::Pressure,
+        Unit::Angle => Dimension::Angle,
     };
     match value.value {
         ParameterValue::Number(v) => Field::float(value.column, v, dimension),

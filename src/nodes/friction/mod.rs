@@ -39,6 +39,7 @@ use model_spec::{MethodSpec, ModelSpec};
 pub use models_doc::friction_models_markdown;
 
 mod contact_input;
+mod deformation_part;
 mod key;
 mod material_pair;
 mod model_spec;

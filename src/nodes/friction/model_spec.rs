@@ -16,9 +16,10 @@ use crate::engine::study::{
 use crate::engine::value::ParamValue;
 use crate::friction::laws::{
     default_law, find_law, law_names, LawDescriptor, LawInputs, Method, ParameterKind,
-    ParameterSpec, ParameterValue,
+    ParameterSpec, ParameterValue, Unit,
 };
 use crate::friction::FrictionLaw;
+use crate::units::Dimension;
 
 use super::spec_fields::spec_error;
 
@@ -40,11 +41,13 @@ enum ModelSource {
     },
 }
 
-/// A parameter value in a law's block: a number or a name.
+/// A parameter value in a law's block: a number, a quantity with its unit or a name.
 #[derive(Debug, Clone, PartialEq)]
 pub enum LawValue {
     /// A plain number.
     Number(f64),
+    /// A quantity: its SI value and dimension (`90 deg`).
+    Quantity(f64, Dimension),
     /// Text (a choice).
     Text(String),
 }
@@ -54,6 +57,7 @@ impl FromParamValue for LawValue {
         match value {
             ParamValue::Int(i) => Ok(Self::Number(*i as f64)),
             ParamValue::Number(x) => Ok(Self::Number(*x)),
+            ParamValue::Quantity(q) => Ok(Self::Quantity(q.si, q.dimension)),
             ParamValue::Text(t) => Ok(Self::Text(t.clone())),
             other => Err(format!(
                 "expected a number or a name, got {other} ({})",
@@ -215,7 +219,25 @@ fn resolve_value(
     field: &str,
 ) -> Result<ParameterValue, SpecError> {
     let convert = |v: &LawValue| match (v, spec.kind) {
+        (LawValue::Number(_), ParameterKind::Number { unit, .. })
+            if unit != Unit::Dimensionless =>
+        {
+            Err(format!("expected {}", unit_example(unit)))
+        }
         (LawValue::Number(x), ParameterKind::Number { .. }) => spec.number(*x),
+        (LawValue::Quantity(x, d), ParameterKind::Number { unit, .. })
+            if *d == dimension_of(unit) =>
+        {
+            spec.number(*x)
+        }
+        (LawValue::Quantity(_, d), ParameterKind::Number { unit, .. }) => Err(format!(
+            "is a {}, expected {}",
+            d.name(),
+            unit_example(unit)
+        )),
+        (LawValue::Quantity(..), ParameterKind::Choice { options, .. }) => {
+            Err(format!("is not one of: {}", options.join(", ")))
+        }
         (LawValue::Text(t), ParameterKind::Choice { .. }) => spec.choice(t),
         (LawValue::Text(_), ParameterKind::Number { range, .. }) => {
             Err(format!("expected a number {}", range.describe()))
@@ -226,6 +248,26 @@ fn resolve_value(
     };
     let value = ctx.resolve_checked(param, field, |v| convert(v).map(|_| ()))?;
     convert(&value).map_err(|message| spec_error(param.location(), field, message))
+}
+
+/// The dimension a parameter's unit stands for.
+fn dimension_of(unit: Unit) -> Dimension {
+    match unit {
+        Unit::Dimensionless => Dimension::Dimensionless,
+        Unit::Pressure => Dimension::Pressure,
+        Unit::Angle => Dimension::Angle,
+    }
+}
+
+/// How a value of `unit` is written, for messages: "a quantity of dimension angle with its
+/// unit, e.g. 30 deg".
+fn unit_example(unit: Unit) -> String {
+    let d = dimension_of(unit);
+    format!(
+        "a quantity of dimension {} with its unit, e.g. {}",
+        d.name(),
+        d.example()
+    )
 }
 
 impl<'de> Deserialize<'de> for ModelSpec {

@@ -35,6 +35,7 @@ pub fn friction_models_markdown() -> String {
                     let unit = match unit {
                         Unit::Dimensionless => "",
                         Unit::Pressure => " Pa",
+                        Unit::Angle => " rad",
                     };
                     (format!("{default}{unit}"), range.describe())
                 }

@@ -19,11 +19,16 @@ use std::collections::BTreeMap;
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::NodeError;
 use crate::engine::value::Field;
-use crate::friction::contact_spots::{adhesion_from_gap, contact_spots, Connectivity, ContactSpot};
+use crate::friction::contact_spots::{
+    adhesion_from_gap, label_spots, measure_spots, Connectivity, ContactSpot,
+};
 use crate::friction::per_summit::quantile;
-use crate::friction::{per_spot_friction, PerSpotResult, SpotLoad};
+use crate::friction::{
+    per_spot_friction, per_spot_friction_on_slopes, spot_slopes, PerSpotResult, SpotLoad,
+};
 use crate::units::Dimension;
 
+use super::deformation_part::{extend_spots_table, push_parts};
 use super::{beyond_fit_field, coefficient_fields, FrictionTask};
 use crate::nodes::contact_view::ContactView;
 
@@ -49,20 +54,26 @@ pub(super) fn compute(
     let fail = |what: &str, e: crate::friction::FrictionError| {
         NodeError::new(format!("per-spot friction, {what}: {e}"))
     };
-    let spots = contact_spots(
-        pressure,
-        height,
-        dx,
-        dy,
-        section.periodic,
-        section.connectivity,
-    )
-    .map_err(|e| fail("contact spots", e))?;
+    let labels = label_spots(pressure, section.periodic, section.connectivity)
+        .map_err(|e| fail("contact spots", e))?;
+    let spots =
+        measure_spots(&labels, pressure, height, dx, dy).map_err(|e| fail("contact spots", e))?;
     let adhesion =
         adhesion_from_gap(gap, pressure, dx, dy, task.adhesion).map_err(|e| fail("adhesion", e))?;
     let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
-    let result =
-        per_spot_friction(&loads, task.law.as_ref(), adhesion).map_err(|e| fail("law", e))?;
+    let law = task.law.as_ref();
+    let slopes = match law.sliding_direction() {
+        Some(direction) => Some(
+            spot_slopes(&labels, &spots, height, (dx, dy), direction)
+                .map_err(|e| fail("spot slopes", e))?,
+        ),
+        None => None,
+    };
+    let result = match &slopes {
+        Some(slopes) => per_spot_friction_on_slopes(&loads, slopes, law, adhesion),
+        None => per_spot_friction(&loads, law, adhesion),
+    }
+    .map_err(|e| fail("law", e))?;
     let mu_s = result.mu_s.ok_or_else(|| {
         NodeError::new(format!(
             "no compressive net force on the contact spots (sum P = {} N, F_a = {} N): the section carries no friction",
@@ -85,8 +96,15 @@ pub(super) fn compute(
         nominal_pressure * area,
     );
     push_spot_statistics(metrics, &spots, &result, section_area, area);
+    if let Some(slopes) = &slopes {
+        push_parts(metrics, &spots, slopes, &result);
+    }
     if section.spots_table {
-        tables.insert(String::from("spots"), spots_table(&spots, &result, dx, dy));
+        let mut table = spots_table(&spots, &result, dx, dy);
+        if let Some(slopes) = &slopes {
+            extend_spots_table(&mut table, &spots, slopes, &result);
+        }
+        tables.insert(String::from("spots"), table);
     }
     Ok(())
 }

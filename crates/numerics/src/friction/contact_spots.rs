@@ -323,13 +323,13 @@ fn check_shape(
 }
 
 /// The points of every spot in raster order, as flat indices `iy·nx + ix` grouped by spot.
-struct Members {
+pub(crate) struct Members {
     start: Vec<usize>,
     points: Vec<u32>,
 }
 
 impl Members {
-    fn gather(labels: &SpotLabels) -> Self {
+    pub(crate) fn gather(labels: &SpotLabels) -> Self {
         let mut start = vec![0usize; labels.count + 1];
         for &l in labels.labels.iter().filter(|&&l| l != SpotLabels::OUTSIDE) {
             start[l as usize + 1] += 1;
@@ -348,7 +348,7 @@ impl Members {
         Self { start, points }
     }
 
-    fn of(&self, id: usize) -> &[u32] {
+    pub(crate) fn of(&self, id: usize) -> &[u32] {
         &self.points[self.start[id]..self.start[id + 1]]
     }
 }
@@ -489,7 +489,7 @@ impl SpotInput<'_> {
 }
 
 /// Index `i + s` on an axis of `n` points, wrapped if periodic, `None` off an open grid.
-fn step(i: usize, s: isize, n: usize, periodic: bool) -> Option<usize> {
+pub(crate) fn step(i: usize, s: isize, n: usize, periodic: bool) -> Option<usize> {
     let j = i as isize + s;
     if (0..n as isize).contains(&j) {
         Some(j as usize)

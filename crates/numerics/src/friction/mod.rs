@@ -24,6 +24,9 @@
 //! * [`contact_spots`] — connected contact spots of a contact solution with their load, area and
 //!   radius, and the Lennard-Jones adhesion across its gap;
 //! * [`per_spot`] — a law's tangential capacity per contact spot, summed over a section;
+//! * [`spot_slope`] — each spot's tilt along a sliding direction and its attack slope;
+//! * [`ploughing_laws`] — cone and sphere ploughing (Bowden–Tabor), the inclined junction;
+//! * [`deformation`] — those laws per contact spot, added to an adhesion part;
 //! * `quadrature`, `root_finding` (crate-private) — adaptive Gauss–Kronrod and Brent (own implementations).
 //!
 //! The Li–Etsion–Talke (2010) model itself is not implemented (its equations were not found);
@@ -33,6 +36,7 @@
 
 pub mod asperity_laws;
 pub mod contact_spots;
+pub mod deformation;
 pub mod error;
 pub mod full_stick;
 pub mod gw_functions;
@@ -43,31 +47,39 @@ pub mod net_load_grid;
 mod paraboloid_fit;
 pub mod per_spot;
 pub mod per_summit;
+pub mod ploughing_laws;
 pub(crate) mod quadrature;
 pub(crate) mod root_finding;
 pub mod solve_settings;
+pub mod spot_slope;
 pub mod static_friction;
 pub mod statistical_integrals;
 pub mod summit_statistics;
 
 pub use asperity_laws::{AdhesionBeyondFits, DeformationState, StaticFrictionForm};
 pub use contact_spots::{Connectivity, ContactSpot, SpotLabels};
+pub use deformation::{
+    deformation_friction, DeformationLaw, DeformationResult, DeformationSpot, SpotDeformation,
+};
 pub use error::FrictionError;
 pub use full_stick::{FullStickLaw, StickFrictionLaw};
 pub use gw_functions::{gw_function, upper_tail_probability, INTEGRAL_REL_TOL};
 pub use jackson_green::JacksonGreenLaw;
 pub use laws::{
     find_law, law_names, AsperityLaws, ChangEtsionBogy, FrictionLaw, FullStick, FullStickOptions,
-    JunctionShear, KogutEtsion, LawDescriptor, LawInputs, Method, ModelBasis, LAWS,
+    JunctionShear, KogutEtsion, LawDescriptor, LawInputs, Method, ModelBasis, Ploughing, LAWS,
 };
 pub use material::{AdhesionParameters, CriticalValues, Material, TABOR_FACTOR};
 pub use net_load_grid::{net_load, GridEvaluations, NetLoadGrid};
-pub use per_spot::{per_spot_friction, PerSpotResult, SpotFriction, SpotLoad};
+pub use per_spot::{
+    per_spot_friction, per_spot_friction_on_slopes, PerSpotResult, SpotFriction, SpotLoad,
+};
 pub use per_summit::{
     per_summit_friction, summit_friction, PerSummitResult, SummitContact, SummitFriction,
 };
 pub use quadrature::QuadratureOutcome;
 pub use solve_settings::SolveSettings;
+pub use spot_slope::{spot_slopes, SlidingDirection, SpotSlope};
 pub use static_friction::{
     static_friction, static_friction_at_pressure, static_friction_curve, static_friction_on_grid,
     SolveStatus, StaticFrictionResult,

@@ -28,6 +28,7 @@ use super::contact_spots::ContactSpot;
 use super::error::FrictionError;
 use super::laws::{AsperityLaws, FrictionLaw};
 use super::material::Material;
+use super::spot_slope::SpotSlope;
 
 /// One contact spot as the per-spot model needs it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,6 +79,11 @@ pub struct PerSpotResult {
     pub load_one_pixel: f64,
     /// Number of one-pixel spots.
     pub one_pixel_spots: usize,
+    /// The deformation part Q_d,i of each spot's Q_i (N), for a law with one
+    /// ([`per_spot_friction_on_slopes`]); empty otherwise.
+    pub deformation: Vec<f64>,
+    /// Σ Q_d,i (N).
+    pub total_deformation_force: f64,
 }
 
 impl From<&ContactSpot> for SpotLoad {
@@ -141,6 +147,35 @@ pub fn per_spot_friction(
     law: &dyn FrictionLaw,
     adhesion_force: f64,
 ) -> Result<PerSpotResult, FrictionError> {
+    section_friction(spots, None, law, adhesion_force)
+}
+
+/// [`per_spot_friction`] for a law with a deformation part: each spot with its geometry along
+/// the law's sliding direction (`slopes[i]` of `spots[i]`, [`super::spot_slope::spot_slopes`]),
+/// [`FrictionLaw::sloped_spot_friction`]; the deformation parts are summed apart. Errors also
+/// when the lists differ in length.
+pub fn per_spot_friction_on_slopes(
+    spots: &[SpotLoad],
+    slopes: &[SpotSlope],
+    law: &dyn FrictionLaw,
+    adhesion_force: f64,
+) -> Result<PerSpotResult, FrictionError> {
+    if slopes.len() != spots.len() {
+        return Err(FrictionError::InvalidParameter {
+            name: "spot slopes",
+            value: slopes.len() as f64,
+            expected: "one slope per spot",
+        });
+    }
+    section_friction(spots, Some(slopes), law, adhesion_force)
+}
+
+fn section_friction(
+    spots: &[SpotLoad],
+    slopes: Option<&[SpotSlope]>,
+    law: &dyn FrictionLaw,
+    adhesion_force: f64,
+) -> Result<PerSpotResult, FrictionError> {
     let mut result = PerSpotResult {
         spots: Vec::with_capacity(spots.len()),
         total_normal_force: 0.0,
@@ -153,25 +188,29 @@ pub fn per_spot_friction(
         spots_without_radius: 0,
         load_one_pixel: 0.0,
         one_pixel_spots: 0,
+        deformation: Vec::new(),
+        total_deformation_force: 0.0,
     };
-    for spot in spots {
+    for (i, spot) in spots.iter().enumerate() {
         check_spot(spot)?;
         let usable = SpotLoad {
             radius: spot.radius.filter(|r| r.is_finite() && *r > 0.0),
             ..*spot
         };
-        let friction = match law.spot_friction(&usable) {
-            Some(friction) => friction,
-            None => {
-                result.load_without_radius += spot.load;
-                result.spots_without_radius += 1;
-                SpotFriction {
-                    friction_force: 0.0,
-                    load_measure: None,
-                    beyond_fit: false,
-                }
-            }
+        let found = match slopes {
+            Some(slopes) => law.sloped_spot_friction(&usable, &slopes[i]),
+            None => law.spot_friction(&usable).map(|f| (f, 0.0)),
         };
+        let (friction, deformation) = found.unwrap_or_else(|| {
+            result.load_without_radius += spot.load;
+            result.spots_without_radius += 1;
+            let none = SpotFriction {
+                friction_force: 0.0,
+                load_measure: None,
+                beyond_fit: false,
+            };
+            (none, 0.0)
+        });
         if friction.beyond_fit {
             result.load_beyond_fit += spot.load;
         }
@@ -183,6 +222,10 @@ pub fn per_spot_friction(
         result.total_friction_force += friction.friction_force;
         result.total_area += spot.area;
         result.spots.push(friction);
+        if slopes.is_some() {
+            result.deformation.push(deformation);
+            result.total_deformation_force += deformation;
+        }
     }
     let net = result.total_normal_force - adhesion_force;
     result.mu_s = (net > 0.0).then(|| result.total_friction_force / net);

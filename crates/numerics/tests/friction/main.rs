@@ -7,5 +7,7 @@ mod friction_gw_summits;
 mod friction_integrals;
 mod friction_law_registry;
 mod friction_per_summit;
+mod friction_ploughing;
+mod friction_sliding_direction;
 mod friction_static_solve;
 mod law_support;

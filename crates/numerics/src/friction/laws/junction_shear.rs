@@ -22,7 +22,7 @@ pub(super) const LAW: LawDescriptor = LawDescriptor {
     build,
 };
 
-const INTERFACE_FACTOR: ParameterSpec = ParameterSpec {
+pub(super) const INTERFACE_FACTOR: ParameterSpec = ParameterSpec {
     name: "interface_factor",
     column: "interface_factor",
     description: "c in [0, 1] of τ_s = c·k (default 1, a clean metal junction; a junction \

@@ -22,6 +22,7 @@ mod full_stick;
 mod junction_shear;
 mod kogut_etsion;
 mod parameters;
+mod ploughing;
 
 use std::fmt;
 use std::sync::Arc;
@@ -29,6 +30,7 @@ use std::sync::Arc;
 use super::error::FrictionError;
 use super::material::Material;
 use super::per_spot::{SpotFriction, SpotLoad};
+use super::spot_slope::{SlidingDirection, SpotSlope};
 
 pub use chang_etsion_bogy::ChangEtsionBogy;
 pub use full_stick::{FullStick, FullStickOptions};
@@ -37,6 +39,7 @@ pub use kogut_etsion::KogutEtsion;
 pub use parameters::{
     LawParameters, NumberRange, ParameterKind, ParameterSpec, ParameterValue, ReportedValue, Unit,
 };
+pub use ploughing::{Ploughing, SLIDING_DIRECTION};
 
 /// Every friction law, in the order documentation lists them. The first is the default model.
 pub const LAWS: &[&LawDescriptor] = &[
@@ -44,6 +47,7 @@ pub const LAWS: &[&LawDescriptor] = &[
     &chang_etsion_bogy::LAW,
     &full_stick::LAW,
     &junction_shear::LAW,
+    &ploughing::LAW,
 ];
 
 /// The law a study gets without `model`.
@@ -185,6 +189,23 @@ pub trait FrictionLaw: fmt::Debug + Send + Sync {
     /// The values that identify the built law beyond the material: its parameters and what it
     /// derived from the material (key and table columns, in order).
     fn reported_values(&self) -> Vec<ReportedValue>;
+
+    /// For a law with a deformation part: the sliding direction along which it reads each
+    /// spot's geometry ([`super::spot_slope`]); `None` (the default) for a law that reads none.
+    fn sliding_direction(&self) -> Option<SlidingDirection> {
+        None
+    }
+
+    /// The tangential capacity of a spot with its geometry along [`Self::sliding_direction`],
+    /// and the part of it that is deformation (N). The default: [`Self::spot_friction`] with no
+    /// deformation part.
+    fn sloped_spot_friction(
+        &self,
+        spot: &SpotLoad,
+        _geometry: &SpotSlope,
+    ) -> Option<(SpotFriction, f64)> {
+        self.spot_friction(spot).map(|f| (f, 0.0))
+    }
 }
 
 /// Single-asperity laws as ratios to the Kogut–Etsion critical values of the asperity

@@ -19,6 +19,8 @@ pub enum Unit {
     Dimensionless,
     /// Pa.
     Pressure,
+    /// rad.
+    Angle,
 }
 
 /// An interval of allowed numbers: `min` and `max` with whether each end belongs to it.

@@ -1,0 +1,111 @@
+//! The columns of a per-spot law with a deformation part (`model: ploughing`): the section's
+//! coefficient split into its adhesion and deformation parts, the load-weighted geometry of the
+//! spots along the sliding direction, and the spots table's geometry and deformation columns
+//! ([`crate::friction::spot_slope`], docs/friction-models.md "Deformation part").
+
+use crate::engine::artifact::Table;
+use crate::engine::value::Field;
+use crate::friction::contact_spots::ContactSpot;
+use crate::friction::spot_slope::contact_radius;
+use crate::friction::{PerSpotResult, SpotSlope};
+use crate::units::Dimension;
+
+/// `mu_adhesion` and `mu_deformation` (their sum is `mu_s_computed`, both over Σ P_i − F_a as
+/// computed), and the load-weighted means of the spots' |tilt|, attack slope and groove ratio.
+pub(super) fn push_parts(
+    metrics: &mut Vec<Field>,
+    spots: &[ContactSpot],
+    slopes: &[SpotSlope],
+    result: &PerSpotResult,
+) {
+    let net = result.total_normal_force - result.adhesion_force;
+    let n = |name: &'static str, v: f64| Field::float(name, v, Dimension::Dimensionless);
+    let deformation = result.total_deformation_force;
+    metrics.extend([
+        n(
+            "mu_adhesion",
+            (result.total_friction_force - deformation) / net,
+        ),
+        n("mu_deformation", deformation / net),
+    ]);
+    let mean = |f: &dyn Fn(&SpotSlope) -> Option<f64>| {
+        let (mut sum, mut load) = (0.0, 0.0);
+        for (spot, slope) in spots.iter().zip(slopes) {
+            if let Some(v) = f(slope) {
+                sum += v * spot.load;
+                load += spot.load;
+            }
+        }
+        if load > 0.0 {
+            sum / load
+        } else {
+            0.0
+        }
+    };
+    metrics.extend([
+        n("spot_tilt_abs_mean", mean(&|s| s.tilt.map(f64::abs))),
+        n("spot_attack_slope_mean", mean(&|s| s.attack_slope)),
+        n("spot_groove_ratio_mean", mean(&|s| s.groove_ratio)),
+    ]);
+}
+
+/// Per spot: tilt along the sliding direction and how its plane was fitted, attack slope, groove
+/// ratio, cap height, contact radius, deformation force and local deformation coefficient
+/// (0 where a value is undefined: `plane` says `none`, or the spot covers a periodic grid).
+pub(super) fn extend_spots_table(
+    t: &mut Table,
+    spots: &[ContactSpot],
+    slopes: &[SpotSlope],
+    result: &PerSpotResult,
+) {
+    let column = |f: &dyn Fn(&SpotSlope) -> Option<f64>| {
+        slopes
+            .iter()
+            .map(|s| f(s).unwrap_or(0.0))
+            .collect::<Vec<f64>>()
+    };
+    t.push_float("tilt", Dimension::Dimensionless, column(&|s| s.tilt));
+    t.push_text(
+        "plane",
+        slopes
+            .iter()
+            .map(|s| {
+                String::from(match (s.gradient, s.dilated) {
+                    (None, _) => "none",
+                    (Some(_), true) => "dilated",
+                    (Some(_), false) => "footprint",
+                })
+            })
+            .collect(),
+    );
+    t.push_float(
+        "attack_slope",
+        Dimension::Dimensionless,
+        column(&|s| s.attack_slope),
+    );
+    t.push_float(
+        "groove_ratio",
+        Dimension::Dimensionless,
+        column(&|s| s.groove_ratio),
+    );
+    t.push_float("cap_height", Dimension::Length, column(&|s| s.cap_height));
+    t.push_float(
+        "contact_radius",
+        Dimension::Length,
+        spots.iter().map(|s| contact_radius(s.area)).collect(),
+    );
+    t.push_float(
+        "deformation_force",
+        Dimension::Force,
+        result.deformation.clone(),
+    );
+    t.push_float(
+        "local_mu_deformation",
+        Dimension::Dimensionless,
+        spots
+            .iter()
+            .zip(&result.deformation)
+            .map(|(s, q)| if s.load > 0.0 { q / s.load } else { 0.0 })
+            .collect(),
+    );
+}
