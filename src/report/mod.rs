@@ -12,6 +12,7 @@
 
 mod axis;
 mod colormap;
+mod distributions;
 mod error;
 mod figure;
 mod html;
@@ -227,6 +228,10 @@ fn trend_section(
             figures.extend(trends::friction_model_figures(scenarios, &mu_s));
         }
     }
+    figures.extend(distributions::distribution_figures(
+        scenarios,
+        &distribution_families(metrics, mu_s),
+    ));
     let mut intro = trend_intro(scenarios);
     if metrics.is_empty() {
         intro.push_str(
@@ -239,6 +244,22 @@ fn trend_section(
         intro,
         figures,
     }
+}
+
+/// What the distribution figures draw side by side: θ and A_t,rel of each contact node, and μ_s
+/// of every friction node together.
+fn distribution_families<'a>(metrics: &'a [Metric], mu_s: Vec<&'a Metric>) -> Vec<Vec<&'a Metric>> {
+    let mut families: Vec<Vec<&Metric>> = [names::STRESS_RATIO, names::AREA_FRACTION]
+        .iter()
+        .map(|column| {
+            metrics
+                .iter()
+                .filter(|m| m.table == table_names::CONTACTS && m.base == *column)
+                .collect()
+        })
+        .collect();
+    families.push(mu_s);
+    families
 }
 
 fn trend_intro(scenarios: &ScenarioSet) -> String {

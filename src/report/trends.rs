@@ -141,7 +141,7 @@ fn error_bar_caption(scenarios: &ScenarioSet) -> String {
 }
 
 /// The numeric swept parameters, each with its index and the other swept parameters.
-fn numeric_axes(scenarios: &ScenarioSet) -> Vec<(usize, &Parameter, Vec<usize>)> {
+pub(super) fn numeric_axes(scenarios: &ScenarioSet) -> Vec<(usize, &Parameter, Vec<usize>)> {
     let swept = scenarios.swept();
     swept
         .iter()
@@ -157,7 +157,12 @@ fn numeric_axes(scenarios: &ScenarioSet) -> Vec<(usize, &Parameter, Vec<usize>)>
 }
 
 /// The `(x, metric)` sample of scenario `s` against parameter `x`, if both are known.
-fn sample(scenarios: &ScenarioSet, x: usize, metric: &Metric, s: usize) -> Vec<(f64, f64)> {
+pub(super) fn sample(
+    scenarios: &ScenarioSet,
+    x: usize,
+    metric: &Metric,
+    s: usize,
+) -> Vec<(f64, f64)> {
     let value = metric.values.get(s).copied().flatten();
     scenarios.value(x, s).zip(value).into_iter().collect()
 }
@@ -216,7 +221,7 @@ fn overall_summary(scenarios: &ScenarioSet, metric: &Metric) -> Option<Figure> {
 }
 
 /// A node's series label: `stick_per_spot (per_spot, full_stick)`.
-fn node_label(metric: &Metric) -> String {
+pub(super) fn node_label(metric: &Metric) -> String {
     if metric.detail.is_empty() {
         metric.node.clone()
     } else {

@@ -128,11 +128,11 @@ fn the_report_is_one_self_contained_page_with_trends_load_curves_and_maps() {
     ] {
         assert!(!html.contains(external), "the page references '{external}'");
     }
-    // 3 trends (A_t,rel, θ and the requested mean separation against Sq), 2 load curves, 2
-    // material ratio figures (the surface nodes `lower` and `upper`), 5 maps: the default picks
-    // the first seed of both Sq grades, i.e. two lower surfaces, the shared upper surface once
-    // and two pressure maps.
-    assert_eq!(html.matches("<svg").count(), 12);
+    // 3 trends (A_t,rel, θ and the requested mean separation against Sq), 2 strip plots (θ and
+    // A_t,rel of every seed per Sq), 2 load curves, 2 material ratio figures (the surface nodes
+    // `lower` and `upper`), 5 maps: the default picks the first seed of both Sq grades, i.e. two
+    // lower surfaces, the shared upper surface once and two pressure maps.
+    assert_eq!(html.matches("<svg").count(), 14);
     assert!(html.contains("Material ratio curve — surface &#39;lower&#39;"));
     let curve = value_rows(&html, "Material ratio curve — surface &#39;lower&#39;");
     assert_eq!(curve[0][0], "scenario 0", "{curve:?}");
@@ -237,9 +237,16 @@ fn a_friction_table_is_plotted_and_replicate_axes_can_be_named() {
     assert_eq!(rows[0][3], "0.007071");
     assert_eq!(
         html.matches("<svg").count(),
-        7,
-        "3 trends, 2 load curves and 2 material ratio curves"
+        10,
+        "3 trends, 3 strip plots (θ, A_t,rel, μ_s), 2 load curves and 2 material ratio curves"
     );
+    // The strip plot shows every replicate's μ_s, not their mean.
+    let strip = value_rows(&html, "μ_s per Sq: every replicate");
+    let shown: Vec<f64> = strip.iter().map(|r| r[2].parse::<f64>().unwrap()).collect();
+    assert_eq!(shown.len(), mu.len(), "{strip:?}");
+    for (s, m) in shown.iter().zip(&mu) {
+        assert!((s - m).abs() <= 5e-4 * m, "{s} vs {m}");
+    }
 
     // Naming Sq the replicate axis makes seed the swept parameter.
     let html = report(&cache, &results, &["--maps", "0", "--replicate", "sq"]);
