@@ -8,6 +8,7 @@
 pub mod al3d;
 pub mod bcrf;
 mod byte_cursor;
+mod cfb;
 mod error;
 mod frt;
 pub mod gsf;
@@ -18,6 +19,8 @@ pub mod ibw;
 mod limits;
 pub mod metropro;
 mod mi;
+mod mnt;
+mod mnt_tlv;
 pub mod nanoscope;
 pub mod netcdf;
 mod nid;
@@ -82,6 +85,7 @@ pub const READERS: &[Reader] = &[
     opdx::READER,
     plu::READER,
     nms::READER,
+    mnt::READER,
     text::READER,
 ];
 
