@@ -8,7 +8,9 @@ use crate::common;
 use crate::readers_a_common::{assert_rel, plain_stats};
 use std::path::{Path, PathBuf};
 
-use asperity_numerics::surface::io::{detect_format, parse_topography, ReadError, TopographyData};
+use asperity_numerics::surface::io::{
+    declared_points, detect_format, parse_topography, ReadError, TopographyData,
+};
 
 const FILE: &str = "mnt/mnt-1.mnt";
 const UM: f64 = 1e-6;
@@ -24,6 +26,8 @@ fn load() -> Option<(PathBuf, Vec<u8>)> {
 fn mnt_1_matches_surface_topography() {
     let Some((path, bytes)) = load() else { return };
     assert_eq!(detect_format(&path, &bytes).map(|r| r.name), Some("mnt"));
+    // Compressed: memory estimates take the count from the header, not from the file size.
+    assert_eq!(declared_points(&path), Some(576_000));
     let t = parse_topography(&path, &bytes).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(t.channel.as_deref(), Some("A48_10x_P1"));
     assert_eq!(t.channels, ["A48_10x_P1"]);

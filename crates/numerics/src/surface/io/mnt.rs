@@ -63,9 +63,14 @@ struct Image<'a> {
     data: &'a [u8],
 }
 
-/// Parses the heights of a `.mnt` document.
-fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
-    let stream = read_stream(bytes, "ScopedContents")?;
+/// The number of points the measured image declares, without inflating the heights.
+pub(crate) fn declared_points(bytes: &[u8]) -> Option<usize> {
+    let stream = read_stream(bytes, "ScopedContents").ok()?;
+    Some(locate(&stream).ok()?.1.points)
+}
+
+/// The height data type and the measured image of the `ScopedContents` stream.
+fn locate(stream: &[u8]) -> Result<(Option<u8>, Image<'_>), ParseError> {
     let declared = stream
         .get(..8)
         .map(|b| u64::from_le_bytes(b.try_into().unwrap_or_default()))
@@ -87,6 +92,13 @@ fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             "MNT: no image with x, y and z axes and a height block in the height data",
         )
     })?;
+    Ok((kind, image))
+}
+
+/// Parses the heights of a `.mnt` document.
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+    let stream = read_stream(bytes, "ScopedContents")?;
+    let (kind, image) = locate(&stream)?;
     let missing_zero = match kind {
         Some(39) => false,
         Some(12) => true,
