@@ -115,8 +115,8 @@ impl MeasuredFile {
     }
 
     /// Working arrays of ≈ 8 f64 per point (64 bytes), for the larger of the point count the
-    /// header declares and the file size at 4 bytes per stored point. A compressed X3P may
-    /// declare far more points than its size suggests; the estimate then makes the scheduler
+    /// header declares and the file size at 4 bytes per stored point. A compressed X3P or MNT
+    /// may declare far more points than its size suggests; the estimate then makes the scheduler
     /// run it alone rather than beside other large nodes (and the reader refuses more than
     /// [`crate::surface::io::MAX_POINTS`]).
     pub(super) fn memory_estimate(&self) -> u64 {

@@ -11,16 +11,10 @@ use asperity_numerics::surface::{amplitude_statistics, Boundary};
 use crate::common::data_dir;
 
 /// Files the readers refuse on purpose, with why (relative to the shared folder).
-const REFUSED: &[(&str, &str)] = &[
-    (
-        "di/di_corrupted.di",
-        "a damaged Nanoscope file (the trap of the folder)",
-    ),
-    (
-        "mnt/mnt-1.mnt",
-        "Digital Surf MNT (an OLE compound document) has no reader yet",
-    ),
-];
+const REFUSED: &[(&str, &str)] = &[(
+    "di/di_corrupted.di",
+    "a damaged Nanoscope file (the trap of the folder)",
+)];
 
 /// Not topography: the folder's own documentation.
 fn is_documentation(relative: &Path) -> bool {

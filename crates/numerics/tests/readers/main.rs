@@ -14,6 +14,7 @@ mod readers_b_robustness;
 mod readers_bounded;
 mod readers_instruments;
 mod readers_instruments_robustness;
+mod readers_mnt;
 mod readers_more;
 mod readers_more_robustness;
 mod registry;

@@ -8,6 +8,7 @@
 pub mod al3d;
 pub mod bcrf;
 mod byte_cursor;
+mod cfb;
 mod error;
 mod frt;
 pub mod gsf;
@@ -18,6 +19,8 @@ pub mod ibw;
 mod limits;
 pub mod metropro;
 mod mi;
+mod mnt;
+mod mnt_tlv;
 pub mod nanoscope;
 pub mod netcdf;
 mod nid;
@@ -82,6 +85,7 @@ pub const READERS: &[Reader] = &[
     opdx::READER,
     plu::READER,
     nms::READER,
+    mnt::READER,
     text::READER,
 ];
 
@@ -186,8 +190,8 @@ fn non_regular_kind(kind: &std::fs::FileType) -> Option<&'static str> {
 }
 
 /// The number of points the header of the file `path` declares, read without decoding the
-/// data, for the format whose file size says little about it (X3P, deflated: a 2 MB file may
-/// hold 2 GiB of heights); `None` for other formats, whose points take a fixed share of the
+/// data, for the formats whose file size says little about it (X3P and MNT, deflated: a 2 MB
+/// file may hold 2 GiB of heights); `None` for other formats, whose points take a fixed share of the
 /// file (only their first 4 KiB are read, to detect the format), and for a header that cannot
 /// be read. Memory estimates use it before a file is decoded.
 pub fn declared_points(path: &Path) -> Option<usize> {
@@ -198,8 +202,11 @@ pub fn declared_points(path: &Path) -> Option<usize> {
     let mut head = Vec::with_capacity(4096);
     let file = std::fs::File::open(path).ok()?;
     std::io::Read::read_to_end(&mut std::io::Read::take(file, 4096), &mut head).ok()?;
-    if detect_format(path, &head)?.name == x3p::READER.name {
+    let name = detect_format(path, &head)?.name;
+    if name == x3p::READER.name {
         x3p::declared_points(&read_topography_bytes(path).ok()?)
+    } else if name == mnt::READER.name {
+        mnt::declared_points(&read_topography_bytes(path).ok()?)
     } else {
         None
     }
