@@ -596,3 +596,65 @@ def per_spot_friction(
             *_law_options(parameters, yield_strength, shear_strength),
         )
     )
+
+
+def per_summit_friction(
+    result: Mapping[str, Any],
+    composite_height: np.ndarray,
+    dx: float,
+    dy: Optional[float] = None,
+    *,
+    model: str = "kogut_etsion",
+    material: Optional[Material] = None,
+    composite_modulus: Optional[float] = None,
+    hardness: Optional[float] = None,
+    poisson_ratio: Optional[float] = None,
+    periodic: bool = True,
+    adhesion_energy: Optional[float] = None,
+    equilibrium_distance: Optional[float] = None,
+    parameters: Optional[Mapping[str, Union[float, str]]] = None,
+    yield_strength: Optional[float] = None,
+) -> Dict[str, Any]:
+    """Static friction of a :func:`contact` result summit by summit, as a study's ``per_summit``
+    friction node: the summits (8-neighbour maxima, periodic when ``periodic``) of
+    ``composite_height`` (m: the lower heights against a flat, lower + upper for two surfaces),
+    each with its radius and its interference from the solution (the deformation of both bodies
+    plus the plastic penetration where the pressure is positive, minus the gap elsewhere), and the
+    single-asperity laws of ``model`` (any law with them: ``"kogut_etsion"``,
+    ``"chang_etsion_bogy"``, ``"full_stick"``). μ_s = ΣF_f / Σ(F_n − F_a). Material as in
+    :func:`static_friction`.
+
+    Returns ``mu_s`` (None without a compressive net force), the totals (N), the load beyond the
+    laws' validated range and per summit ``summit_radius_m``, ``summit_interference_m`` (m, < 0:
+    a gap), ``summit_normal_force_N``, ``summit_friction_force_N`` and
+    ``summit_adhesion_force_N``.
+    """
+    for key in ("pressure", "gap", "deformation_lower", "plastic_penetration"):
+        if not isinstance(result, Mapping) or key not in result:
+            raise TypeError(f"result: expected the dict of asperity.contact with '{key}'")
+    x, y = _spacing(dx, dy)
+    deformation = _heights("result['deformation_lower']", result["deformation_lower"])
+    if result.get("deformation_upper") is not None:
+        deformation = deformation + _heights("result['deformation_upper']", result["deformation_upper"])
+    e, h, nu = _friction_material(material, composite_modulus, hardness, poisson_ratio)
+    law_parameters, y_strength, _ = _law_options(parameters, yield_strength, None)
+    return dict(
+        _native.per_summit_friction(
+            _heights("composite_height", composite_height),
+            _heights("result['pressure']", result["pressure"]),
+            _heights("result['gap']", result["gap"]),
+            deformation,
+            _heights("result['plastic_penetration']", result["plastic_penetration"]),
+            x,
+            y,
+            str(model),
+            e,
+            h,
+            nu,
+            bool(periodic),
+            _native.DEFAULT_ADHESION_ENERGY if adhesion_energy is None else _number("adhesion_energy", adhesion_energy, "N/m", positive=False),
+            _native.DEFAULT_EQUILIBRIUM_DISTANCE if equilibrium_distance is None else _number("equilibrium_distance", equilibrium_distance, "m"),
+            law_parameters,
+            y_strength,
+        )
+    )

@@ -90,6 +90,25 @@ def static_friction(
     yield_strength: Optional[float] = ...,
     shear_strength: Optional[float] = ...,
 ) -> List[Dict[str, Any]]: ...
+def per_summit_friction(
+    composite_height: F64,
+    pressure: F64,
+    gap: F64,
+    deformation: F64,
+    plastic_penetration: F64,
+    dx: float,
+    dy: float,
+    model: str,
+    composite_modulus: float,
+    hardness: float,
+    poisson_ratio: float,
+    periodic: bool = ...,
+    adhesion_energy: float = ...,
+    equilibrium_distance: float = ...,
+    parameters: Dict[str, Any] = ...,
+    yield_strength: Optional[float] = ...,
+) -> Dict[str, Any]: ...
+
 def per_spot_friction(
     pressure: F64,
     gap: F64,

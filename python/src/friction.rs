@@ -4,18 +4,22 @@
 //! then either the statistical static friction coefficient μ_s of a rough surface
 //! (`friction::static_friction_curve`) from its summit statistics at nominal pressures, or the
 //! per-spot model on a contact solution (`friction::per_spot_friction` over `contact_spots` and
-//! the Lennard-Jones adhesion across the gap), as a study's friction node applies them.
+//! the Lennard-Jones adhesion across the gap), or the per-summit model on it
+//! (`friction::per_summit_friction` over the summits of the composite height, each with
+//! `friction::summit_interference`), as a study's friction node applies them.
 
 use std::collections::HashMap;
 use std::sync::Arc;
 
 use asperity::friction::contact_spots::{adhesion_from_gap, contact_spots};
 use asperity::friction::{
-    find_law, law_names, per_spot_friction as spot_friction, static_friction_curve,
+    find_law, law_names, per_spot_friction as spot_friction,
+    per_summit_friction as summits_friction, static_friction_curve, summit_interference,
     AdhesionBeyondFits, AdhesionParameters, Connectivity, FrictionLaw, LawInputs, Material,
-    SolveSettings, SpotLoad, StatisticalModel, SummitStatistics,
+    SolveSettings, SpotLoad, StatisticalModel, SummitContact, SummitFriction, SummitStatistics,
 };
 use asperity::nodes::{DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE};
+use asperity::surface::{find_summits, Boundary, HeightMap, SummitOptions};
 use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -25,6 +29,7 @@ use crate::guard::{compute, value_error};
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(static_friction, m)?)?;
     m.add_function(wrap_pyfunction!(per_spot_friction, m)?)?;
+    m.add_function(wrap_pyfunction!(per_summit_friction, m)?)?;
     m.add("DEFAULT_ADHESION_ENERGY", DEFAULT_ADHESION_ENERGY)?;
     m.add("DEFAULT_EQUILIBRIUM_DISTANCE", DEFAULT_EQUILIBRIUM_DISTANCE)?;
     Ok(())
@@ -250,5 +255,116 @@ fn per_spot_friction<'py>(
             .map(|s| s.friction_force)
             .collect::<Vec<_>>(),
     )?;
+    Ok(d)
+}
+
+/// μ_s of a contact solution, summit by summit; see `asperity.per_summit_friction`.
+#[pyfunction]
+#[pyo3(signature = (composite_height, pressure, gap, deformation, plastic_penetration, dx, dy, model, composite_modulus, hardness, poisson_ratio, periodic=true, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE, parameters=HashMap::new(), yield_strength=None))]
+#[allow(clippy::too_many_arguments)]
+fn per_summit_friction<'py>(
+    py: Python<'py>,
+    composite_height: PyReadonlyArray2<'py, f64>,
+    pressure: PyReadonlyArray2<'py, f64>,
+    gap: PyReadonlyArray2<'py, f64>,
+    deformation: PyReadonlyArray2<'py, f64>,
+    plastic_penetration: PyReadonlyArray2<'py, f64>,
+    dx: f64,
+    dy: f64,
+    model: &str,
+    composite_modulus: f64,
+    hardness: f64,
+    poisson_ratio: f64,
+    periodic: bool,
+    adhesion_energy: f64,
+    equilibrium_distance: f64,
+    parameters: HashMap<String, Parameter>,
+    yield_strength: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let material = Material::new(composite_modulus, hardness, poisson_ratio)
+        .map_err(|e| value_error("material", e))?;
+    let law = build_law(model, material, yield_strength, None, parameters)?;
+    let laws = Arc::clone(&law).asperity_laws().ok_or_else(|| {
+        value_error(
+            "model",
+            format!("'{model}' has no single-asperity laws: use per_spot_friction"),
+        )
+    })?;
+    let adhesion = AdhesionParameters::new(adhesion_energy, equilibrium_distance)
+        .map_err(|e| value_error("adhesion_energy", e))?;
+    let z = composite_height.as_array().to_owned();
+    let fields = [
+        ("pressure", pressure.as_array()),
+        ("gap", gap.as_array()),
+        ("deformation", deformation.as_array()),
+        ("plastic_penetration", plastic_penetration.as_array()),
+    ];
+    for (name, a) in &fields {
+        if a.dim() != z.dim() {
+            return Err(value_error(
+                name,
+                format!(
+                    "has shape {:?}; composite_height has {:?}",
+                    a.dim(),
+                    z.dim()
+                ),
+            ));
+        }
+    }
+    let [(_, p), (_, g), (_, u), (_, u_pl)] = fields;
+    let (contacts, result) = compute(py, || {
+        let map = HeightMap::new(z, dx, dy).map_err(|e| value_error("composite_height", e))?;
+        let boundary = if periodic {
+            Boundary::Periodic
+        } else {
+            Boundary::Open
+        };
+        let options = SummitOptions {
+            boundary,
+            min_height: None,
+            min_prominence: None,
+        };
+        let found = find_summits(&map, options).map_err(|e| value_error("composite_height", e))?;
+        let contacts: Vec<SummitContact> = found
+            .summits
+            .iter()
+            .filter(|s| s.radius.is_finite() && s.radius > 0.0)
+            .map(|s| {
+                let at = |a: &ndarray::ArrayView2<f64>| a[(s.iy, s.ix)];
+                SummitContact {
+                    radius: s.radius,
+                    interference: summit_interference(at(&p), at(&u), at(&u_pl), at(&g)),
+                }
+            })
+            .collect();
+        let result = summits_friction(
+            &contacts,
+            laws.as_ref(),
+            &material,
+            &adhesion,
+            AdhesionBeyondFits::default(),
+        )
+        .map_err(|e| value_error("model", e))?;
+        Ok((contacts, result))
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("mu_s", result.mu_s)?;
+    d.set_item("total_normal_force_N", result.total_normal_force)?;
+    d.set_item("total_adhesion_force_N", result.total_adhesion_force)?;
+    d.set_item("total_friction_force_N", result.total_friction_force)?;
+    d.set_item("load_beyond_fit_N", result.load_beyond_fit)?;
+    d.set_item("summit_count", contacts.len())?;
+    let column = |f: fn(&SummitFriction) -> f64| result.summits.iter().map(f).collect::<Vec<_>>();
+    d.set_item(
+        "summit_radius_m",
+        contacts.iter().map(|c| c.radius).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "summit_interference_m",
+        contacts.iter().map(|c| c.interference).collect::<Vec<_>>(),
+    )?;
+    d.set_item("summit_normal_force_N", column(|s| s.normal_force))?;
+    d.set_item("summit_friction_force_N", column(|s| s.friction_force))?;
+    d.set_item("summit_adhesion_force_N", column(|s| s.adhesion_force))?;
     Ok(d)
 }

@@ -63,7 +63,7 @@ def test_per_spot_friction_equals_the_cli_per_spot_node(asperity_bin, contact_st
     spots = asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"])
     key = surfaces.filter(pl.col("seed") == 3)["key"][0]
     contact_key = contacts.filter(pl.col("lower_key") == key)["key"][0]
-    row = friction.filter(pl.col("contact_key") == contact_key)
+    row = friction.filter((pl.col("contact_key") == contact_key) & (pl.col("method") == "per_spot"))
     assert len(row) == 1
     assert spots["mu_s"] == pytest.approx(row["mu_s_computed"][0], rel=1e-12)
     assert spots["spot_count"] == len(spots["spot_load_N"]) > 0
@@ -74,3 +74,33 @@ def test_per_spot_friction_equals_the_cli_per_spot_node(asperity_bin, contact_st
         asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"], parameters={"no_such": 1.0})
     with pytest.raises(ValueError, match="connectivity"):
         asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"], connectivity=6)
+
+
+def test_per_summit_friction_equals_the_cli_per_summit_node(asperity_bin, tmp_path):
+    from conftest import CONTACT_STUDY
+
+    study = tmp_path / "summits.yaml"
+    node = "  ridges:\n    friction:\n      method: per_summit\n      contact: squeeze\n      lower_material: s235jr\n"
+    study.write_text(CONTACT_STUDY.replace("outputs:", node + "outputs:"))
+    cli = run_cli(asperity_bin, "run", str(study), "--out", "out", "--cache", "cache", "-q", cwd=tmp_path)
+    assert cli.returncode == 0, cli.stderr
+    friction = pl.read_parquet(tmp_path / "out" / "friction.parquet")
+    contacts = pl.read_parquet(tmp_path / "out" / "contacts.parquet")
+    surfaces = pl.read_parquet(tmp_path / "out" / "surfaces.parquet")
+    heights, dx, dy = asperity.synthetic_surface(
+        C["grid"], C["size"], sq=C["sq"], hurst=C["hurst"], correlation_length=C["correlation_length"], seed=4
+    )
+    c = asperity.contact(heights, dx, dy, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
+    summits = asperity.per_summit_friction(c, heights, dx, dy, model="kogut_etsion", material=C["material"])
+    key = surfaces.filter(pl.col("seed") == 4)["key"][0]
+    contact_key = contacts.filter(pl.col("lower_key") == key)["key"][0]
+    row = friction.filter((pl.col("contact_key") == contact_key) & (pl.col("method") == "per_summit"))
+    assert len(row) == 1
+    # The same summits, interferences and laws: the same sums, so μ_s to rounding.
+    assert summits["mu_s"] == pytest.approx(row["mu_s_computed"][0], rel=1e-12)
+    assert summits["summit_count"] == len(summits["summit_radius_m"]) > 0
+    assert sum(summits["summit_normal_force_N"]) == pytest.approx(summits["total_normal_force_N"])
+    with pytest.raises(ValueError, match="single-asperity"):
+        asperity.per_summit_friction(c, heights, dx, dy, model="junction_shear", material=C["material"])
+    with pytest.raises(TypeError, match="deformation_lower"):
+        asperity.per_summit_friction({"pressure": c["pressure"], "gap": c["gap"]}, heights, dx, dy)

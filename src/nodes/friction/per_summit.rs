@@ -32,7 +32,8 @@ use crate::engine::value::Field;
 use crate::friction::per_summit::quantile;
 use crate::friction::per_summit::PerSummitResult;
 use crate::friction::{
-    per_summit_friction, AdhesionBeyondFits, DeformationState, SummitContact, SummitFriction,
+    per_summit_friction, summit_interference, AdhesionBeyondFits, DeformationState, SummitContact,
+    SummitFriction,
 };
 use crate::surface::{find_summits, Boundary, HeightMap, Summit, SummitOptions, Summits};
 use crate::units::Dimension;
@@ -47,16 +48,16 @@ fn interference(fields: &ContactView, iy: usize, ix: usize) -> Result<f64, NodeE
             .copied()
             .ok_or_else(|| NodeError::new("a summit lies outside the contact fields"))
     };
-    if at(&fields.pressure)? > 0.0 {
-        let upper = match &fields.deformation_upper {
-            Some(u) => at(u)?,
-            None => 0.0,
-        };
-        let omega = at(&fields.deformation_lower)? + upper + at(&fields.plastic_penetration)?;
-        Ok(omega.max(0.0))
-    } else {
-        Ok(-at(&fields.gap)?.max(0.0))
-    }
+    let upper = match &fields.deformation_upper {
+        Some(u) => at(u)?,
+        None => 0.0,
+    };
+    Ok(summit_interference(
+        at(&fields.pressure)?,
+        at(&fields.deformation_lower)? + upper,
+        at(&fields.plastic_penetration)?,
+        at(&fields.gap)?,
+    ))
 }
 
 fn state_name(state: DeformationState) -> &'static str {

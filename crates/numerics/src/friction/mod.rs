@@ -75,7 +75,8 @@ pub use per_spot::{
     per_spot_friction, per_spot_friction_on_slopes, PerSpotResult, SpotFriction, SpotLoad,
 };
 pub use per_summit::{
-    per_summit_friction, summit_friction, PerSummitResult, SummitContact, SummitFriction,
+    per_summit_friction, summit_friction, summit_interference, PerSummitResult, SummitContact,
+    SummitFriction,
 };
 pub use quadrature::QuadratureOutcome;
 pub use solve_settings::SolveSettings;

@@ -133,6 +133,24 @@ pub fn summarize(values: &[f64]) -> Option<DistributionSummary> {
     })
 }
 
+/// The interference ω (m) of a summit from the contact solution at its grid point: where the
+/// contact pressure is positive, ω = u + u_pl, the elastic deformation of both bodies
+/// (`deformation`, their sum) plus the plastic penetration, at least 0 (a contacting summit
+/// whose ω comes out ≤ 0 touches without interference); elsewhere ω = −max(g, 0) with g the gap
+/// after loading (the Lennard-Jones adhesion sees that gap).
+pub fn summit_interference(
+    pressure: f64,
+    deformation: f64,
+    plastic_penetration: f64,
+    gap: f64,
+) -> f64 {
+    if pressure > 0.0 {
+        (deformation + plastic_penetration).max(0.0)
+    } else {
+        -gap.max(0.0)
+    }
+}
+
 /// Per-summit forces of one summit.
 pub fn summit_friction(
     summit: &SummitContact,
