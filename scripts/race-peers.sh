@@ -20,7 +20,7 @@
 #     median of --repeat solves. The table's header gives date, CPU, versions and the problem.
 #
 # Usage: scripts/race-peers.sh [--grid N] [--repeat R] [--out FILE] [--skip SOLVER]...
-#                              [--tolerance RACE:SOLVER=VALUE]...
+#                              [--tolerance RACE:SOLVER=VALUE]... [--in-process]
 #   --grid N       grid points per side (default 1024: 11 to 14 min on a busy 2-core machine,
 #                  about 5 of them Tamaas KatoSaturated; 512: about 2 min)
 #   --repeat R     timed solves per racer, the median is reported (default 3)
@@ -28,6 +28,9 @@
 #   --skip SOLVER  leave out a peer (tamaas-pkr, tamaas-kato, cm-ccg, cm-plastic)
 #   --tolerance    race at this tolerance instead of searching one, e.g. capped:tamaas-kato=1e-5
 #                  (RACE is elastic or capped, SOLVER asperity or a peer)
+#   --in-process   every racer in one Python process, asperity through its Python package
+#                  (built here as a release wheel with maturin and installed into the venv;
+#                  SOLVER asperity-py)
 # Env: PYTHON (interpreter for the venv, default python3; the pinned wheels need Python 3.11 to
 #      3.13 on x86-64 Linux), RACE_VENV (default target/race-venv).
 set -euo pipefail
@@ -103,6 +106,22 @@ target_dir=$(cargo metadata --format-version 1 --no-deps |
     "$VENV/bin/python" -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')
 asperity="$target_dir/release/examples/race"
 [[ -x "$asperity" ]] || die "the built example is not at $asperity"
+
+# --- 2b. the Python package, for --in-process -------------------------------------------------
+for arg in "$@"; do
+    if [[ "$arg" == "--in-process" ]]; then
+        log "building the asperity wheel (release) and installing it into $VENV"
+        "$VENV/bin/python" -m pip install --quiet "maturin>=1.7,<2" ||
+            die "pip could not install maturin into $VENV"
+        rm -rf "$target_dir/wheels-race"
+        "$VENV/bin/maturin" build --release --quiet --manifest-path python/Cargo.toml \
+            --interpreter "$VENV/bin/python" --out "$target_dir/wheels-race" ||
+            die "maturin could not build the asperity wheel"
+        "$VENV/bin/python" -m pip install --quiet --force-reinstall --no-deps \
+            "$target_dir"/wheels-race/asperity-*.whl ||
+            die "pip could not install the asperity wheel into $VENV"
+    fi
+done
 
 # --- 3. the race, on one core --------------------------------------------------------------------
 export RAYON_NUM_THREADS=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1

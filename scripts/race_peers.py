@@ -6,7 +6,9 @@ example and pins everything to one core. It generates one surface, computes a ti
 A/A0 with asperity, finds for every racer the loosest tolerance of LADDER that reproduces that
 A/A0 to MATCH, times the racer there and prints a Markdown table (stdout; --out FILE too).
 `race_peers.py solve ...` (internal) runs one peer solver in its own process and prints a JSON
-line, as the Rust example `race` does for asperity.
+line, as the Rust example `race` does for asperity. With `--in-process` every racer runs inside
+this one Python process and asperity is the Python package (`asperity.contact`, installed into
+the race environment by scripts/race-peers.sh), called as a notebook user would.
 
 Every solver reads the same surface file (raw little-endian f64 heights in metres) and gets the
 same SI inputs; the peers convert them to micrometres and GPa (Tamaas' Kato solvers take a
@@ -49,21 +51,26 @@ RACES = {
     "elastic": ["asperity", "tamaas-pkr", "cm-ccg"],
     "capped": ["asperity", "cm-plastic", "tamaas-kato"],
 }
+# `--in-process`: the Python package in place of the Rust example, every racer in this process.
+IN_PROCESS_RACES = {
+    race: ["asperity-py" if solver == "asperity" else solver for solver in solvers]
+    for race, solvers in RACES.items()
+}
 LABELS = {
     "asperity": "asperity `ContactSolver`",
+    "asperity-py": "asperity `asperity.contact` (Python)",
     "tamaas-pkr": "Tamaas `PolonskyKeerRey`",
     "tamaas-kato": "Tamaas `KatoSaturated`",
     "cm-ccg": "ContactMechanics `NonSmoothContactSystem`",
     "cm-plastic": "ContactMechanics `PlasticNonSmoothContactSystem`",
 }
 PEERS = sorted(set(LABELS) - {"asperity"})
-PACKAGES = ["numpy", "tamaas", "ContactMechanics", "SurfaceTopography", "muGrid", "NuMPI"]
+PACKAGES = ["numpy", "tamaas", "ContactMechanics", "SurfaceTopography", "muGrid", "NuMPI", "asperity"]
 
 NOTES = """\
 * Solve time: median of {repeat} solves from a cold start on one core (`taskset -c 0`; \
-`RAYON_NUM_THREADS`, `OMP_NUM_THREADS`, `OPENBLAS_NUM_THREADS`, `MKL_NUM_THREADS` = 1), each \
-solver in its own process; imports, reading the surface and building the solver objects are \
-outside the timer.
+`RAYON_NUM_THREADS`, `OMP_NUM_THREADS`, `OPENBLAS_NUM_THREADS`, `MKL_NUM_THREADS` = 1), {where}; \
+imports, reading the surface and building the solver objects are outside the timer.
 * asperity: `ContactSolver::solve` of a new `ContactSolver` (`ContactSolver::new`, which plans \
 the FFTs and builds the kernel, is outside); tolerance: `SolverOptions::tolerance`, the bound \
 on every relative residual (gap / Sq, force balance).
@@ -72,6 +79,10 @@ tolerance: the solver's own error norm; inputs in µm and GPa.
 * ContactMechanics: `minimize_proxy(external_force=...)` of a system built on a fresh \
 substrate and topography (the package's Python CCG loop and its FFTs); tolerance ε: \
 `pentol = ε Sq`, `forcetol = ε p̄ A_pixel`, `thermotol = ε`.
+* asperity (Python, `--in-process` only): `asperity.contact(heights, dx, nominal_pressures=[p̄], \
+lower_material={{youngs_modulus: E*, poisson_ratio: 0}}, flow_pressure=…, tolerance=ε)`, every \
+racer in one Python process; its timer includes what the Rust row leaves out (FFT plans, \
+kernel, copying the arrays in and the fields out).
 * Matched accuracy: A/A₀ is the share of grid points with p > 0. The reference is asperity at \
 tolerance {reference}; each racer runs at the loosest of {ladder} whose A/A₀ is within \
 {match:g} % of it (the column before shows the next looser one, empty if there is none); \
@@ -247,18 +258,52 @@ def solve_contact_mechanics(kind, heights, args):
     return build, solve
 
 
+def solve_asperity_py(kind, heights, args):
+    import asperity
+
+    grid = heights.shape[0]
+    spacing = args.length / grid
+    material = {"youngs_modulus": args.modulus, "poisson_ratio": 0.0}
+    flow = None if np.isinf(args.flow_pressure) else args.flow_pressure
+
+    def build():
+        return None
+
+    def solve(_):
+        start = time.perf_counter()
+        result = asperity.contact(
+            heights,
+            spacing,
+            nominal_pressures=[args.pressure],
+            lower_material=material,
+            flow_pressure=flow,
+            tolerance=args.tolerance,
+        )
+        elapsed = time.perf_counter() - start
+        area = float(np.mean(result["pressure"] > 0))
+        return elapsed, area, int(result["iterations"]), float(result["residual"])
+
+    return build, solve
+
+
+def solver_for(solver):
+    if solver == "asperity-py":
+        return solve_asperity_py
+    if solver.startswith("tamaas"):
+        return solve_tamaas
+    return solve_contact_mechanics
+
+
 def iteration_count(row):
     """CG iterations, with asperity's multilevel-start iterations on the coarser grids."""
     coarse = row.get("coarse_iterations", 0)
     return f"{row['iterations']} + {coarse} coarse" if coarse else f"{row['iterations']}"
 
 
-def run_peer(args):
+def peer_result(args):
+    """One peer's solves as the JSON result dict (area, iterations, residual, times)."""
     heights = read_surface(args.surface, args.grid)
-    if args.solver.startswith("tamaas"):
-        build, solve = solve_tamaas(args.solver, heights, args)
-    else:
-        build, solve = solve_contact_mechanics(args.solver, heights, args)
+    build, solve = solver_for(args.solver)(args.solver, heights, args)
     setups, times = [], []
     for _ in range(args.repeat):
         start = time.perf_counter()
@@ -266,17 +311,17 @@ def run_peer(args):
         setups.append(time.perf_counter() - start)
         elapsed, area, iterations, residual = solve(state)
         times.append(elapsed)
-    print(
-        json.dumps(
-            {
-                "area_fraction": area,
-                "iterations": iterations,
-                "residual": residual,
-                "setup_s": setups,
-                "solve_s": times,
-            }
-        )
-    )
+    return {
+        "area_fraction": area,
+        "iterations": iterations,
+        "residual": residual,
+        "setup_s": setups,
+        "solve_s": times,
+    }
+
+
+def run_peer(args):
+    print(json.dumps(peer_result(args)))
 
 
 # --- orchestration -------------------------------------------------------------------------------
@@ -295,21 +340,11 @@ def run_racer(solver, race, tolerance, repeat, setup):
     ]  # fmt: skip
     if race == "capped":
         common += ["--flow-pressure", repr(FLOW_PRESSURE)]
-    if solver == "asperity":
-        command = [setup["asperity"], *common]
-    else:
-        command = [sys.executable, os.path.abspath(__file__), "solve", "--solver", solver, *common]
     log(f"{race}: {solver} at tolerance {tol(tolerance)}, {repeat} solve(s) ...")
-    done = subprocess.run(command, capture_output=True, text=True)
-    if done.returncode != 0:
-        fail(
-            f"{race} race: {solver} failed (exit {done.returncode}):\n"
-            f"  command: {' '.join(command)}\n  {done.stderr.strip()[-3000:]}"
-        )
-    try:
-        result = json.loads(done.stdout.strip().splitlines()[-1])
-    except (IndexError, json.JSONDecodeError):
-        fail(f"{race} race: {solver} printed no JSON result line:\n{done.stdout}\n{done.stderr}")
+    if setup["in_process"]:
+        result = run_in_process(solver, race, common)
+    else:
+        result = run_child(solver, race, common, setup)
     result["median_s"] = statistics.median(result["solve_s"])
     result["tolerance"] = tolerance
     reference = setup["reference"].get(race)
@@ -319,6 +354,35 @@ def run_racer(solver, race, tolerance, repeat, setup):
         f"{result['iterations']} iterations, median {result['median_s']:.3f} s"
     )
     return result
+
+
+def run_in_process(solver, race, common):
+    """The racer in this process (`--in-process`), with the arguments a child would get."""
+    parser = argparse.ArgumentParser()
+    add_solve_arguments(parser)
+    args = parser.parse_args(["--solver", solver, *common])
+    try:
+        return peer_result(args)
+    except Exception as e:  # a racer's failure ends the race with its message
+        fail(f"{race} race: {solver} failed: {type(e).__name__}: {e}")
+
+
+def run_child(solver, race, common, setup):
+    """The racer in a child process: the Rust example, or this script's `solve` mode."""
+    if solver == "asperity":
+        command = [setup["asperity"], *common]
+    else:
+        command = [sys.executable, os.path.abspath(__file__), "solve", "--solver", solver, *common]
+    done = subprocess.run(command, capture_output=True, text=True)
+    if done.returncode != 0:
+        fail(
+            f"{race} race: {solver} failed (exit {done.returncode}):\n"
+            f"  command: {' '.join(command)}\n  {done.stderr.strip()[-3000:]}"
+        )
+    try:
+        return json.loads(done.stdout.strip().splitlines()[-1])
+    except (IndexError, json.JSONDecodeError):
+        fail(f"{race} race: {solver} printed no JSON result line:\n{done.stdout}\n{done.stderr}")
 
 
 def tol(value):
@@ -387,11 +451,12 @@ def race_table(setup, results, repeat):
         "vs reference | solve time | time / asperity |",
         "|---|---|---:|---:|---:|---:|---:|---:|---:|",
     ]
+    own_solver = setup["own"]
     for race, rows in results.items():
         reference = setup["reference"][race]
-        own = rows["asperity"]["median_s"]
+        own = rows[own_solver]["median_s"]
         lines.append(
-            f"| {race} | reference: asperity | {tol(REFERENCE_TOLERANCE)} | | "
+            f"| {race} | reference: {LABELS[own_solver]} | {tol(REFERENCE_TOLERANCE)} | | "
             f"{setup['reference_iterations'][race]} | {reference * 100:.4f} % | | | |"
         )
         for solver, row in rows.items():
@@ -406,6 +471,9 @@ def race_table(setup, results, repeat):
         "",
         NOTES.format(
             repeat=repeat,
+            where="every racer in one Python process"
+            if setup["in_process"]
+            else "each solver in its own process",
             reference=tol(REFERENCE_TOLERANCE),
             ladder=", ".join(tol(t) for t in LADDER),
             match=MATCH * 100,
@@ -431,21 +499,24 @@ def prepare(args):
         "rustc": args.rustc,
         "reference": {},
         "reference_iterations": {},
+        "in_process": args.in_process,
+        "own": "asperity-py" if args.in_process else "asperity",
+        "races": IN_PROCESS_RACES if args.in_process else RACES,
     }
     log(
         f"surface {surface}: {args.grid}², Sq {SQ:g} m, rms slope {slope:.4f}, "
         f"nominal pressure {setup['pressure']:g} Pa"
     )
-    for race in RACES:
-        reference = run_racer("asperity", race, REFERENCE_TOLERANCE, 1, setup)
+    for race in setup["races"]:
+        reference = run_racer(setup["own"], race, REFERENCE_TOLERANCE, 1, setup)
         setup["reference"][race] = reference["area_fraction"]
         setup["reference_iterations"][race] = reference["iterations"]
     return setup
 
 
-def parse_overrides(items):
+def parse_overrides(items, races):
     overrides = {}
-    known = [f"{race}:{solver}" for race, solvers in RACES.items() for solver in solvers]
+    known = [f"{race}:{solver}" for race, solvers in races.items() for solver in solvers]
     for item in items:
         key, _, value = item.partition("=")
         if key not in known:
@@ -458,10 +529,10 @@ def parse_overrides(items):
 
 
 def race(args):
-    overrides = parse_overrides(args.tolerance)
+    overrides = parse_overrides(args.tolerance, IN_PROCESS_RACES if args.in_process else RACES)
     setup = prepare(args)
     results, mismatches = {}, []
-    for race_name, solvers in RACES.items():
+    for race_name, solvers in setup["races"].items():
         rows = {}
         for solver in solvers:
             if solver in args.skip:
@@ -492,10 +563,8 @@ def race(args):
         fail("accuracy NOT matched, the times are not comparable:\n  " + "\n  ".join(mismatches))
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    sub = parser.add_subparsers(dest="mode")
-    peer = sub.add_parser("solve", help="internal: one peer solver, one JSON line")
+def add_solve_arguments(peer):
+    """The arguments of one peer's solves (the `solve` mode, and `--in-process` racers)."""
     peer.add_argument("--solver", required=True, choices=PEERS)
     peer.add_argument("--surface", required=True)
     peer.add_argument("--grid", type=int, required=True)
@@ -505,6 +574,17 @@ def main():
     peer.add_argument("--flow-pressure", type=float, default=float("inf"))
     peer.add_argument("--tolerance", type=float, required=True)
     peer.add_argument("--repeat", type=int, default=1)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    sub = parser.add_subparsers(dest="mode")
+    add_solve_arguments(sub.add_parser("solve", help="internal: one peer solver, one JSON line"))
+    parser.add_argument(
+        "--in-process",
+        action="store_true",
+        help="every racer in this Python process, asperity through its Python package",
+    )
     parser.add_argument("--asperity", help="path of the built `race` example")
     parser.add_argument("--asperity-version", default="unknown")
     parser.add_argument("--rustc", default="rustc")
@@ -512,7 +592,9 @@ def main():
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--workdir", default="target/race")
     parser.add_argument("--out", help="also write the Markdown table to this file")
-    parser.add_argument("--skip", action="append", default=[], choices=PEERS)
+    parser.add_argument(
+        "--skip", action="append", default=[], choices=sorted(set(PEERS) - {"asperity-py"})
+    )
     parser.add_argument(
         "--tolerance",
         action="append",
@@ -524,7 +606,7 @@ def main():
     if args.mode == "solve":
         run_peer(args)
         return
-    if not args.asperity:
+    if not args.asperity and not args.in_process:
         fail("--asperity PATH (the built race example) is required")
     if args.grid < 16 or args.repeat < 1:
         fail("--grid must be at least 16 and --repeat at least 1")
