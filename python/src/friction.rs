@@ -92,6 +92,18 @@ fn build_law(
         .map_err(|e| value_error("model", e))
 }
 
+/// The pair's friction material from E* (Pa), the softer body's H (Pa) and ν.
+fn material(composite_modulus: f64, hardness: f64, poisson_ratio: f64) -> PyResult<Material> {
+    Material::new(composite_modulus, hardness, poisson_ratio)
+        .map_err(|e| value_error("material", e))
+}
+
+/// The adhesion energy Δγ (N/m) and Lennard-Jones distance ε (m).
+fn adhesion(energy: f64, equilibrium_distance: f64) -> PyResult<AdhesionParameters> {
+    AdhesionParameters::new(energy, equilibrium_distance)
+        .map_err(|e| value_error("adhesion_energy", e))
+}
+
 /// Summit statistics from `(m0, m2, m4)` (m², 1, 1/m²) or `(σ_s, R, η)` (m, m, 1/m²).
 fn summits(
     moments: Option<(f64, f64, f64)>,
@@ -133,14 +145,12 @@ fn static_friction<'py>(
     shear_strength: Option<f64>,
 ) -> PyResult<Vec<Bound<'py, PyDict>>> {
     let summits = summits(moments, summits_explicit)?;
-    let material = Material::new(composite_modulus, hardness, poisson_ratio)
-        .map_err(|e| value_error("material", e))?;
+    let material = material(composite_modulus, hardness, poisson_ratio)?;
     let law = build_law(model, material, yield_strength, shear_strength, parameters)?;
     let laws = law.asperity_laws().ok_or_else(|| {
         value_error("model", format!("'{model}' has no single-asperity laws for the statistical method; use per_spot_friction"))
     })?;
-    let adhesion = AdhesionParameters::new(adhesion_energy, equilibrium_distance)
-        .map_err(|e| value_error("adhesion_energy", e))?;
+    let adhesion = adhesion(adhesion_energy, equilibrium_distance)?;
     let forces: Vec<f64> = nominal_pressures.iter().map(|p| p * nominal_area).collect();
     let results = compute(py, || {
         let model = StatisticalModel::new(
@@ -201,11 +211,9 @@ fn per_spot_friction<'py>(
     yield_strength: Option<f64>,
     shear_strength: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let material = Material::new(composite_modulus, hardness, poisson_ratio)
-        .map_err(|e| value_error("material", e))?;
+    let material = material(composite_modulus, hardness, poisson_ratio)?;
     let law = build_law(model, material, yield_strength, shear_strength, parameters)?;
-    let adhesion = AdhesionParameters::new(adhesion_energy, equilibrium_distance)
-        .map_err(|e| value_error("adhesion_energy", e))?;
+    let adhesion = adhesion(adhesion_energy, equilibrium_distance)?;
     let connectivity = if eight_connected {
         Connectivity::Eight
     } else {
@@ -281,8 +289,7 @@ fn per_summit_friction<'py>(
     parameters: HashMap<String, Parameter>,
     yield_strength: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let material = Material::new(composite_modulus, hardness, poisson_ratio)
-        .map_err(|e| value_error("material", e))?;
+    let material = material(composite_modulus, hardness, poisson_ratio)?;
     let law = build_law(model, material, yield_strength, None, parameters)?;
     let laws = Arc::clone(&law).asperity_laws().ok_or_else(|| {
         value_error(
@@ -290,8 +297,7 @@ fn per_summit_friction<'py>(
             format!("'{model}' has no single-asperity laws: use per_spot_friction"),
         )
     })?;
-    let adhesion = AdhesionParameters::new(adhesion_energy, equilibrium_distance)
-        .map_err(|e| value_error("adhesion_energy", e))?;
+    let adhesion = adhesion(adhesion_energy, equilibrium_distance)?;
     let z = composite_height.as_array().to_owned();
     let fields = [
         ("pressure", pressure.as_array()),
