@@ -58,35 +58,7 @@ pub fn material_ratio_section(
                 .filter_map(|&r| ratio[r].zip(height[r]))
                 .collect()
         };
-        let unit = DisplayUnit::for_slice(
-            "m",
-            instances
-                .iter()
-                .flat_map(|(_, k)| curve_of(k).into_iter().map(|p| p.1)),
-        );
-        let series = instances
-            .iter()
-            .map(|&(scenario, key)| PlotSeries {
-                label: format!("scenario {scenario}"),
-                points: curve_of(key)
-                    .into_iter()
-                    .map(|(x, y)| PlotPoint {
-                        x,
-                        y: y * unit.factor,
-                        y_error: None,
-                    })
-                    .collect(),
-                joined: true,
-            })
-            .collect();
-        let plot = LinePlot {
-            title: format!("Material ratio curve — surface '{}'", link.node),
-            x_label: String::from("material ratio Smr (%)"),
-            y_label: unit.axis_label("height from the mean"),
-            x_log: false,
-            y_log: false,
-            series,
-        };
+        let plot = curves_plot(&link.node, &instances, curve_of);
         let mut caption = String::from(
             "Height against the share of the valid points at or above it (ISO 25178-2), \
              every 1 %; one line per surface instance, labelled by its first scenario.",
@@ -109,6 +81,44 @@ pub fn material_ratio_section(
         ),
         figures,
     })
+}
+
+/// One line per instance (labelled by its first scenario): height from the mean, in a display
+/// unit, against the material ratio.
+fn curves_plot(
+    node: &str,
+    instances: &[(usize, &str)],
+    curve_of: impl Fn(&str) -> Vec<(f64, f64)>,
+) -> LinePlot {
+    let unit = DisplayUnit::for_slice(
+        "m",
+        instances
+            .iter()
+            .flat_map(|(_, k)| curve_of(k).into_iter().map(|p| p.1)),
+    );
+    let series = instances
+        .iter()
+        .map(|&(scenario, key)| PlotSeries {
+            label: format!("scenario {scenario}"),
+            points: curve_of(key)
+                .into_iter()
+                .map(|(x, y)| PlotPoint {
+                    x,
+                    y: y * unit.factor,
+                    y_error: None,
+                })
+                .collect(),
+            joined: true,
+        })
+        .collect();
+    LinePlot {
+        title: format!("Material ratio curve — surface '{node}'"),
+        x_label: String::from("material ratio Smr (%)"),
+        y_label: unit.axis_label("height from the mean"),
+        x_log: false,
+        y_log: false,
+        series,
+    }
 }
 
 /// The functional parameters of each drawn instance, from the surfaces table.

@@ -6,9 +6,11 @@ mod cancellation;
 mod code_shape;
 mod engine_end_to_end;
 mod flagged_status;
+mod import_graph;
 mod key_sensitivity;
 mod reproducible_tables;
 #[path = "../scale_out_common/mod.rs"]
 mod scale_out_common;
 mod schema_and_keys;
+mod source_scan;
 mod table_equality;

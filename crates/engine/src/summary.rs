@@ -30,6 +30,10 @@ pub struct SummaryError {
 /// One column of a summary table: name (with unit), dimension, cells.
 pub type SummaryColumn = (String, Dimension, Vec<Option<Value>>);
 
+/// Scenarios grouped by the values of the `by` parameters: (values, member scenarios), in the
+/// order groups first appear.
+type Groups = Vec<(Vec<ParamValue>, Vec<usize>)>;
+
 /// Computes the columns of summary `name` over the plan's scenarios.
 pub fn summary_columns(
     name: &str,
@@ -52,7 +56,17 @@ pub fn summary_columns(
                 .ok_or_else(|| err(format!("'{}' is not a parameter of the study", p.value)))
         })
         .collect::<Result<_, _>>()?;
-    let mut groups: Vec<(Vec<ParamValue>, Vec<usize>)> = Vec::new();
+    let groups = group_scenarios(plan, &by);
+    let mut columns = group_columns(plan, &by, &groups);
+    for metric in &spec.metrics {
+        push_metric_statistics(&mut columns, &metric.value, plan, report, &groups).map_err(err)?;
+    }
+    Ok(columns)
+}
+
+/// The scenarios grouped by their values of the parameters at `by`.
+fn group_scenarios(plan: &Plan, by: &[usize]) -> Groups {
+    let mut groups: Groups = Vec::new();
     for (s, row) in plan.scenarios.rows.iter().enumerate() {
         let values: Vec<ParamValue> = by.iter().map(|&c| row[c].clone()).collect();
         match groups.iter_mut().find(|(v, _)| *v == values) {
@@ -60,6 +74,11 @@ pub fn summary_columns(
             None => groups.push((values, vec![s])),
         }
     }
+    groups
+}
+
+/// The columns that name the groups: each `by` parameter and the number of scenarios.
+fn group_columns(plan: &Plan, by: &[usize], groups: &Groups) -> Vec<SummaryColumn> {
     let mut columns: Vec<SummaryColumn> = Vec::new();
     for (k, &c) in by.iter().enumerate() {
         let param = &plan.scenarios.names[c];
@@ -80,60 +99,64 @@ pub fn summary_columns(
             .map(|(_, m)| Some(Value::Int(m.len() as i64)))
             .collect(),
     ));
-    for metric in &spec.metrics {
-        let (node, field) = split_metric(&metric.value)
-            .ok_or_else(|| err(format!("'{}' is not node.metric", metric.value)))?;
-        let n = plan
-            .node_names
-            .iter()
-            .position(|x| x == node)
-            .ok_or_else(|| err(format!("no node '{node}'")))?;
-        let mut dimension = None;
-        let mut available: Vec<String> = Vec::new();
-        let samples: Vec<Vec<f64>> = groups
-            .iter()
-            .map(|(_, members)| {
-                members
-                    .iter()
-                    .filter_map(|&s| {
-                        let instance = plan.scenario_nodes[s][n];
-                        let outcome = report.outcomes.get(instance)?.as_ref()?;
-                        if available.is_empty() {
-                            available =
-                                outcome.metrics.iter().map(|f| f.name.to_string()).collect();
-                        }
-                        let f = outcome.metrics.iter().find(|f| f.name == field)?;
-                        dimension = Some(f.dimension);
-                        match f.value {
-                            Value::Float(x) if x.is_finite() => Some(x),
-                            Value::Int(i) => Some(i as f64),
-                            _ => None,
-                        }
-                    })
-                    .collect()
-            })
-            .collect();
-        let Some(dim) = dimension else {
-            if available.is_empty() {
-                // No instance of the node has a result (all failed): empty statistics.
-                push_statistics(
-                    &mut columns,
-                    node,
-                    field,
-                    Dimension::Dimensionless,
-                    &samples,
-                );
-                continue;
-            }
-            return Err(err(format!(
+    columns
+}
+
+/// Count, mean and standard deviation of `node.metric` per group; an error names a metric the
+/// node does not have (with the node's metrics).
+fn push_metric_statistics(
+    columns: &mut Vec<SummaryColumn>,
+    metric: &str,
+    plan: &Plan,
+    report: &RunReport,
+    groups: &Groups,
+) -> Result<(), String> {
+    let (node, field) =
+        split_metric(metric).ok_or_else(|| format!("'{metric}' is not node.metric"))?;
+    let n = plan
+        .node_names
+        .iter()
+        .position(|x| x == node)
+        .ok_or_else(|| format!("no node '{node}'"))?;
+    let mut dimension = None;
+    let mut available: Vec<String> = Vec::new();
+    let samples: Vec<Vec<f64>> = groups
+        .iter()
+        .map(|(_, members)| {
+            members
+                .iter()
+                .filter_map(|&s| {
+                    let instance = plan.scenario_nodes[s][n];
+                    let outcome = report.outcomes.get(instance)?.as_ref()?;
+                    if available.is_empty() {
+                        available = outcome.metrics.iter().map(|f| f.name.to_string()).collect();
+                    }
+                    let f = outcome.metrics.iter().find(|f| f.name == field)?;
+                    dimension = Some(f.dimension);
+                    match f.value {
+                        Value::Float(x) if x.is_finite() => Some(x),
+                        Value::Int(i) => Some(i as f64),
+                        _ => None,
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    match dimension {
+        Some(dim) => push_statistics(columns, node, field, dim, &samples),
+        // No instance of the node has a result (all failed): empty statistics.
+        None if available.is_empty() => {
+            push_statistics(columns, node, field, Dimension::Dimensionless, &samples)
+        }
+        None => {
+            return Err(format!(
                 "node '{node}' has no numeric metric '{field}'{}; metrics: {}",
                 crate::study::did_you_mean(field, available.iter().map(String::as_str)),
                 available.join(", ")
-            )));
-        };
-        push_statistics(&mut columns, node, field, dim, &samples);
+            ))
+        }
     }
-    Ok(columns)
+    Ok(())
 }
 
 fn push_statistics(

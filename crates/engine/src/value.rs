@@ -62,18 +62,6 @@ impl ParamValue {
         }
     }
 
-    /// The value as a table cell.
-    pub fn to_value(&self) -> Value {
-        match self {
-            ParamValue::Int(i) => Value::Int(*i),
-            ParamValue::Number(x) => Value::Float(*x),
-            ParamValue::Quantity(q) => Value::Float(q.si),
-            ParamValue::Text(s) => Value::Text(s.clone()),
-            ParamValue::Bool(b) => Value::Bool(*b),
-            ParamValue::List(_) => Value::Text(self.to_string()),
-        }
-    }
-
     /// The dimension of the value (dimensionless for non-quantities).
     pub fn dimension(&self) -> Dimension {
         match self {

@@ -2,6 +2,7 @@
 //! node kind that has both values, and listed in [`CHECKS`] for the documentation.
 
 use crate::units::format_number;
+use crate::vocabulary::kinds::{CONTACT, FRICTION, SURFACE};
 
 /// One cross-input check, as documented.
 pub struct CrossCheck {
@@ -35,49 +36,49 @@ pub const FLOW_PRESSURE_FAIL: f64 = 10.0;
 /// The cross-input checks, as the documentation lists them.
 pub const CHECKS: &[CrossCheck] = &[
     CrossCheck {
-        kind: "surface",
+        kind: SURFACE,
         columns: "`sq_m` against the map's size",
         rule: "Sq ≤ the larger side nx·dx, ny·dy",
         outcome: "flagged",
         why: "heights larger than the field of view are no surface texture: the height unit or the file is wrong (e.g. a header from another file)",
     },
     CrossCheck {
-        kind: "contact",
+        kind: CONTACT,
         columns: "grid of the upstream surfaces",
         rule: "≥ 8 points a side",
         outcome: "flagged",
         why: "a spot of more than one pixel with its one-point ring spans 4 points, two such spots 8: a coarser grid resolves no contact spot (friction per spot or per summit fails there)",
     },
     CrossCheck {
-        kind: "contact",
+        kind: CONTACT,
         columns: "`sdq` of the surfaces, √(Sdq₁² + Sdq₂²)",
         rule: "≤ 0.5",
         outcome: "flagged",
         why: "the half-space solution neglects terms of order s² in the slope s: the true normal is tilted by atan(s), a normal pressure off by 1 − 1/√(1+s²), 10.6 % at 0.5 (ground steel sampled at 0.5 µm has Sdq 0.5–0.8 and is flagged)",
     },
     CrossCheck {
-        kind: "friction",
+        kind: FRICTION,
         columns: "`nominal_pressure_Pa` against H of the softer body",
         rule: "p_nom ≤ H (also at `validate` for `nominal_pressures`)",
         outcome: "fails",
         why: "equilibrium needs A/A₀ ≥ p_nom/p_lim with p_lim = H, so p_nom > H would need more real area than nominal area",
     },
     CrossCheck {
-        kind: "friction",
+        kind: FRICTION,
         columns: "per summit, per spot: the contact's flow pressure against H of the friction materials",
         rule: "within 1 % (flag), within a factor of 10 (at `validate`)",
         outcome: "flagged / fails",
         why: "the contact solution caps pressures at its flow pressure while the friction laws use H: surface-layer hardness exceeds bulk by up to ~3×, so a factor of 10 is an input error; an elastic contact (no flow pressure) is flagged",
     },
     CrossCheck {
-        kind: "friction",
+        kind: FRICTION,
         columns: "per summit, per spot: the contact's grid",
         rule: "≥ 8 points a side",
         outcome: "fails",
         why: "summits need the 8-neighbourhood and spots a ring around them; below 8 points no section holds two resolved spots",
     },
     CrossCheck {
-        kind: "friction",
+        kind: FRICTION,
         columns: "grid of the surfaces (statistical method)",
         rule: "≥ 8 points a side",
         outcome: "failed",

@@ -88,9 +88,7 @@ pub struct ColumnRule {
 }
 
 /// The kind names the rules are keyed by.
-pub const SURFACE: &str = super::surface::KIND;
-pub const CONTACT: &str = super::contact::KIND;
-pub const FRICTION: &str = super::friction::KIND;
+pub use crate::vocabulary::kinds::{CONTACT, FRICTION, SURFACE};
 
 /// Smallest Sq taken as a surface (m): a picometre, a hundredth of an atom's size; below it no
 /// roughness is measurable and the spectral moments derived from it underflow.

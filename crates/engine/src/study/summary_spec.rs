@@ -43,7 +43,6 @@ pub(super) fn check_summaries<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<St
         .chain(p.latin_hypercube.iter().flat_map(|l| l.value.ranges.keys()))
         .map(String::as_str)
         .collect();
-    let nodes: Vec<&str> = file.nodes.keys().map(String::as_str).collect();
     let mut tables = Vec::new();
     for (name, summary) in &file.summaries {
         let context = format!("summaries.{name}");
@@ -55,24 +54,7 @@ pub(super) fn check_summaries<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<St
             ));
         }
         check_length(name, "summary names").map_err(|m| (summary.location, context.clone(), m))?;
-        for by in &summary.value.by {
-            if !parameters.contains(&by.value.as_str()) {
-                return Err((
-                    by.location,
-                    format!("{context}.by"),
-                    format!(
-                        "'{}' is not a parameter{}; parameters: {}",
-                        by.value,
-                        did_you_mean(&by.value, parameters.iter().copied()),
-                        if parameters.is_empty() {
-                            String::from("none")
-                        } else {
-                            parameters.join(", ")
-                        }
-                    ),
-                ));
-            }
-        }
+        check_groups(&summary.value, &context, &parameters)?;
         if summary.value.metrics.is_empty() {
             return Err((
                 summary.location,
@@ -81,40 +63,7 @@ pub(super) fn check_summaries<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<St
             ));
         }
         for metric in &summary.value.metrics {
-            let Some((node, field)) = split_metric(&metric.value) else {
-                return Err((
-                    metric.location,
-                    format!("{context}.metrics"),
-                    format!(
-                        "'{}' is not node.metric; write e.g. contact.area_fraction",
-                        metric.value
-                    ),
-                ));
-            };
-            if field == RUN_TIME_METRIC {
-                return Err((
-                    metric.location,
-                    format!("{context}.metrics"),
-                    format!(
-                        "'{}': run times are not results (they differ between runs and would \
-                         make this table differ too); every run writes them per node instance \
-                         to timings.parquet (join on its `key` column)",
-                        metric.value
-                    ),
-                ));
-            }
-            let Some(spec) = file.nodes.get(node) else {
-                return Err((
-                    metric.location,
-                    format!("{context}.metrics"),
-                    format!(
-                        "no node '{node}'{}; nodes: {}",
-                        did_you_mean(node, nodes.iter().copied()),
-                        nodes.join(", ")
-                    ),
-                ));
-            };
-            let table = spec.value.table().to_string();
+            let table = metric_table(file, metric, &context)?;
             if !tables.contains(&table) {
                 tables.push(table);
             }
@@ -122,6 +71,64 @@ pub(super) fn check_summaries<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<St
         check_columns(&summary.value, &context)?;
     }
     Ok(tables)
+}
+
+/// Every `by` entry of a summary names a parameter of the study.
+fn check_groups(spec: &SummarySpec, context: &str, parameters: &[&str]) -> Result<(), CheckError> {
+    let Some(by) = spec
+        .by
+        .iter()
+        .find(|by| !parameters.contains(&by.value.as_str()))
+    else {
+        return Ok(());
+    };
+    Err((
+        by.location,
+        format!("{context}.by"),
+        format!(
+            "'{}' is not a parameter{}; parameters: {}",
+            by.value,
+            did_you_mean(&by.value, parameters.iter().copied()),
+            if parameters.is_empty() {
+                String::from("none")
+            } else {
+                parameters.join(", ")
+            }
+        ),
+    ))
+}
+
+/// The table of the node a summary metric `node.metric` reads; an error for a reference that is
+/// not `node.metric`, a run time or an unknown node.
+fn metric_table<N: NodeSpec>(
+    file: &StudyFile<N>,
+    metric: &Located<String>,
+    context: &str,
+) -> Result<String, CheckError> {
+    let fail = |message: String| Err((metric.location, format!("{context}.metrics"), message));
+    let Some((node, field)) = split_metric(&metric.value) else {
+        return fail(format!(
+            "'{}' is not node.metric; write e.g. contact.area_fraction",
+            metric.value
+        ));
+    };
+    if field == RUN_TIME_METRIC {
+        return fail(format!(
+            "'{}': run times are not results (they differ between runs and would make this \
+             table differ too); every run writes them per node instance to timings.parquet \
+             (join on its `key` column)",
+            metric.value
+        ));
+    }
+    let Some(spec) = file.nodes.get(node) else {
+        let nodes: Vec<&str> = file.nodes.keys().map(String::as_str).collect();
+        return fail(format!(
+            "no node '{node}'{}; nodes: {}",
+            did_you_mean(node, nodes.iter().copied()),
+            nodes.join(", ")
+        ));
+    };
+    Ok(spec.value.table().to_string())
 }
 
 /// The columns of one summary table must be distinct: each `by` parameter and each metric once,
