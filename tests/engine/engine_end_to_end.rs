@@ -407,3 +407,81 @@ fn a_node_larger_than_the_memory_budget_fails_before_it_allocates() {
     }
     assert!(run_with(1 << 30).all_ok());
 }
+
+/// `surfaces_by_scenario`: one row per scenario and surface node, the scenario's parameters as
+/// `param_*` beside the measured columns, and each row's values those of its instance's row in
+/// `surfaces`.
+#[test]
+fn the_tidy_view_carries_the_scenario_parameters() {
+    use polars::prelude::DataType;
+    let dir = tempdir("tidy");
+    let text = study_text("0.5 um, 1.0 um", "{range: [1, 3]}");
+    run(&dir, &text, &dir.join("cache"), "out");
+    let read = |name: &str| {
+        ParquetReader::new(std::fs::File::open(dir.join("out").join(name)).unwrap())
+            .finish()
+            .unwrap()
+    };
+    let tidy = read("surfaces_by_scenario.parquet");
+    let surfaces = read("surfaces.parquet");
+    assert_eq!(tidy.height(), 12, "6 scenarios × 2 surface nodes");
+    let names: Vec<String> = tidy
+        .get_column_names()
+        .iter()
+        .map(|n| n.to_string())
+        .collect();
+    assert_eq!(
+        &names[..5],
+        ["scenario", "param_sq_m", "param_seed", "node", "key"]
+    );
+    let column = |df: &polars::prelude::DataFrame, name: &str, row: usize| {
+        df.column(name)
+            .unwrap()
+            .cast(&DataType::String)
+            .unwrap()
+            .str()
+            .unwrap()
+            .get(row)
+            .map(str::to_string)
+    };
+    for row in 0..tidy.height() {
+        let scenario = row / 2;
+        assert_eq!(column(&tidy, "scenario", row), Some(scenario.to_string()));
+        assert_eq!(
+            column(&tidy, "node", row).as_deref(),
+            Some(["lower", "upper"][row % 2])
+        );
+        // Scenarios run sq slowest, seed fastest.
+        let sq = [0.5e-6, 1.0e-6][scenario / 3];
+        let param_sq = tidy.column("param_sq_m").unwrap().f64().unwrap().get(row);
+        assert_eq!(param_sq, Some(sq));
+        let key = column(&tidy, "key", row).unwrap();
+        let instance = (0..surfaces.height())
+            .find(|&r| column(&surfaces, "key", r).as_deref() == Some(key.as_str()))
+            .expect("every tidy row is an instance of the kind table");
+        for name in surfaces.get_column_names().iter().map(|n| n.as_str()) {
+            // The instance's bookkeeping stays in the kind table.
+            if !matches!(name, "nodes" | "kind_version") && !name.ends_with("_key") {
+                assert_eq!(
+                    column(&tidy, name, row),
+                    column(&surfaces, name, instance),
+                    "{name} of row {row}"
+                );
+            }
+        }
+        let measured = tidy
+            .column("sq_m")
+            .unwrap()
+            .f64()
+            .unwrap()
+            .get(row)
+            .unwrap();
+        if row % 2 == 0 {
+            assert!(
+                (measured - sq).abs() <= 1e-12 * sq,
+                "lower's Sq is the parameter"
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

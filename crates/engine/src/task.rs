@@ -14,6 +14,13 @@ pub trait NodeTask: Send + Sync + std::fmt::Debug {
     fn version(&self) -> u32;
     /// The table the kind's rows go to (`surfaces`).
     fn table(&self) -> &'static str;
+    /// The name of the kind's own long table that holds one row per load step, if the kind has
+    /// load steps: a `step` column (0, 1, …) and every metric of the kind table's row at that
+    /// step (its last row equals the row). The tidy view `<table>_by_scenario` gives one row per
+    /// step from it. No kind's own table is called `by_scenario` (that name is the view's).
+    fn step_table(&self) -> Option<&'static str> {
+        None
+    }
     /// The resolved parameters (SI) this node consumes, and nothing else: they enter the key and
     /// the table row. Derived from the task's own typed fields by one function per kind (the
     /// task keeps no second, hand-built copy), so what the node computes with and what its key

@@ -15,6 +15,7 @@
 //! folder, and published in one step (`result_set.rs`): a reader finds the complete set of one
 //! run or the previous one, never a mix, and a failed write leaves the previous set untouched.
 
+mod by_scenario;
 mod result_set;
 mod row_table;
 
@@ -38,6 +39,7 @@ use crate::value::{ParamValue, Value};
 
 use row_table::{field_cell, text, to_series, RowTable};
 
+pub use by_scenario::{BY_SCENARIO_SUFFIX, PARAMETER_PREFIX};
 pub use result_set::{check_target, Generation, ResultSet};
 
 /// Identification written into every file's metadata.
@@ -59,7 +61,8 @@ pub enum OutputError {
 
 impl ResultSet {
     /// Writes the requested tables (in parallel, one file per task), in the order of `tables`,
-    /// each kind table followed by its long tables.
+    /// each kind table followed by its long tables and its tidy view
+    /// (`<table>_by_scenario`, `by_scenario.rs`).
     pub fn write_tables(
         &mut self,
         plan: &Plan,
@@ -75,8 +78,10 @@ impl ResultSet {
                     vec![(table.clone(), scenarios_table(plan, report))]
                 } else {
                     let (main, long) = kind_tables(plan, report, table);
+                    let tidy = by_scenario::by_scenario_table(plan, report, table);
                     std::iter::once((table.clone(), main))
                         .chain(long.into_iter().map(|(n, t)| (format!("{table}_{n}"), t)))
+                        .chain([(format!("{table}_{BY_SCENARIO_SUFFIX}"), tidy)])
                         .collect()
                 };
                 files
