@@ -31,6 +31,12 @@ pub mod tables {
     pub const MATERIAL_RATIO: &str = "material_ratio";
     /// The engine's `<table>_<own table>` for [`MATERIAL_RATIO`] of [`SURFACES`].
     pub const SURFACES_MATERIAL_RATIO: &str = "surfaces_material_ratio";
+    /// A friction node's own table of its contact spots (`friction_spots`).
+    pub const SPOTS: &str = "spots";
+    /// A friction node's own table of its summits (`friction_summits`).
+    pub const SUMMITS: &str = "summits";
+    /// A statistical friction node's own table of its μ(F) curve (`friction_curve`).
+    pub const CURVE: &str = "curve";
     /// One row per scenario, with its parameters and the `<node>_key` of each node.
     pub const SCENARIOS: &str = "scenarios";
 }
@@ -79,6 +85,217 @@ pub mod metrics {
     pub const STRESS_RATIO: &str = "stress_ratio";
     /// Static friction coefficient μ_s.
     pub const MU_S: &str = "mu_s";
+
+    // The friction row (`friction` table): method, model and trust.
+    /// Friction method (`statistical`, `per_summit`, `per_spot`).
+    pub const METHOD: &str = "method";
+    /// Friction law, by its registry name.
+    pub const MODEL: &str = "model";
+    /// How far the law's constants are confirmed.
+    pub const MODEL_BASIS: &str = "model_basis";
+    /// μ_s as the model computed it (may be negative).
+    pub const MU_S_COMPUTED: &str = "mu_s_computed";
+    /// Whether a negative computed μ_s is reported as 0.
+    pub const MU_S_FLOORED: &str = "mu_s_floored";
+    /// Share of the normal load outside the law's validated range.
+    pub const LOAD_SHARE_BEYOND_FIT: &str = "load_share_beyond_fit";
+    // The friction row: forces, areas and the solve.
+    /// External normal load F = P − F_a (N).
+    pub const EXTERNAL_LOAD: &str = "external_load";
+    /// Contact (normal) load P (N).
+    pub const NORMAL_LOAD: &str = "normal_load";
+    /// Adhesion force F_a (N).
+    pub const ADHESION_FORCE: &str = "adhesion_force";
+    /// Static friction force Q (N).
+    pub const FRICTION_FORCE: &str = "friction_force";
+    /// The contact node's own load at its nominal pressure (N).
+    pub const CONTACT_NORMAL_LOAD: &str = "contact_normal_load";
+    /// True contact area (m²).
+    pub const REAL_AREA: &str = "real_area";
+    /// Apparent (nominal) area (m²).
+    pub const APPARENT_AREA: &str = "apparent_area";
+    /// Area of the computed section (m²).
+    pub const SECTION_AREA: &str = "section_area";
+    /// Separation of the mean planes (m).
+    pub const SEPARATION: &str = "separation";
+    /// Dimensionless separation d*.
+    pub const D_STAR: &str = "d_star";
+    /// Plasticity index ψ.
+    pub const PLASTICITY_INDEX: &str = "plasticity_index";
+    /// Number of contacting summits.
+    pub const CONTACTS: &str = "contacts";
+    /// GW σ of the sum surface (m).
+    pub const GW_SIGMA: &str = "gw_sigma";
+    /// GW σ_s of the summit heights (m).
+    pub const GW_SIGMA_S: &str = "gw_sigma_s";
+    /// GW mean summit radius (m).
+    pub const GW_SUMMIT_RADIUS: &str = "gw_summit_radius";
+    /// GW summit density (1/m²).
+    pub const GW_SUMMIT_DENSITY: &str = "gw_summit_density";
+    /// GW roughness parameter β = ηRσ.
+    pub const GW_BETA: &str = "gw_beta";
+    /// Roots of the separation solve found.
+    pub const ROOTS_FOUND: &str = "roots_found";
+    /// Iterations of a solve.
+    pub const ITERATIONS: &str = "iterations";
+    /// Relative residual of a solve.
+    pub const RESIDUAL: &str = "residual";
+    /// Largest relative error of the statistical integrals.
+    pub const INTEGRAL_ERROR: &str = "integral_error";
+    // The friction row: summits and spots.
+    /// Number of summits.
+    pub const SUMMIT_COUNT: &str = "summit_count";
+    /// Summits in the elastic state.
+    pub const ELASTIC_SUMMITS: &str = "elastic_summits";
+    /// Summits in the elastic–plastic state.
+    pub const ELASTIC_PLASTIC_SUMMITS: &str = "elastic_plastic_summits";
+    /// Summits in the fully plastic state.
+    pub const FULLY_PLASTIC_SUMMITS: &str = "fully_plastic_summits";
+    /// 10 % quantile of the local μ.
+    pub const LOCAL_MU_P10: &str = "local_mu_p10";
+    /// Median of the local μ.
+    pub const LOCAL_MU_MEDIAN: &str = "local_mu_median";
+    /// 90 % quantile of the local μ.
+    pub const LOCAL_MU_P90: &str = "local_mu_p90";
+    /// 10 % quantile of the spot areas (m²).
+    pub const SPOT_AREA_P10: &str = "spot_area_p10";
+    /// Median of the spot areas (m²).
+    pub const SPOT_AREA_MEDIAN: &str = "spot_area_median";
+    /// 90 % quantile of the spot areas (m²).
+    pub const SPOT_AREA_P90: &str = "spot_area_p90";
+    /// Number of contact spots.
+    pub const SPOT_COUNT: &str = "spot_count";
+    /// Number of one-pixel spots.
+    pub const ONE_PIXEL_SPOTS: &str = "one_pixel_spots";
+    /// Share of the normal load on one-pixel spots.
+    pub const LOAD_SHARE_ONE_PIXEL: &str = "load_share_one_pixel";
+    /// Number of spots without a convex radius.
+    pub const SPOTS_WITHOUT_RADIUS: &str = "spots_without_radius";
+    /// Share of the normal load on spots without a convex radius.
+    pub const LOAD_SHARE_WITHOUT_RADIUS: &str = "load_share_without_radius";
+    /// Adhesion part of μ_s.
+    pub const MU_ADHESION: &str = "mu_adhesion";
+    /// Deformation part of μ_s.
+    pub const MU_DEFORMATION: &str = "mu_deformation";
+    /// Load-weighted mean |tilt| of the spots.
+    pub const SPOT_TILT_ABS_MEAN: &str = "spot_tilt_abs_mean";
+    /// Load-weighted mean attack slope of the spots.
+    pub const SPOT_ATTACK_SLOPE_MEAN: &str = "spot_attack_slope_mean";
+    /// Load-weighted mean groove ratio of the spots.
+    pub const SPOT_GROOVE_RATIO_MEAN: &str = "spot_groove_ratio_mean";
+    // The friction row: its resolved parameters (key fields).
+    /// Composite modulus E* (Pa).
+    pub const COMPOSITE_MODULUS: &str = "composite_modulus";
+    /// Hardness H of the softer body (Pa).
+    pub const HARDNESS: &str = "hardness";
+    /// Poisson ratio of the softer body.
+    pub const POISSON_RATIO: &str = "poisson_ratio";
+    /// Adhesion energy Δγ (N/m).
+    pub const ADHESION_ENERGY: &str = "adhesion_energy";
+    /// Lennard-Jones equilibrium distance ε (m).
+    pub const EQUILIBRIUM_DISTANCE: &str = "equilibrium_distance";
+    /// Nominal area A_n (m²).
+    pub const NOMINAL_AREA: &str = "nominal_area";
+    /// Explicit σ (m).
+    pub const SIGMA: &str = "sigma";
+    /// Explicit summit radius (m).
+    pub const SUMMIT_RADIUS: &str = "summit_radius";
+    /// Explicit summit density (1/m²).
+    pub const SUMMIT_DENSITY: &str = "summit_density";
+    /// The nominal pressures of a statistical node, with their unit.
+    pub const NOMINAL_PRESSURES_PA: &str = "nominal_pressures_Pa";
+    /// The loads of a statistical node, with their unit.
+    pub const LOADS_N: &str = "loads_N";
+    /// Whether the per-summit table is written.
+    pub const SUMMITS_TABLE: &str = "summits_table";
+    /// Spot connectivity, 4 or 8.
+    pub const SPOT_CONNECTIVITY: &str = "spot_connectivity";
+    /// Whether the per-spot table is written.
+    pub const SPOTS_TABLE: &str = "spots_table";
+}
+
+/// Columns of a friction node's `spots` table (`friction_spots`, one row per contact spot).
+pub mod spot_columns {
+    /// Spot id.
+    pub const SPOT: &str = "spot";
+    /// Column of the highest point.
+    pub const PEAK_IX: &str = "peak_ix";
+    /// Row of the highest point.
+    pub const PEAK_IY: &str = "peak_iy";
+    /// x of the highest point (m).
+    pub const PEAK_X: &str = "peak_x";
+    /// y of the highest point (m).
+    pub const PEAK_Y: &str = "peak_y";
+    /// Grid points in the spot.
+    pub const PIXELS: &str = "pixels";
+    /// Spot area (m²).
+    pub const AREA: &str = "area";
+    /// Spot load (N).
+    pub const NORMAL_FORCE: &str = "normal_force";
+    /// Highest pressure (Pa).
+    pub const MAX_PRESSURE: &str = "max_pressure";
+    /// Paraboloid radius (m).
+    pub const RADIUS: &str = "radius";
+    /// `convex` or `not_convex`.
+    pub const RADIUS_STATUS: &str = "radius_status";
+    /// The law's load measure (P*, x).
+    pub const LOAD_MEASURE: &str = "load_measure";
+    /// Tangential capacity Q_i (N).
+    pub const FRICTION_FORCE: &str = "friction_force";
+    /// Q_i/P_i.
+    pub const LOCAL_MU: &str = "local_mu";
+    /// `inside` or `beyond` the law's fit.
+    pub const FIT: &str = "fit";
+    /// Tilt of the junction plane along the sliding direction.
+    pub const TILT: &str = "tilt";
+    /// How the plane was fitted.
+    pub const PLANE: &str = "plane";
+    /// Attack slope tan α.
+    pub const ATTACK_SLOPE: &str = "attack_slope";
+    /// Groove ratio 2 A_side/A.
+    pub const GROOVE_RATIO: &str = "groove_ratio";
+    /// Height of the cap (m).
+    pub const CAP_HEIGHT: &str = "cap_height";
+    /// Equivalent contact radius √(A/π) (m).
+    pub const CONTACT_RADIUS: &str = "contact_radius";
+    /// Deformation force Q_d,i (N).
+    pub const DEFORMATION_FORCE: &str = "deformation_force";
+    /// Q_d,i/P_i.
+    pub const LOCAL_MU_DEFORMATION: &str = "local_mu_deformation";
+}
+
+/// Columns of a friction node's `summits` table (`friction_summits`, one row per summit).
+pub mod summit_columns {
+    /// Column index.
+    pub const IX: &str = "ix";
+    /// Row index.
+    pub const IY: &str = "iy";
+    /// x (m).
+    pub const X: &str = "x";
+    /// y (m).
+    pub const Y: &str = "y";
+    /// Composite height (m).
+    pub const HEIGHT: &str = "height";
+    /// Summit radius (m).
+    pub const RADIUS: &str = "radius";
+    /// Interference ω (m).
+    pub const INTERFERENCE: &str = "interference";
+    /// x = ω/ω_c.
+    pub const INTERFERENCE_RATIO: &str = "interference_ratio";
+    /// Deformation state.
+    pub const STATE: &str = "state";
+    /// Normal force (N).
+    pub const NORMAL_FORCE: &str = "normal_force";
+    /// Adhesion force (N).
+    pub const ADHESION_FORCE: &str = "adhesion_force";
+    /// Friction force (N).
+    pub const FRICTION_FORCE: &str = "friction_force";
+}
+
+/// Columns of a statistical friction node's `curve` table beyond the row's metrics.
+pub mod curve_columns {
+    /// Index of the load.
+    pub const POINT: &str = "point";
 }
 
 /// Upstream roles: the input a node names (`lower: surface_node`).

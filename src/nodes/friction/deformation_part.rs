@@ -6,9 +6,10 @@
 use crate::engine::artifact::Table;
 use crate::engine::value::Field;
 use crate::friction::contact_spots::ContactSpot;
-use crate::friction::spot_slope::contact_radius;
+use crate::friction::laws::spot::contact_radius;
 use crate::friction::{PerSpotResult, SpotSlope};
 use crate::units::Dimension;
+use crate::vocabulary::{metrics as names, spot_columns};
 
 /// `mu_adhesion` and `mu_deformation` (their sum is `mu_s_computed`, both over Σ P_i − F_a as
 /// computed), and the load-weighted means of the spots' |tilt|, attack slope and groove ratio.
@@ -23,10 +24,10 @@ pub(super) fn push_parts(
     let deformation = result.total_deformation_force;
     metrics.extend([
         n(
-            "mu_adhesion",
+            names::MU_ADHESION,
             (result.total_friction_force - deformation) / net,
         ),
-        n("mu_deformation", deformation / net),
+        n(names::MU_DEFORMATION, deformation / net),
     ]);
     let mean = |f: &dyn Fn(&SpotSlope) -> Option<f64>| {
         let (mut sum, mut load) = (0.0, 0.0);
@@ -43,9 +44,9 @@ pub(super) fn push_parts(
         }
     };
     metrics.extend([
-        n("spot_tilt_abs_mean", mean(&|s| s.tilt.map(f64::abs))),
-        n("spot_attack_slope_mean", mean(&|s| s.attack_slope)),
-        n("spot_groove_ratio_mean", mean(&|s| s.groove_ratio)),
+        n(names::SPOT_TILT_ABS_MEAN, mean(&|s| s.tilt.map(f64::abs))),
+        n(names::SPOT_ATTACK_SLOPE_MEAN, mean(&|s| s.attack_slope)),
+        n(names::SPOT_GROOVE_RATIO_MEAN, mean(&|s| s.groove_ratio)),
     ]);
 }
 
@@ -64,9 +65,9 @@ pub(super) fn extend_spots_table(
             .map(|s| f(s).unwrap_or(0.0))
             .collect::<Vec<f64>>()
     };
-    t.push_float("tilt", Dimension::Dimensionless, column(&|s| s.tilt));
+    t.push_float(spot_columns::TILT, Dimension::Dimensionless, column(&|s| s.tilt));
     t.push_text(
-        "plane",
+        spot_columns::PLANE,
         slopes
             .iter()
             .map(|s| {
@@ -79,28 +80,28 @@ pub(super) fn extend_spots_table(
             .collect(),
     );
     t.push_float(
-        "attack_slope",
+        spot_columns::ATTACK_SLOPE,
         Dimension::Dimensionless,
         column(&|s| s.attack_slope),
     );
     t.push_float(
-        "groove_ratio",
+        spot_columns::GROOVE_RATIO,
         Dimension::Dimensionless,
         column(&|s| s.groove_ratio),
     );
-    t.push_float("cap_height", Dimension::Length, column(&|s| s.cap_height));
+    t.push_float(spot_columns::CAP_HEIGHT, Dimension::Length, column(&|s| s.cap_height));
     t.push_float(
-        "contact_radius",
+        spot_columns::CONTACT_RADIUS,
         Dimension::Length,
         spots.iter().map(|s| contact_radius(s.area)).collect(),
     );
     t.push_float(
-        "deformation_force",
+        spot_columns::DEFORMATION_FORCE,
         Dimension::Force,
         result.deformation.clone(),
     );
     t.push_float(
-        "local_mu_deformation",
+        spot_columns::LOCAL_MU_DEFORMATION,
         Dimension::Dimensionless,
         spots
             .iter()

@@ -8,6 +8,7 @@ use crate::friction::laws::{ParameterValue, ReportedValue, Unit};
 use crate::friction::{Connectivity, Material, SummitStatistics};
 use crate::nodes::number_list;
 use crate::units::Dimension;
+use crate::vocabulary::metrics as names;
 
 use super::per_spot::Section;
 use super::{FrictionTask, Loads, MethodSetup, Roughness};
@@ -26,15 +27,15 @@ impl FrictionTask {
         // Room for the fields of every setup.
         let mut key = Vec::with_capacity(24);
         key.extend([
-            Field::text("method", setup.method().name()),
-            Field::text("model", law.descriptor().name),
+            Field::text(names::METHOD, setup.method().name()),
+            Field::text(names::MODEL, law.descriptor().name),
         ]);
         key.extend(material_fields(material));
         key.extend(law.reported_values().iter().map(reported_field));
         key.extend([
-            Field::float("adhesion_energy", adhesion.energy, Dimension::SurfaceEnergy),
+            Field::float(names::ADHESION_ENERGY, adhesion.energy, Dimension::SurfaceEnergy),
             Field::float(
-                "equilibrium_distance",
+                names::EQUILIBRIUM_DISTANCE,
                 adhesion.equilibrium_distance,
                 Dimension::Length,
             ),
@@ -64,9 +65,9 @@ fn material_fields(material: &Material) -> [Field; 3] {
         poisson_ratio,
     } = *material;
     [
-        Field::float("composite_modulus", composite_modulus, Dimension::Pressure),
-        Field::float("hardness", hardness, Dimension::Pressure),
-        Field::float("poisson_ratio", poisson_ratio, Dimension::Dimensionless),
+        Field::float(names::COMPOSITE_MODULUS, composite_modulus, Dimension::Pressure),
+        Field::float(names::HARDNESS, hardness, Dimension::Pressure),
+        Field::float(names::POISSON_RATIO, poisson_ratio, Dimension::Dimensionless),
     ]
 }
 
@@ -83,7 +84,7 @@ fn method_fields(setup: &MethodSetup) -> Vec<Field> {
         } => *nominal_area,
     };
     let mut fields: Vec<Field> = nominal_area
-        .map(|a| Field::float("nominal_area", a, Dimension::Area))
+        .map(|a| Field::float(names::NOMINAL_AREA, a, Dimension::Area))
         .into_iter()
         .collect();
     match setup {
@@ -102,7 +103,7 @@ fn method_fields(setup: &MethodSetup) -> Vec<Field> {
             nominal_area: _,
             periodic: _,
             summits_table,
-        } => fields.push(Field::bool("summits_table", *summits_table)),
+        } => fields.push(Field::bool(names::SUMMITS_TABLE, *summits_table)),
         MethodSetup::PerSpot {
             contact: _,
             section:
@@ -117,8 +118,8 @@ fn method_fields(setup: &MethodSetup) -> Vec<Field> {
                 Connectivity::Four => 4,
                 Connectivity::Eight => 8,
             };
-            fields.push(Field::int("spot_connectivity", connectivity));
-            fields.push(Field::bool("spots_table", *spots_table));
+            fields.push(Field::int(names::SPOT_CONNECTIVITY, connectivity));
+            fields.push(Field::bool(names::SPOTS_TABLE, *spots_table));
         }
     }
     fields
@@ -127,16 +128,16 @@ fn method_fields(setup: &MethodSetup) -> Vec<Field> {
 /// σ, R and η as given (the other summit statistics follow from them).
 fn explicit_roughness_fields(summits: &SummitStatistics) -> [Field; 3] {
     [
-        Field::float("sigma", summits.sigma, Dimension::Length),
-        Field::float("summit_radius", summits.radius, Dimension::Length),
-        Field::float("summit_density", summits.density, Dimension::InverseArea),
+        Field::float(names::SIGMA, summits.sigma, Dimension::Length),
+        Field::float(names::SUMMIT_RADIUS, summits.radius, Dimension::Length),
+        Field::float(names::SUMMIT_DENSITY, summits.density, Dimension::InverseArea),
     ]
 }
 
 fn load_fields(loads: &Loads) -> Option<Field> {
     match loads {
-        Loads::Pressures(p) => Some(number_list("nominal_pressures_Pa", p)),
-        Loads::Forces(f) => Some(number_list("loads_N", f)),
+        Loads::Pressures(p) => Some(number_list(names::NOMINAL_PRESSURES_PA, p)),
+        Loads::Forces(f) => Some(number_list(names::LOADS_N, f)),
         Loads::FromContact(_) => None,
     }
 }

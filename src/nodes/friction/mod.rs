@@ -52,6 +52,7 @@ mod statistical;
 
 pub(crate) use crate::vocabulary::kinds::FRICTION as KIND;
 pub(crate) use crate::vocabulary::tables::FRICTION as TABLE;
+use crate::vocabulary::{metrics as names, roles};
 
 /// Implementation version of the `friction` kind; bump whenever its numerics change (4: keys
 /// derived from the law registry; the values are those of version 3).
@@ -153,9 +154,9 @@ impl FrictionSpec {
     pub(crate) fn upstream(&self) -> Vec<UpstreamRef<'_>> {
         let mut refs = Vec::new();
         for (role, node) in [
-            ("lower", &self.lower),
-            ("upper", &self.upper),
-            ("contact", &self.contact),
+            (roles::LOWER, &self.lower),
+            (roles::UPPER, &self.upper),
+            (roles::CONTACT, &self.contact),
         ] {
             if let Some(node) = node {
                 refs.push(UpstreamRef { role, node });
@@ -278,15 +279,15 @@ impl NodeTask for FrictionTask {
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
         let law = self.law.descriptor();
         let mut metrics = vec![
-            Field::text("method", self.setup.method().name()),
-            Field::text("model", law.name),
-            Field::text("model_basis", law.basis.name()),
+            Field::text(names::METHOD, self.setup.method().name()),
+            Field::text(names::MODEL, law.name),
+            Field::text(names::MODEL_BASIS, law.basis.name()),
         ];
         let mut tables = std::collections::BTreeMap::<String, Table>::new();
         if let MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } =
             &self.setup
         {
-            let (ny, nx) = ContactView::of(input(inputs, *contact, "contact")?)?
+            let (ny, nx) = ContactView::of(input(inputs, *contact, roles::CONTACT)?)?
                 .pressure
                 .dim();
             validity::cross::friction_grid(nx, ny).map_err(NodeError::new)?;
@@ -312,7 +313,7 @@ impl NodeTask for FrictionTask {
                 summits_table,
             } => per_summit::compute(
                 self,
-                input(inputs, *contact, "contact")?,
+                input(inputs, *contact, roles::CONTACT)?,
                 *nominal_area,
                 *periodic,
                 *summits_table,
@@ -321,7 +322,7 @@ impl NodeTask for FrictionTask {
             )?,
             MethodSetup::PerSpot { contact, section } => per_spot::compute(
                 self,
-                input(inputs, *contact, "contact")?,
+                input(inputs, *contact, roles::CONTACT)?,
                 section,
                 &mut metrics,
                 &mut tables,
@@ -333,7 +334,7 @@ impl NodeTask for FrictionTask {
             tables,
             flags: self.input_flags.clone(),
         };
-        if let Some(Value::Float(p)) = artifact.metric("nominal_pressure").map(|f| &f.value) {
+        if let Some(Value::Float(p)) = artifact.metric(names::NOMINAL_PRESSURE).map(|f| &f.value) {
             validity::cross::pressure_within_flow(*p, self.material.hardness)
                 .map_err(NodeError::new)?;
         }
@@ -372,9 +373,9 @@ impl FrictionTask {
 pub(crate) fn coefficient_fields(mu_computed: f64) -> [Field; 3] {
     let floored = mu_computed < 0.0;
     [
-        Field::float("mu_s", mu_computed.max(0.0), Dimension::Dimensionless),
-        Field::float("mu_s_computed", mu_computed, Dimension::Dimensionless),
-        Field::bool("mu_s_floored", floored),
+        Field::float(names::MU_S, mu_computed.max(0.0), Dimension::Dimensionless),
+        Field::float(names::MU_S_COMPUTED, mu_computed, Dimension::Dimensionless),
+        Field::bool(names::MU_S_FLOORED, floored),
     ]
 }
 
@@ -386,5 +387,5 @@ pub(crate) fn beyond_fit_field(load_beyond_fit: f64, normal_load: f64) -> Field 
     } else {
         0.0
     };
-    Field::float("load_share_beyond_fit", share, Dimension::Dimensionless)
+    Field::float(names::LOAD_SHARE_BEYOND_FIT, share, Dimension::Dimensionless)
 }

@@ -27,6 +27,7 @@ use crate::friction::{
     per_spot_friction, per_spot_friction_on_slopes, spot_slopes, PerSpotResult, SpotLoad,
 };
 use crate::units::Dimension;
+use crate::vocabulary::{self, metrics as names, spot_columns};
 
 use super::deformation_part::{extend_spots_table, push_parts};
 use super::{beyond_fit_field, coefficient_fields, FrictionTask};
@@ -104,7 +105,7 @@ pub(super) fn compute(
         if let Some(slopes) = &slopes {
             extend_spots_table(&mut table, &spots, slopes, &result);
         }
-        tables.insert(String::from("spots"), table);
+        tables.insert(String::from(vocabulary::tables::SPOTS), table);
     }
     Ok(())
 }
@@ -119,13 +120,13 @@ fn push_forces(
     let force = |name: &'static str, v: f64| Field::float(name, scale * v, Dimension::Force);
     metrics.extend([
         force(
-            "external_load",
+            names::EXTERNAL_LOAD,
             result.total_normal_force - result.adhesion_force,
         ),
-        force("normal_load", result.total_normal_force),
-        force("adhesion_force", result.adhesion_force),
-        force("friction_force", result.total_friction_force.max(0.0)),
-        Field::float("contact_normal_load", contact_normal_load, Dimension::Force),
+        force(names::NORMAL_LOAD, result.total_normal_force),
+        force(names::ADHESION_FORCE, result.adhesion_force),
+        force(names::FRICTION_FORCE, result.total_friction_force.max(0.0)),
+        Field::float(names::CONTACT_NORMAL_LOAD, contact_normal_load, Dimension::Force),
     ]);
 }
 
@@ -147,16 +148,16 @@ fn push_spot_statistics(
     };
     let area_fraction = result.total_area / section_area;
     metrics.extend([
-        Field::float("real_area", area_fraction * area, Dimension::Area),
-        n("area_fraction", area_fraction),
-        Field::float("apparent_area", area, Dimension::Area),
-        Field::float("section_area", section_area, Dimension::Area),
-        Field::int("spot_count", spots.len() as i64),
-        Field::int("one_pixel_spots", result.one_pixel_spots as i64),
-        n("load_share_one_pixel", share(result.load_one_pixel)),
-        Field::int("spots_without_radius", result.spots_without_radius as i64),
+        Field::float(names::REAL_AREA, area_fraction * area, Dimension::Area),
+        n(names::AREA_FRACTION, area_fraction),
+        Field::float(names::APPARENT_AREA, area, Dimension::Area),
+        Field::float(names::SECTION_AREA, section_area, Dimension::Area),
+        Field::int(names::SPOT_COUNT, spots.len() as i64),
+        Field::int(names::ONE_PIXEL_SPOTS, result.one_pixel_spots as i64),
+        n(names::LOAD_SHARE_ONE_PIXEL, share(result.load_one_pixel)),
+        Field::int(names::SPOTS_WITHOUT_RADIUS, result.spots_without_radius as i64),
         n(
-            "load_share_without_radius",
+            names::LOAD_SHARE_WITHOUT_RADIUS,
             share(result.load_without_radius),
         ),
     ]);
@@ -170,21 +171,23 @@ fn push_spot_statistics(
         .collect();
     local.sort_by(f64::total_cmp);
     if !areas.is_empty() {
-        for (name, q) in [("p10", 0.1), ("median", 0.5), ("p90", 0.9)] {
-            metrics.push(Field::float(
-                format!("spot_area_{name}"),
-                quantile(&areas, q),
-                Dimension::Area,
-            ));
+        let area_quantiles = [
+            (names::SPOT_AREA_P10, 0.1),
+            (names::SPOT_AREA_MEDIAN, 0.5),
+            (names::SPOT_AREA_P90, 0.9),
+        ];
+        for (name, q) in area_quantiles {
+            metrics.push(Field::float(name, quantile(&areas, q), Dimension::Area));
         }
     }
     if !local.is_empty() {
-        for (name, q) in [("p10", 0.1), ("median", 0.5), ("p90", 0.9)] {
-            metrics.push(Field::float(
-                format!("local_mu_{name}"),
-                quantile(&local, q),
-                Dimension::Dimensionless,
-            ));
+        let mu_quantiles = [
+            (names::LOCAL_MU_P10, 0.1),
+            (names::LOCAL_MU_MEDIAN, 0.5),
+            (names::LOCAL_MU_P90, 0.9),
+        ];
+        for (name, q) in mu_quantiles {
+            metrics.push(Field::float(name, quantile(&local, q), Dimension::Dimensionless));
         }
     }
 }
@@ -198,34 +201,34 @@ fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) 
         pairs.iter().map(|(s, r)| f(s, r)).collect::<Vec<f64>>()
     };
     let mut t = Table::default();
-    t.push_int("spot", (0..spots.len() as i64).collect());
-    t.push_int("peak_ix", spots.iter().map(|s| s.peak.1 as i64).collect());
-    t.push_int("peak_iy", spots.iter().map(|s| s.peak.0 as i64).collect());
+    t.push_int(spot_columns::SPOT, (0..spots.len() as i64).collect());
+    t.push_int(spot_columns::PEAK_IX, spots.iter().map(|s| s.peak.1 as i64).collect());
+    t.push_int(spot_columns::PEAK_IY, spots.iter().map(|s| s.peak.0 as i64).collect());
     t.push_float(
-        "peak_x",
+        spot_columns::PEAK_X,
         Dimension::Length,
         float(&|s, _| s.peak.1 as f64 * dx),
     );
     t.push_float(
-        "peak_y",
+        spot_columns::PEAK_Y,
         Dimension::Length,
         float(&|s, _| s.peak.0 as f64 * dy),
     );
-    t.push_int("pixels", spots.iter().map(|s| s.pixels as i64).collect());
-    t.push_float("area", Dimension::Area, float(&|s, _| s.area));
-    t.push_float("normal_force", Dimension::Force, float(&|s, _| s.load));
+    t.push_int(spot_columns::PIXELS, spots.iter().map(|s| s.pixels as i64).collect());
+    t.push_float(spot_columns::AREA, Dimension::Area, float(&|s, _| s.area));
+    t.push_float(spot_columns::NORMAL_FORCE, Dimension::Force, float(&|s, _| s.load));
     t.push_float(
-        "max_pressure",
+        spot_columns::MAX_PRESSURE,
         Dimension::Pressure,
         float(&|s, _| s.max_pressure),
     );
     t.push_float(
-        "radius",
+        spot_columns::RADIUS,
         Dimension::Length,
         float(&|s, _| s.radius.unwrap_or(0.0)),
     );
     t.push_text(
-        "radius_status",
+        spot_columns::RADIUS_STATUS,
         spots
             .iter()
             .map(|s| {
@@ -238,17 +241,17 @@ fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) 
             .collect(),
     );
     t.push_float(
-        "load_measure",
+        spot_columns::LOAD_MEASURE,
         Dimension::Dimensionless,
         float(&|_, r| r.load_measure.unwrap_or(0.0)),
     );
     t.push_float(
-        "friction_force",
+        spot_columns::FRICTION_FORCE,
         Dimension::Force,
         float(&|_, r| r.friction_force.max(0.0)),
     );
     t.push_float(
-        "local_mu",
+        spot_columns::LOCAL_MU,
         Dimension::Dimensionless,
         float(&|s, r| {
             if s.load > 0.0 {
@@ -259,7 +262,7 @@ fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) 
         }),
     );
     t.push_text(
-        "fit",
+        spot_columns::FIT,
         pairs
             .iter()
             .map(|(_, r)| String::from(if r.beyond_fit { "beyond" } else { "inside" }))

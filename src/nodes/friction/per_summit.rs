@@ -37,6 +37,7 @@ use crate::friction::{
 };
 use crate::surface::{find_summits, Boundary, HeightMap, Summit, SummitOptions, Summits};
 use crate::units::Dimension;
+use crate::vocabulary::{metrics as names, summit_columns, tables};
 
 use super::{beyond_fit_field, coefficient_fields, FrictionTask};
 use crate::nodes::contact_view::ContactView;
@@ -123,7 +124,7 @@ pub(super) fn compute(
         (found.statistics.height_std, found.statistics.mean_radius)
     {
         metrics.push(dimensionless(
-            "plasticity_index",
+            names::PLASTICITY_INDEX,
             task.material.plasticity_index(sigma_s, radius),
         ));
     }
@@ -138,7 +139,7 @@ pub(super) fn compute(
     push_local_mu(metrics, &result);
     if summits_table {
         tables.insert(
-            String::from("summits"),
+            String::from(tables::SUMMITS),
             summits_table_of(&summits, &contacts, &result.summits),
         );
     }
@@ -180,27 +181,27 @@ fn push_forces(
     metrics.extend([
         beyond_fit_field(result.load_beyond_fit, result.total_normal_force),
         Field::float(
-            "external_load",
+            names::EXTERNAL_LOAD,
             scale * (result.total_normal_force - result.total_adhesion_force),
             Dimension::Force,
         ),
-        Field::float("nominal_pressure", nominal_pressure, Dimension::Pressure),
+        Field::float(names::NOMINAL_PRESSURE, nominal_pressure, Dimension::Pressure),
         Field::float(
-            "normal_load",
+            names::NORMAL_LOAD,
             scale * result.total_normal_force,
             Dimension::Force,
         ),
         Field::float(
-            "adhesion_force",
+            names::ADHESION_FORCE,
             scale * result.total_adhesion_force,
             Dimension::Force,
         ),
         Field::float(
-            "friction_force",
+            names::FRICTION_FORCE,
             scale * result.total_friction_force.max(0.0),
             Dimension::Force,
         ),
-        Field::float("contact_normal_load", contact_load, Dimension::Force),
+        Field::float(names::CONTACT_NORMAL_LOAD, contact_load, Dimension::Force),
     ]);
 }
 
@@ -216,15 +217,15 @@ fn push_counts(
     let [_, elastic, elastic_plastic, fully_plastic] = result.state_counts;
     let in_contact = elastic + elastic_plastic + fully_plastic;
     metrics.extend([
-        dimensionless("contacts", in_contact as f64),
-        Field::float("real_area", area_fraction * area, Dimension::Area),
-        dimensionless("area_fraction", area_fraction),
-        Field::float("apparent_area", area, Dimension::Area),
-        Field::float("section_area", section_area, Dimension::Area),
-        Field::int("summit_count", summit_count as i64),
-        Field::int("elastic_summits", elastic as i64),
-        Field::int("elastic_plastic_summits", elastic_plastic as i64),
-        Field::int("fully_plastic_summits", fully_plastic as i64),
+        dimensionless(names::CONTACTS, in_contact as f64),
+        Field::float(names::REAL_AREA, area_fraction * area, Dimension::Area),
+        dimensionless(names::AREA_FRACTION, area_fraction),
+        Field::float(names::APPARENT_AREA, area, Dimension::Area),
+        Field::float(names::SECTION_AREA, section_area, Dimension::Area),
+        Field::int(names::SUMMIT_COUNT, summit_count as i64),
+        Field::int(names::ELASTIC_SUMMITS, elastic as i64),
+        Field::int(names::ELASTIC_PLASTIC_SUMMITS, elastic_plastic as i64),
+        Field::int(names::FULLY_PLASTIC_SUMMITS, fully_plastic as i64),
     ]);
 }
 
@@ -240,9 +241,9 @@ fn push_local_mu(metrics: &mut Vec<Field>, result: &PerSummitResult) {
     local.sort_by(f64::total_cmp);
     if !local.is_empty() {
         metrics.extend([
-            dimensionless("local_mu_p10", quantile(&local, 0.1)),
-            dimensionless("local_mu_median", quantile(&local, 0.5)),
-            dimensionless("local_mu_p90", quantile(&local, 0.9)),
+            dimensionless(names::LOCAL_MU_P10, quantile(&local, 0.1)),
+            dimensionless(names::LOCAL_MU_MEDIAN, quantile(&local, 0.5)),
+            dimensionless(names::LOCAL_MU_P90, quantile(&local, 0.9)),
         ]);
     }
 }
@@ -264,40 +265,40 @@ fn summits_table_of(
         rows.iter().map(f).collect::<Vec<f64>>()
     };
     let mut t = Table::default();
-    t.push_int("ix", rows.iter().map(|r| r.0.ix as i64).collect());
-    t.push_int("iy", rows.iter().map(|r| r.0.iy as i64).collect());
-    t.push_float("x", Dimension::Length, column(&|r| r.0.x));
-    t.push_float("y", Dimension::Length, column(&|r| r.0.y));
-    t.push_float("height", Dimension::Length, column(&|r| r.0.height));
-    t.push_float("radius", Dimension::Length, column(&|r| r.0.radius));
+    t.push_int(summit_columns::IX, rows.iter().map(|r| r.0.ix as i64).collect());
+    t.push_int(summit_columns::IY, rows.iter().map(|r| r.0.iy as i64).collect());
+    t.push_float(summit_columns::X, Dimension::Length, column(&|r| r.0.x));
+    t.push_float(summit_columns::Y, Dimension::Length, column(&|r| r.0.y));
+    t.push_float(summit_columns::HEIGHT, Dimension::Length, column(&|r| r.0.height));
+    t.push_float(summit_columns::RADIUS, Dimension::Length, column(&|r| r.0.radius));
     t.push_float(
-        "interference",
+        summit_columns::INTERFERENCE,
         Dimension::Length,
         column(&|r| r.1.interference),
     );
     t.push_float(
-        "interference_ratio",
+        summit_columns::INTERFERENCE_RATIO,
         Dimension::Dimensionless,
         column(&|r| r.2.interference_ratio),
     );
     t.push_text(
-        "state",
+        summit_columns::STATE,
         rows.iter()
             .map(|r| state_name(r.2.state).to_string())
             .collect(),
     );
     t.push_float(
-        "normal_force",
+        summit_columns::NORMAL_FORCE,
         Dimension::Force,
         column(&|r| r.2.normal_force),
     );
     t.push_float(
-        "adhesion_force",
+        summit_columns::ADHESION_FORCE,
         Dimension::Force,
         column(&|r| r.2.adhesion_force),
     );
     t.push_float(
-        "friction_force",
+        summit_columns::FRICTION_FORCE,
         Dimension::Force,
         column(&|r| r.2.friction_force.max(0.0)),
     );

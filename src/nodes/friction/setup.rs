@@ -11,6 +11,7 @@ use super::model_spec::resolve_law;
 use super::spec_fields::{positive, spec_error};
 use crate::nodes::validity;
 use crate::units::format_number;
+use crate::vocabulary::roles;
 
 use super::{
     FrictionSpec, FrictionTask, Loads, MethodSetup, Roughness, DEFAULT_ADHESION_ENERGY,
@@ -80,9 +81,9 @@ fn resolve_loads(
 /// Checks the upstream kinds: `lower`/`upper` surfaces, `contact` a contact node.
 fn check_upstream(spec: &FrictionSpec, ctx: &ResolveContext<'_>) -> Result<(), SpecError> {
     let expected = [
-        ("lower", &spec.lower, crate::nodes::surface::KIND),
-        ("upper", &spec.upper, crate::nodes::surface::KIND),
-        ("contact", &spec.contact, crate::nodes::contact::KIND),
+        (roles::LOWER, &spec.lower, crate::nodes::surface::KIND),
+        (roles::UPPER, &spec.upper, crate::nodes::surface::KIND),
+        (roles::CONTACT, &spec.contact, crate::nodes::contact::KIND),
     ];
     let mut index = 0;
     for (role, name, kind) in expected {

@@ -22,6 +22,7 @@ use crate::friction::{
 use crate::nodes::contact_view::NOMINAL_PRESSURE;
 use crate::nodes::surface_view::SurfaceView;
 use crate::units::Dimension;
+use crate::vocabulary::{curve_columns, metrics as names, roles, tables};
 
 use super::{
     beyond_fit_field, coefficient_fields, float_metric, input, FrictionTask, Loads, Roughness,
@@ -41,7 +42,7 @@ fn moments(surface: &Artifact, role: &str) -> Result<SpectralMoments, NodeError>
 }
 
 fn surface_area(surface: &Artifact) -> Result<f64, NodeError> {
-    Ok(SurfaceView::of(surface, "lower")?.area())
+    Ok(SurfaceView::of(surface, roles::LOWER)?.area())
 }
 
 /// The summit statistics and the nominal area of the node.
@@ -57,10 +58,10 @@ fn roughness_and_area(
             Ok((*s, area))
         }
         Roughness::Surfaces { lower, upper } => {
-            let lower_surface = input(inputs, *lower, "lower")?;
-            let mut m = moments(lower_surface, "lower")?;
+            let lower_surface = input(inputs, *lower, roles::LOWER)?;
+            let mut m = moments(lower_surface, roles::LOWER)?;
             if let Some(u) = upper {
-                m = m.combined_with(&moments(input(inputs, *u, "upper")?, "upper")?);
+                m = m.combined_with(&moments(input(inputs, *u, roles::UPPER)?, roles::UPPER)?);
             }
             let summits = SummitStatistics::from_spectral_moments(&m)
                 .map_err(|e| NodeError::new(format!("summit statistics: {e}")))?;
@@ -96,7 +97,7 @@ pub(super) fn compute(
         Loads::Pressures(p) => p.iter().map(|p| p * area).collect(),
         Loads::Forces(f) => f.clone(),
         Loads::FromContact(c) => {
-            vec![float_metric(input(inputs, *c, "contact")?, NOMINAL_PRESSURE, "contact")? * area]
+            vec![float_metric(input(inputs, *c, roles::CONTACT)?, NOMINAL_PRESSURE, roles::CONTACT)? * area]
         }
     };
     let results = solve_each_load(&model, &forces, area)?;
@@ -112,7 +113,7 @@ pub(super) fn compute(
     metrics.extend(coefficient_fields(mu_s));
     metrics.extend(result_fields(last, &summits, area));
     if results.len() > 1 {
-        tables.insert(String::from("curve"), curve_table(&results, area)?);
+        tables.insert(String::from(tables::CURVE), curve_table(&results, area)?);
     }
     Ok(())
 }
@@ -145,77 +146,77 @@ fn result_fields(last: &StaticFrictionResult, summits: &SummitStatistics, area: 
     let n = |name: &'static str, v: f64| Field::float(name, v, Dimension::Dimensionless);
     vec![
         beyond_fit_field(last.load_beyond_fit, last.contact_load),
-        Field::float("external_load", last.external_load, Dimension::Force),
+        Field::float(names::EXTERNAL_LOAD, last.external_load, Dimension::Force),
         Field::float(
-            "nominal_pressure",
+            names::NOMINAL_PRESSURE,
             last.external_load / area,
             Dimension::Pressure,
         ),
-        Field::float("normal_load", last.contact_load, Dimension::Force),
-        Field::float("adhesion_force", last.adhesion_force, Dimension::Force),
+        Field::float(names::NORMAL_LOAD, last.contact_load, Dimension::Force),
+        Field::float(names::ADHESION_FORCE, last.adhesion_force, Dimension::Force),
         Field::float(
-            "friction_force",
+            names::FRICTION_FORCE,
             last.static_friction_force.max(0.0),
             Dimension::Force,
         ),
         Field::float(
-            "separation",
+            names::SEPARATION,
             last.separation_from_heights,
             Dimension::Length,
         ),
-        n("d_star", last.d_star),
-        n("plasticity_index", last.plasticity_index),
-        n("contacts", last.contacting_summits),
-        Field::float("real_area", last.real_contact_area, Dimension::Area),
-        n("area_fraction", last.real_contact_area / area),
-        Field::float("apparent_area", area, Dimension::Area),
-        Field::float("gw_sigma", summits.sigma, Dimension::Length),
-        Field::float("gw_sigma_s", summits.sigma_s, Dimension::Length),
-        Field::float("gw_summit_radius", summits.radius, Dimension::Length),
-        Field::float("gw_summit_density", summits.density, Dimension::InverseArea),
-        n("gw_beta", summits.beta),
-        Field::int("roots_found", last.status.roots_found as i64),
-        Field::int("iterations", last.status.brent_iterations as i64),
-        n("residual", last.status.relative_residual),
-        n("integral_error", last.status.max_integral_relative_error),
+        n(names::D_STAR, last.d_star),
+        n(names::PLASTICITY_INDEX, last.plasticity_index),
+        n(names::CONTACTS, last.contacting_summits),
+        Field::float(names::REAL_AREA, last.real_contact_area, Dimension::Area),
+        n(names::AREA_FRACTION, last.real_contact_area / area),
+        Field::float(names::APPARENT_AREA, area, Dimension::Area),
+        Field::float(names::GW_SIGMA, summits.sigma, Dimension::Length),
+        Field::float(names::GW_SIGMA_S, summits.sigma_s, Dimension::Length),
+        Field::float(names::GW_SUMMIT_RADIUS, summits.radius, Dimension::Length),
+        Field::float(names::GW_SUMMIT_DENSITY, summits.density, Dimension::InverseArea),
+        n(names::GW_BETA, summits.beta),
+        Field::int(names::ROOTS_FOUND, last.status.roots_found as i64),
+        Field::int(names::ITERATIONS, last.status.brent_iterations as i64),
+        n(names::RESIDUAL, last.status.relative_residual),
+        n(names::INTEGRAL_ERROR, last.status.max_integral_relative_error),
     ]
 }
 
 fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, NodeError> {
     let column = |f: fn(&StaticFrictionResult) -> f64| results.iter().map(f).collect::<Vec<_>>();
     let mut t = Table::default();
-    t.push_int("point", (0..results.len() as i64).collect());
+    t.push_int(curve_columns::POINT, (0..results.len() as i64).collect());
     t.push_float(
-        "external_load",
+        names::EXTERNAL_LOAD,
         Dimension::Force,
         column(|r| r.external_load),
     );
     t.push_float(
-        "nominal_pressure",
+        names::NOMINAL_PRESSURE,
         Dimension::Pressure,
         results.iter().map(|r| r.external_load / area).collect(),
     );
     let mu: Option<Vec<f64>> = results.iter().map(|r| r.mu_s).collect();
     let mu = mu.ok_or_else(|| NodeError::new("a curve load is not compressive"))?;
     t.push_float(
-        "mu_s",
+        names::MU_S,
         Dimension::Dimensionless,
         mu.iter().map(|m| m.max(0.0)).collect(),
     );
-    t.push_float("mu_s_computed", Dimension::Dimensionless, mu);
-    t.push_float("normal_load", Dimension::Force, column(|r| r.contact_load));
+    t.push_float(names::MU_S_COMPUTED, Dimension::Dimensionless, mu);
+    t.push_float(names::NORMAL_LOAD, Dimension::Force, column(|r| r.contact_load));
     t.push_float(
-        "adhesion_force",
+        names::ADHESION_FORCE,
         Dimension::Force,
         column(|r| r.adhesion_force),
     );
     t.push_float(
-        "friction_force",
+        names::FRICTION_FORCE,
         Dimension::Force,
         column(|r| r.static_friction_force.max(0.0)),
     );
     t.push_float(
-        "load_share_beyond_fit",
+        names::LOAD_SHARE_BEYOND_FIT,
         Dimension::Dimensionless,
         column(|r| {
             if r.contact_load > 0.0 {
@@ -226,34 +227,34 @@ fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, Nod
         }),
     );
     t.push_float(
-        "separation",
+        names::SEPARATION,
         Dimension::Length,
         column(|r| r.separation_from_heights),
     );
     t.push_float(
-        "contacts",
+        names::CONTACTS,
         Dimension::Dimensionless,
         column(|r| r.contacting_summits),
     );
     t.push_float(
-        "real_area",
+        names::REAL_AREA,
         Dimension::Area,
         column(|r| r.real_contact_area),
     );
     t.push_float(
-        "area_fraction",
+        names::AREA_FRACTION,
         Dimension::Dimensionless,
         results.iter().map(|r| r.real_contact_area / area).collect(),
     );
     t.push_int(
-        "iterations",
+        names::ITERATIONS,
         results
             .iter()
             .map(|r| r.status.brent_iterations as i64)
             .collect(),
     );
     t.push_float(
-        "residual",
+        names::RESIDUAL,
         Dimension::Dimensionless,
         column(|r| r.status.relative_residual),
     );

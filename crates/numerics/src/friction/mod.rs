@@ -7,14 +7,16 @@
 //!   two surfaces combined by adding moments;
 //! * [`material`] — composite modulus, hardness factor K, critical values ω_c, P_c, A_c, plasticity
 //!   index ψ (with σ_s), Tabor's yield strength Y = H/2.8, adhesion parameters Δγ, ε;
-//! * [`asperity_laws`] — single-asperity laws (KE 2002 load/area, KE 2003 adhesion, DMT/LJ,
-//!   KE 2004 Q_max literal/clipped, CEB), with what was confirmed from the literature;
-//! * [`jackson_green`] — Jackson–Green 2005 elastic–plastic sphere (load, area, hardness);
-//! * [`full_stick`] — Brizmer–Kligerman–Etsion full-stick critical values and stick load fit,
-//!   the Jackson–Green hand-over beyond ω* = 110, and the parameterised μ(P*) = a coth(a P*^b);
-//! * [`laws`] — the friction laws as an open set: the [`FrictionLaw`] trait, the single-asperity
-//!   laws as ratios to the KE critical values ([`AsperityLaws`]), each law's descriptor (name,
-//!   [`ModelBasis`], methods, parameters) and the one registry [`laws::LAWS`];
+//! * [`adhesion`] — the Kogut–Etsion 2003 adhesion fits of a contacting asperity and the
+//!   DMT / Lennard-Jones force of a non-contacting one;
+//! * [`laws`] — the friction laws as an open set: the [`FrictionLaw`] trait, its per-spot types
+//!   ([`laws::spot`]), the single-asperity laws as ratios to the KE critical values
+//!   ([`AsperityLaws`]), and one room per law beside its descriptor (name, [`ModelBasis`],
+//!   methods, parameters): Kogut–Etsion (KE 2002 load/area, KE 2004 Q_max), CEB, full stick
+//!   (Brizmer–Kligerman–Etsion with the Jackson–Green 2005 hand-over and the parameterised
+//!   μ(P*) = a coth(a P*^b)), junction shear, ploughing (its closed forms, the deformation part
+//!   per spot and each spot's geometry along the sliding direction); the one registry
+//!   [`laws::LAWS`];
 //! * [`statistical_integrals`] — P(d*), A(d*), F_s(d*), Q_max(d*), N(d*) and the load beyond the
 //!   validated range, for every model;
 //! * [`net_load_grid`] — P − F_s on a d* grid, evaluated lazily (most points need P only);
@@ -24,9 +26,6 @@
 //! * [`contact_spots`] — connected contact spots of a contact solution with their load, area and
 //!   radius, and the Lennard-Jones adhesion across its gap;
 //! * [`per_spot`] — a law's tangential capacity per contact spot, summed over a section;
-//! * [`spot_slope`] — each spot's tilt along a sliding direction and its attack slope;
-//! * [`ploughing_laws`] — cone and sphere ploughing (Bowden–Tabor), the inclined junction;
-//! * [`deformation`] — those laws per contact spot, added to an adhesion part;
 //! * `quadrature`, `root_finding` (crate-private) — adaptive Gauss–Kronrod and Brent (own implementations).
 //!
 //! The Li–Etsion–Talke (2010) model itself is not implemented (its equations were not found);
@@ -34,53 +33,49 @@
 //!
 //! All quantities are SI; nothing here prints, reads files or knows about the study engine.
 
-pub mod asperity_laws;
+pub mod adhesion;
 pub mod contact_spots;
-pub mod deformation;
 pub mod error;
-pub mod full_stick;
 pub mod gw_functions;
-pub mod jackson_green;
 pub mod laws;
 pub mod material;
 pub mod net_load_grid;
 mod paraboloid_fit;
 pub mod per_spot;
 pub mod per_summit;
-pub mod ploughing_laws;
 pub(crate) mod quadrature;
 pub(crate) mod root_finding;
 pub mod solve_settings;
-pub mod spot_slope;
 pub mod static_friction;
 pub mod statistical_integrals;
 pub mod summit_statistics;
 
-pub use asperity_laws::{AdhesionBeyondFits, DeformationState, StaticFrictionForm};
+pub use adhesion::AdhesionBeyondFits;
 pub use contact_spots::{Connectivity, ContactSpot, SpotLabels};
-pub use deformation::{
+pub use error::FrictionError;
+pub use gw_functions::{gw_function, upper_tail_probability, INTEGRAL_REL_TOL};
+pub use laws::full_stick::jackson_green::JacksonGreenLaw;
+pub use laws::full_stick::stick::{FullStickLaw, StickFrictionLaw};
+pub use laws::kogut_etsion::{DeformationState, StaticFrictionForm};
+pub use laws::ploughing::deformation::{
     deformation_friction, DeformationLaw, DeformationResult, DeformationSpot, SpotDeformation,
 };
-pub use error::FrictionError;
-pub use full_stick::{FullStickLaw, StickFrictionLaw};
-pub use gw_functions::{gw_function, upper_tail_probability, INTEGRAL_REL_TOL};
-pub use jackson_green::JacksonGreenLaw;
+pub use laws::ploughing::spot_slope::spot_slopes;
+pub use laws::spot::{SlidingDirection, SpotSlope};
 pub use laws::{
     find_law, law_names, AsperityLaws, ChangEtsionBogy, FrictionLaw, FullStick, FullStickOptions,
-    JunctionShear, KogutEtsion, LawDescriptor, LawInputs, Method, ModelBasis, Ploughing, LAWS,
+    JunctionShear, KogutEtsion, LawDescriptor, LawInputs, Method, ModelBasis, Ploughing,
+    SpotFriction, SpotLoad, LAWS,
 };
 pub use material::{AdhesionParameters, CriticalValues, Material, TABOR_FACTOR};
 pub use net_load_grid::{net_load, GridEvaluations, NetLoadGrid};
-pub use per_spot::{
-    per_spot_friction, per_spot_friction_on_slopes, PerSpotResult, SpotFriction, SpotLoad,
-};
+pub use per_spot::{per_spot_friction, per_spot_friction_on_slopes, PerSpotResult};
 pub use per_summit::{
     per_summit_friction, summit_friction, summit_interference, PerSummitResult, SummitContact,
     SummitFriction,
 };
 pub use quadrature::QuadratureOutcome;
 pub use solve_settings::SolveSettings;
-pub use spot_slope::{spot_slopes, SlidingDirection, SpotSlope};
 pub use static_friction::{
     static_friction, static_friction_at_pressure, static_friction_curve, static_friction_on_grid,
     SolveStatus, StaticFrictionResult,

@@ -4,11 +4,11 @@
 //!
 //! A contact spot is a connected set of points with p > 0 ([`super::contact_spots`]); its load
 //! P_i = Σ p dA and area A_i are exact results of the contact solution and its radius R_i comes
-//! from the composite topography. Each spot gets the tangential capacity Q_i of the chosen law
-//! ([`FrictionLaw::spot_friction`]), e.g.:
+//! from the composite topography ([`SpotLoad`]). This file only sums a section: each spot gets
+//! the tangential capacity Q_i of the chosen law ([`FrictionLaw::spot_friction`]), e.g.:
 //!
 //! * **full stick**: Q_i = μ(P_i*) P_i with P_i* = P_i/L_c(R_i), L_c = L̄_c P_c(R_i)
-//!   ([`super::full_stick`]);
+//!   ([`super::laws::full_stick`]);
 //! * **junction shear** (Bowden–Tabor): Q_i = τ_s A_i, every junction fails in shear at the
 //!   interfacial shear strength τ_s; no radius is needed;
 //! * **Kogut–Etsion / CEB**: the interference x_i that gives P_i under the model's load law
@@ -21,38 +21,12 @@
 //! topography gives no convex radius cannot be assigned a radius-dependent law: it carries no Q
 //! (a lower bound) and its load is reported (`load_without_radius`). Spots beyond the validated
 //! range of the law add their load to `load_beyond_fit`: full stick P_i* above the stick load fit
-//! at ω* = 110; KE/CEB x_i above [`AsperityLaws::fit_limit`]; junction shear has no fitted
+//! at ω* = 110; KE/CEB x_i above the fit limit of their asperity laws; junction shear has no fitted
 //! range. One-pixel spots are resolution-limited: their number and load are reported.
 
-use super::contact_spots::ContactSpot;
 use super::error::FrictionError;
-use super::laws::{AsperityLaws, FrictionLaw};
-use super::material::Material;
-use super::spot_slope::SpotSlope;
-
-/// One contact spot as the per-spot model needs it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SpotLoad {
-    /// Normal load P_i = Σ p dA (N).
-    pub load: f64,
-    /// Contact area A_i (m²).
-    pub area: f64,
-    /// Radius of the composite topography at the spot (m); `None`: not convex.
-    pub radius: Option<f64>,
-    /// Number of grid points in the spot.
-    pub pixels: usize,
-}
-
-/// Friction of one spot.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SpotFriction {
-    /// Tangential capacity Q_i (N).
-    pub friction_force: f64,
-    /// Dimensionless load P_i* = P_i/L_c (full stick), x_i (KE/CEB); `None` otherwise.
-    pub load_measure: Option<f64>,
-    /// Whether the spot lies beyond the validated range of the law.
-    pub beyond_fit: bool,
-}
+use super::laws::law::FrictionLaw;
+use super::laws::spot::{SpotFriction, SpotLoad, SpotSlope};
 
 /// The per-spot result of a section.
 #[derive(Debug, Clone, PartialEq)]
@@ -86,60 +60,6 @@ pub struct PerSpotResult {
     pub total_deformation_force: f64,
 }
 
-impl From<&ContactSpot> for SpotLoad {
-    fn from(spot: &ContactSpot) -> Self {
-        Self {
-            load: spot.load,
-            area: spot.area,
-            radius: spot.radius,
-            pixels: spot.pixels,
-        }
-    }
-}
-
-/// Q and x of one spot under an interference-driven law (Kogut–Etsion, CEB): the interference
-/// x_i that gives P_i under the law's load law (smallest x with P_c(R_i)·(P/P_c)(x) ≥ P_i), then
-/// Q_i = P_c(R_i)·(Q/P_c)(x_i); beyond the fit when x_i exceeds [`AsperityLaws::fit_limit`].
-/// `None` without a radius.
-pub fn interference_spot_friction(
-    laws: &dyn AsperityLaws,
-    material: &Material,
-    spot: &SpotLoad,
-) -> Option<SpotFriction> {
-    let critical = material.critical_values(spot.radius?).load;
-    let x = interference_for_load(laws, spot.load / critical);
-    Some(SpotFriction {
-        friction_force: critical * laws.friction_ratio(x),
-        load_measure: Some(x),
-        beyond_fit: x > laws.fit_limit(),
-    })
-}
-
-/// The smallest x with (P/P_c)(x) ≥ `load_ratio` (bisection to rounding; the load laws of KE and
-/// CEB rise monotonically with upward jumps).
-pub fn interference_for_load(laws: &dyn AsperityLaws, load_ratio: f64) -> f64 {
-    if load_ratio <= 0.0 {
-        return 0.0;
-    }
-    let mut hi = 1.0;
-    while laws.load_ratio(hi) < load_ratio && hi < 1e300 {
-        hi *= 2.0;
-    }
-    let mut lo = 0.0;
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if laws.load_ratio(mid) >= load_ratio {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    hi
-}
-
 /// The per-spot model of a section: `spots` with the section's adhesion force `adhesion_force`
 /// (N, ≥ 0). Errors on a non-finite or negative spot load or area.
 pub fn per_spot_friction(
@@ -151,7 +71,7 @@ pub fn per_spot_friction(
 }
 
 /// [`per_spot_friction`] for a law with a deformation part: each spot with its geometry along
-/// the law's sliding direction (`slopes[i]` of `spots[i]`, [`super::spot_slope::spot_slopes`]),
+/// the law's sliding direction (`slopes[i]` of `spots[i]`, [`super::laws::ploughing::spot_slope::spot_slopes`]),
 /// [`FrictionLaw::sloped_spot_friction`]; the deformation parts are summed apart. Errors also
 /// when the lists differ in length.
 pub fn per_spot_friction_on_slopes(

@@ -28,11 +28,12 @@
 //! large-area limit to compare against. The per-summit distribution summary is reported to show how
 //! concentrated the friction capacity is.
 
-use super::asperity_laws::{
-    contacting_adhesion_ratio, lennard_jones_adhesion_ratio, AdhesionBeyondFits, DeformationState,
+use super::adhesion::{
+    contacting_adhesion_ratio, lennard_jones_adhesion_ratio, AdhesionBeyondFits,
 };
 use super::error::{require_positive, FrictionError};
-use super::laws::AsperityLaws;
+use super::laws::asperity::AsperityLaws;
+use super::laws::kogut_etsion::DeformationState;
 use super::material::{AdhesionParameters, Material};
 
 /// One identified summit with its interference from the contact solution.

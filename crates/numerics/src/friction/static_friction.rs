@@ -16,7 +16,7 @@
 //! refined by golden section; a minimum beyond the top of the grid is not searched); μ_s is
 //! reported only for a compressive load F > 0 (it is `None` for a tensile load). With the
 //! literal KE 2004 Q_max at high ψ, Q_max and μ_s can come out negative; the library reports them
-//! as computed (see [`super::asperity_laws`]) and the callers decide how to present them.
+//! as computed (see [`super::laws::kogut_etsion`]) and the callers decide how to present them.
 //!
 //! μ(F) curves reuse one table for all loads: every net-load evaluation made by Brent is inserted
 //! into it, so later loads start from narrower brackets (each extra load costs a few iterations).

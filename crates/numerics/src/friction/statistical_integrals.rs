@@ -25,15 +25,16 @@
 
 use std::sync::Arc;
 
-use super::asperity_laws::{
+use super::adhesion::{
     contacting_adhesion_ratio, contacting_adhesion_ratio_max, lennard_jones_adhesion_ratio,
-    AdhesionBeyondFits, KE_BREAKPOINTS,
+    AdhesionBeyondFits,
 };
 use super::error::{require_positive, FrictionError};
 use super::gw_functions::{
     normal_pdf, upper_tail_probability, GAUSSIAN_CUT, GAUSSIAN_FEATURES, INTEGRAL_REL_TOL,
 };
-use super::laws::AsperityLaws;
+use super::laws::asperity::AsperityLaws;
+use super::laws::kogut_etsion::KE_BREAKPOINTS;
 use super::material::{AdhesionParameters, CriticalValues, Material};
 use super::quadrature::{
     breakpoints, integrate, pieces_graded_at_start, Grading, Piece, QuadratureOutcome,

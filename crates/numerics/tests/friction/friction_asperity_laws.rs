@@ -1,8 +1,13 @@
 //! Single-asperity laws: values and the documented behaviour at the breakpoints x = 1, 6, 110.
 
-use asperity_numerics::friction::asperity_laws::{
-    ceb_area_ratio, ceb_load_ratio, ceb_static_friction_ratio, contacting_adhesion_ratio,
-    ke_area_ratio, ke_load_ratio, ke_static_friction_ratio, lennard_jones_adhesion_ratio,
+use asperity_numerics::friction::adhesion::{
+    contacting_adhesion_ratio, lennard_jones_adhesion_ratio,
+};
+use asperity_numerics::friction::laws::chang_etsion_bogy::{
+    ceb_area_ratio, ceb_load_ratio, ceb_static_friction_ratio,
+};
+use asperity_numerics::friction::laws::kogut_etsion::{
+    ke_area_ratio, ke_load_ratio, ke_static_friction_ratio,
 };
 use asperity_numerics::friction::{AdhesionBeyondFits, DeformationState, StaticFrictionForm};
 
@@ -104,7 +109,7 @@ fn static_friction_polynomial_shape() {
     ));
     assert!(close(ke_static_friction_ratio(2.5821, lit), 0.94695, 1e-5));
     // The documented zero (clipped-form kink) is a root to rounding: |p| ≤ 1e-14 (p' ≈ −0.9 there).
-    let zero = asperity_numerics::friction::asperity_laws::KE_STATIC_FRICTION_ZERO;
+    let zero = asperity_numerics::friction::laws::kogut_etsion::KE_STATIC_FRICTION_ZERO;
     assert!(ke_static_friction_ratio(zero, lit).abs() < 1e-14);
     assert!(ke_static_friction_ratio(4.29, lit) > 0.0);
     assert!(ke_static_friction_ratio(4.30, lit) < 0.0);

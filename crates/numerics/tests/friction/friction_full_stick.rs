@@ -3,8 +3,8 @@
 //! Closed forms are compared to 1e-12 relative (pure arithmetic); documented jumps to the digits
 //! the docs state.
 
-use asperity_numerics::friction::full_stick::{stick_factors, STICK_LOAD_FIT_LIMIT};
-use asperity_numerics::friction::per_spot::interference_for_load;
+use asperity_numerics::friction::laws::full_stick::stick::{stick_factors, STICK_LOAD_FIT_LIMIT};
+use asperity_numerics::friction::laws::interference::interference_for_load;
 use asperity_numerics::friction::{
     per_spot_friction, AsperityLaws, FrictionError, FullStick, FullStickLaw, FullStickOptions,
     JacksonGreenLaw, JunctionShear, KogutEtsion, Material, SpotLoad, StaticFrictionForm,

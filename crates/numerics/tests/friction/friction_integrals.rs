@@ -4,9 +4,14 @@
 //! integrand changes sign, so its own absolute scale is the meaningful reference). The library
 //! integrates to 1e-10 relative and the Simpson grids below are fine enough to be far below 1e-8.
 
-use asperity_numerics::friction::asperity_laws::{
-    ceb_area_ratio, ceb_load_ratio, ceb_static_friction_ratio, contacting_adhesion_ratio,
-    ke_area_ratio, ke_load_ratio, ke_static_friction_ratio, lennard_jones_adhesion_ratio,
+use asperity_numerics::friction::adhesion::{
+    contacting_adhesion_ratio, lennard_jones_adhesion_ratio,
+};
+use asperity_numerics::friction::laws::chang_etsion_bogy::{
+    ceb_area_ratio, ceb_load_ratio, ceb_static_friction_ratio,
+};
+use asperity_numerics::friction::laws::kogut_etsion::{
+    ke_area_ratio, ke_load_ratio, ke_static_friction_ratio,
 };
 use asperity_numerics::friction::{
     AdhesionBeyondFits, AdhesionParameters, Material, StaticFrictionForm, StatisticalModel,

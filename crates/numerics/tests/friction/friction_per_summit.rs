@@ -1,9 +1,9 @@
 //! Per-summit model: per-summit forces from the single-asperity laws, force-weighted μ, states.
 
-use asperity_numerics::friction::asperity_laws::{
-    contacting_adhesion_ratio, ke_load_ratio, ke_static_friction_ratio,
-    lennard_jones_adhesion_ratio,
+use asperity_numerics::friction::adhesion::{
+    contacting_adhesion_ratio, lennard_jones_adhesion_ratio,
 };
+use asperity_numerics::friction::laws::kogut_etsion::{ke_load_ratio, ke_static_friction_ratio};
 use asperity_numerics::friction::{
     per_summit_friction, AdhesionBeyondFits, AdhesionParameters, ChangEtsionBogy, DeformationState,
     FrictionError, KogutEtsion, Material, StaticFrictionForm, SummitContact,

@@ -4,7 +4,7 @@
 //! flat through the whole per-spot chain (spots, slopes, adhesion part, deformation part).
 
 use asperity_numerics::friction::contact_spots::{label_spots, measure_spots, Connectivity};
-use asperity_numerics::friction::ploughing_laws::{
+use asperity_numerics::friction::laws::ploughing::closed_forms::{
     cone_ploughing, sphere_ploughing, tilted_junction,
 };
 use asperity_numerics::friction::{

@@ -6,11 +6,13 @@
 
 use std::sync::Arc;
 
-use super::parameters::{NumberRange, ParameterKind, ParameterSpec, ParameterValue, Unit};
-use super::{AsperityLaws, FrictionError, FrictionLaw, LawDescriptor, LawInputs, Method};
-use super::{ModelBasis, ReportedValue};
-use crate::friction::error::require_non_negative;
-use crate::friction::per_spot::{SpotFriction, SpotLoad};
+use super::asperity::AsperityLaws;
+use super::law::{FrictionLaw, LawDescriptor, LawInputs, Method, ModelBasis};
+use super::parameters::{
+    NumberRange, ParameterKind, ParameterSpec, ParameterValue, ReportedValue, Unit,
+};
+use super::spot::{SpotFriction, SpotLoad};
+use crate::friction::error::{require_non_negative, FrictionError};
 
 /// The registry entry.
 pub(super) const LAW: LawDescriptor = LawDescriptor {

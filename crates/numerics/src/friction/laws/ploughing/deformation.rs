@@ -2,21 +2,21 @@
 //! (docs/friction-models.md, "Deformation part").
 //!
 //! Each spot `i` of a contact solution carries its load `P_i`, area `A_i` (hence
-//! `a_i = √(A_i/π)`), paraboloid radius `R_i` ([`super::contact_spots`]), the tilt `tan θ_i` of
+//! `a_i = √(A_i/π)`), paraboloid radius `R_i` ([`crate::friction::contact_spots`]), the tilt `tan θ_i` of
 //! its junction plane along the sliding direction and its attack slope `tan α_i`
 //! ([`super::spot_slope`]), and the tangential capacity `Q_a,i` an adhesion law gave it
-//! ([`super::per_spot`]); `μ_a,i = Q_a,i/P_i`. A [`DeformationLaw`] adds a deformation force
+//! ([`crate::friction::per_spot`]); `μ_a,i = Q_a,i/P_i`. A [`DeformationLaw`] adds a deformation force
 //! `Q_d,i`:
 //!
 //! * **sphere ploughing** (additive split): `Q_d,i = μ_p(a_i/R_i) P_i`
-//!   ([`super::ploughing_laws::sphere_ploughing`]); needs a convex radius;
+//!   ([`super::closed_forms::sphere_ploughing`]); needs a convex radius;
 //! * **cone ploughing** (additive split): `Q_d,i = (2/π) tan α_i · P_i`
-//!   ([`super::ploughing_laws::cone_ploughing`]);
+//!   ([`super::closed_forms::cone_ploughing`]);
 //! * **groove ploughing** (additive split): `Q_d,i = (2 A_side,i/A_i) P_i`, the Bowden–Tabor
 //!   ratio of the spot's own cap along the sliding direction, of which the cone and the sphere
 //!   are the closed forms;
 //! * **tilted junction** (composition): `Q_i = P_i tan(φ_i + θ_i)`, `tan φ_i = μ_a,i`, so
-//!   `Q_d,i = Q_i − Q_a,i` ([`super::ploughing_laws::tilted_junction`]); needs a plane.
+//!   `Q_d,i = Q_i − Q_a,i` ([`super::closed_forms::tilted_junction`]); needs a plane.
 //!
 //! The additive split `μ = μ_adhesion + μ_deformation` is Bowden and Tabor's first
 //! approximation (the two parts interact; they say so themselves); the tilted junction composes
@@ -26,16 +26,15 @@
 //! load); a down-slope spot steeper than its friction angle then pushes forward (`Q_i < 0`).
 //!
 //! The section's coefficient is Coulomb's law for the whole section as in
-//! [`super::per_spot`]: `μ_s = Σ(Q_a,i + Q_d,i)/(Σ P_i − F_a)`, split into
+//! [`crate::friction::per_spot`]: `μ_s = Σ(Q_a,i + Q_d,i)/(Σ P_i − F_a)`, split into
 //! `μ_adhesion = Σ Q_a,i/(Σ P_i − F_a)` and `μ_deformation = Σ Q_d,i/(Σ P_i − F_a)`. A spot
 //! without the geometry its law needs carries no deformation part (its number and load are
 //! reported); so does a spot outside the law's range — a sphere cap with `a_i > R_i`, a locked
 //! junction (`φ_i + θ_i ≥ 90°`) — then `μ_deformation` is a lower bound and the row says so.
 
-use super::error::FrictionError;
-use super::laws::ModelBasis;
-use super::ploughing_laws::{cone_ploughing, sphere_ploughing, tilted_junction};
-use super::spot_slope::contact_radius;
+use super::closed_forms::{cone_ploughing, sphere_ploughing, tilted_junction};
+use crate::friction::error::FrictionError;
+use crate::friction::laws::spot::contact_radius;
 
 /// How the deformation part of a spot is computed (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -58,11 +57,6 @@ impl DeformationLaw {
         ("sphere", Self::SpherePloughing),
         ("tilted_junction", Self::TiltedJunction),
     ];
-
-    /// How far the law's constants are confirmed: textbook laws without fitted constants.
-    pub fn basis(self) -> ModelBasis {
-        ModelBasis::TextbookLaw
-    }
 
     /// The law called `name` in [`Self::NAMED`].
     pub fn named(name: &str) -> Option<Self> {

@@ -1,6 +1,6 @@
 //! `full_stick`: the Brizmer–Kligerman–Etsion full-stick asperity with the Jackson–Green
-//! hand-over beyond ω* = 110 and μ(P*) = a coth(a P*^b) (equations and status:
-//! [`crate::friction::full_stick`]). Parameters: `a`, `b` of μ(P*), attributed defaults that
+//! hand-over beyond ω* = 110 and μ(P*) = a coth(a P*^b) (equations and status: [`stick`] and
+//! [`jackson_green`]). Parameters: `a`, `b` of μ(P*), attributed defaults that
 //! could not be confirmed, hence [`ModelBasis::ParameterisedUnverified`].
 //!
 //! Its laws are ratios to the BKE slip critical values; in Kogut–Etsion ratios, with
@@ -10,12 +10,18 @@
 
 use std::sync::Arc;
 
-use super::parameters::{NumberRange, ParameterKind, ParameterSpec, ParameterValue, Unit};
-use super::{AsperityLaws, FrictionError, FrictionLaw, LawDescriptor, LawInputs, Method};
-use super::{ModelBasis, ReportedValue};
-use crate::friction::full_stick::{FullStickLaw, StickFrictionLaw, STICK_LOAD_FIT_LIMIT};
+pub mod jackson_green;
+pub mod stick;
+
+use super::asperity::AsperityLaws;
+use super::law::{FrictionLaw, LawDescriptor, LawInputs, Method, ModelBasis};
+use super::parameters::{
+    NumberRange, ParameterKind, ParameterSpec, ParameterValue, ReportedValue, Unit,
+};
+use super::spot::{SpotFriction, SpotLoad};
+use crate::friction::error::FrictionError;
 use crate::friction::material::Material;
-use crate::friction::per_spot::{SpotFriction, SpotLoad};
+use stick::{FullStickLaw, StickFrictionLaw, STICK_LOAD_FIT_LIMIT};
 
 /// The registry entry.
 pub(super) const LAW: LawDescriptor = LawDescriptor {

@@ -1,6 +1,6 @@
 //! `ploughing`: Bowden–Tabor friction of a contact spot in two parts, the adhesion part of
 //! junction shear Q_a,i = τ_s A_i (τ_s = c·k, as `junction_shear`) and a deformation part from
-//! the spot's geometry along the sliding direction ([`crate::friction::deformation`]): the
+//! the spot's geometry along the sliding direction ([`deformation`]): the
 //! groove of the spot's own cap (default), a cone of its attack slope or a sphere of its radius,
 //! each added (Bowden–Tabor's split), or the junction tilted by its plane, composed. Per spot
 //! only; textbook laws without fitted constants (docs/friction-models.md, "Deformation part").
@@ -11,13 +11,19 @@
 use std::f64::consts::TAU;
 use std::sync::Arc;
 
-use super::junction_shear::INTERFACE_FACTOR;
-use super::parameters::{NumberRange, ParameterKind, ParameterSpec, ParameterValue, Unit};
-use super::{AsperityLaws, FrictionError, FrictionLaw, LawDescriptor, LawInputs, Method};
-use super::{JunctionShear, ModelBasis, ReportedValue};
-use crate::friction::deformation::{DeformationLaw, DeformationSpot};
-use crate::friction::per_spot::{SpotFriction, SpotLoad};
-use crate::friction::spot_slope::{SlidingDirection, SpotSlope};
+pub mod closed_forms;
+pub mod deformation;
+pub mod spot_slope;
+
+use super::asperity::AsperityLaws;
+use super::junction_shear::{JunctionShear, INTERFACE_FACTOR};
+use super::law::{FrictionLaw, LawDescriptor, LawInputs, Method, ModelBasis};
+use super::parameters::{
+    NumberRange, ParameterKind, ParameterSpec, ParameterValue, ReportedValue, Unit,
+};
+use super::spot::{SlidingDirection, SpotFriction, SpotLoad, SpotSlope};
+use crate::friction::error::FrictionError;
+use deformation::{DeformationLaw, DeformationSpot};
 
 /// The registry entry.
 pub(super) const LAW: LawDescriptor = LawDescriptor {

@@ -27,9 +27,9 @@
 //! Every law here is a ratio to the slip critical values (ω_c, P_c, A_c = π R ω_c) of the radius
 //! at hand; those ratios depend on ν and Y/E' only.
 
-use super::error::{require_positive, FrictionError};
-use super::jackson_green::JacksonGreenLaw;
-use super::material::CriticalValues;
+use super::jackson_green::{JacksonGreenLaw, JG_ELASTIC_LIMIT};
+use crate::friction::error::{require_positive, FrictionError};
+use crate::friction::material::CriticalValues;
 
 /// Upper end of the stick load fit, ω* = ω/ω_c,stick = 110.
 pub const STICK_LOAD_FIT_LIMIT: f64 = 110.0;
@@ -229,7 +229,7 @@ impl FullStickLaw {
         [
             self.stick_interference_factor,
             self.stick_interference_factor * STICK_LOAD_FIT_LIMIT,
-            super::jackson_green::JG_ELASTIC_LIMIT
+            JG_ELASTIC_LIMIT
                 * self.jackson_green.critical_interference_over_radius
                 / self.critical_interference_over_radius,
         ]

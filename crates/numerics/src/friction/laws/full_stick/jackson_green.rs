@@ -25,7 +25,7 @@
 //! large ω* (≈ 3000 at Y/E' = 0.005) a/R passes 1 — [`JacksonGreenLaw::contact_radius_ratio`]
 //! lets callers report it.
 
-use super::error::{require_positive, FrictionError};
+use crate::friction::error::{require_positive, FrictionError};
 
 /// The Jackson–Green break between the Hertz and the elastic–plastic branch, ω* = 1.9.
 pub const JG_ELASTIC_LIMIT: f64 = 1.9;

@@ -1,10 +1,10 @@
 //! The geometry of each contact spot in a sliding direction (docs/friction-models.md,
 //! "Deformation part"): the tilt of the composite topography over the spot's footprint, the
 //! spot's attack slope and its groove ploughing ratio, the inputs of the deformation laws
-//! ([`super::ploughing_laws`], [`super::deformation`]).
+//! ([`super::closed_forms`], [`super::deformation`]).
 //!
-//! Inputs: the labels of [`super::contact_spots::label_spots`], the spots of
-//! [`super::contact_spots::measure_spots`] (for their highest point) and the undeformed composite
+//! Inputs: the labels of [`crate::friction::contact_spots::label_spots`], the spots of
+//! [`crate::friction::contact_spots::measure_spots`] (for their highest point) and the undeformed composite
 //! height `z = z1 + z2` (m, peaks up) on spacings `dx`, `dy` (m); the sliding direction `d` at
 //! the angle ψ from +x towards +y ([`SlidingDirection`]). Offsets are taken from the spot's
 //! highest point (minimum image on periodic grids).
@@ -36,7 +36,7 @@
 //! bilinear. For ψ = 0 the lines are the rows and the points the grid points. With `S_k` the
 //! highest sample of line `k`, `A_side = Σ_k max(0, S_k − z_b) δt`, and the ratio is
 //! `2 A_side / A`, the groove cross-section over half the footprint: the ploughing friction of
-//! the spot's own cap ([`super::ploughing_laws`]), which is `(2/π) tan α` for a cone and the
+//! the spot's own cap ([`super::closed_forms`]), which is `(2/π) tan α` for a cone and the
 //! sphere's law for a spherical cap, and which differs along and across the lay of an elongated
 //! asperity.
 //!
@@ -46,76 +46,9 @@
 use ndarray::ArrayView2;
 use rayon::prelude::*;
 
-use super::contact_spots::{step, ContactSpot, Members, SpotLabels};
-use super::error::{require_positive, FrictionError};
-
-/// A sliding direction in the surface plane: the angle ψ from +x towards +y (radians).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SlidingDirection {
-    angle: f64,
-    cos: f64,
-    sin: f64,
-}
-
-impl SlidingDirection {
-    /// The direction at angle `angle` (radians, finite); 0 slides along +x.
-    pub fn new(angle: f64) -> Result<Self, FrictionError> {
-        if !angle.is_finite() {
-            return Err(FrictionError::InvalidParameter {
-                name: "sliding_direction",
-                value: angle,
-                expected: "a finite angle in radians",
-            });
-        }
-        Ok(Self {
-            angle,
-            cos: angle.cos(),
-            sin: angle.sin(),
-        })
-    }
-
-    /// The angle ψ (radians).
-    pub fn angle(&self) -> f64 {
-        self.angle
-    }
-
-    /// The component `g · d` of a gradient along the direction.
-    pub fn along(&self, gradient: (f64, f64)) -> f64 {
-        gradient.0 * self.cos + gradient.1 * self.sin
-    }
-
-    /// The coordinate of the offset `(x, y)` (m) across the direction, `(−sin ψ, cos ψ) · (x, y)`.
-    fn across(&self, (x, y): (f64, f64)) -> f64 {
-        y * self.cos - x * self.sin
-    }
-}
-
-/// The geometry of one spot in one sliding direction (see the module documentation).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SpotSlope {
-    /// Gradient `(∂z/∂x, ∂z/∂y)` of the fitted plane; `None` when even the dilated points are
-    /// collinear (a grid of one row or column).
-    pub gradient: Option<(f64, f64)>,
-    /// `tan θ = g · d` of the plane along the sliding direction; `None` without a plane.
-    pub tilt: Option<f64>,
-    /// Number of points of the plane fit.
-    pub plane_points: usize,
-    /// Whether the plane took the 8-neighbour ring too (the footprint alone was collinear).
-    pub dilated: bool,
-    /// Height of the cap `z_peak − z_b` (m): the spot's penetration; `None` without a ring (a
-    /// spot covering a periodic grid).
-    pub cap_height: Option<f64>,
-    /// `tan α = (z_peak − z_b)/r_b`; `None` without a ring.
-    pub attack_slope: Option<f64>,
-    /// Groove cross-section along the sliding direction over half the footprint, `2 A_side/A`;
-    /// `None` without a ring.
-    pub groove_ratio: Option<f64>,
-}
-
-/// The equivalent contact radius `a = √(A/π)` of a spot of area `A` (m², m).
-pub fn contact_radius(area: f64) -> f64 {
-    (area / std::f64::consts::PI).sqrt()
-}
+use crate::friction::contact_spots::{step, ContactSpot, Members, SpotLabels};
+use crate::friction::error::{require_positive, FrictionError};
+use crate::friction::laws::spot::{SlidingDirection, SpotSlope};
 
 /// Sums of the least-squares plane of one spot.
 #[derive(Debug, Clone, Copy, Default)]
@@ -337,7 +270,7 @@ impl Grid<'_> {
         let (mut u_range, mut t_range) = ((f64::MAX, f64::MIN), (f64::MAX, f64::MIN));
         for &at in points {
             let (x, y) = self.metres(id, at);
-            let (u, t) = (x * d.cos + y * d.sin, d.across((x, y)));
+            let (u, t) = (x * d.cos() + y * d.sin(), d.across((x, y)));
             u_range = (u_range.0.min(u), u_range.1.max(u));
             t_range = (t_range.0.min(t), t_range.1.max(t));
         }
@@ -351,7 +284,7 @@ impl Grid<'_> {
             let mut top = f64::NEG_INFINITY;
             for m in steps(u_range, du) {
                 let (u, t) = (m as f64 * du, k as f64 * dt);
-                let offset = (u * d.cos - t * d.sin, u * d.sin + t * d.cos);
+                let offset = (u * d.cos() - t * d.sin(), u * d.sin() + t * d.cos());
                 if let Some(z) = self.interpolate(id, offset)? {
                     top = top.max(z);
                 }
@@ -401,7 +334,7 @@ impl Grid<'_> {
 }
 
 /// The geometry of every spot along `direction`, in id order (see the module documentation);
-/// `spots` from [`super::contact_spots::measure_spots`] of these `labels`.
+/// `spots` from [`crate::friction::contact_spots::measure_spots`] of these `labels`.
 ///
 /// Errors: a height map of another shape than the labels, a spot list of another length than the
 /// labels' count, `dx` or `dy` not finite and > 0, a composite height that is not finite at a
