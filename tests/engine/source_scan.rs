@@ -1,8 +1,9 @@
 //! Rust source read as tokens with their line numbers, for the checks of the code's shape:
-//! comments, string and character literals and the items under `#[cfg(test)]` are removed,
-//! line breaks are kept, so a token's line is its line in the file.
+//! comments, character literals and the items under `#[cfg(test)]` are left out; a string
+//! literal is one token.
 
-/// One token (an identifier, `::` or a single punctuation character) and its 1-based line.
+/// One token (an identifier, `::`, a single punctuation character or a string literal with its
+/// quotes) and its 1-based line.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Token {
     pub text: String,
@@ -17,45 +18,16 @@ impl Token {
     pub(crate) fn is_ident(&self) -> bool {
         self.text.chars().all(|c| c.is_alphanumeric() || c == '_')
     }
+
+    /// The content of a string literal token (`"mu_s"` → `mu_s`), `None` for other tokens.
+    pub(crate) fn string(&self) -> Option<&str> {
+        self.text.strip_prefix('"')?.strip_suffix('"')
+    }
 }
 
 /// The tokens of the non-test code of `text`.
 pub(crate) fn code_tokens(text: &str) -> Vec<Token> {
-    without_test_items(tokenize(&strip_comments_and_literals(text)))
-}
-
-/// `text` with comments, string and character literals blanked (line breaks kept; a literal
-/// becomes `""` or `' '`).
-fn strip_comments_and_literals(text: &str) -> String {
-    let chars: Vec<char> = text.chars().collect();
-    let mut out = String::with_capacity(text.len());
-    let mut i = 0;
-    while i < chars.len() {
-        let c = chars[i];
-        let next = chars.get(i + 1).copied();
-        let end = if c == '/' && next == Some('/') {
-            (i..chars.len())
-                .find(|&j| chars[j] == '\n')
-                .unwrap_or(chars.len())
-        } else if c == '/' && next == Some('*') {
-            block_comment_end(&chars, i)
-        } else if c == 'r' && raw_string_at(&chars, i) {
-            raw_string_end(&chars, i)
-        } else if c == '"' {
-            string_end(&chars, i)
-        } else if let Some(len) = (c == '\'').then(|| char_literal_len(&chars, i)).flatten() {
-            i + len
-        } else {
-            out.push(c);
-            i += 1;
-            continue;
-        };
-        let skipped = &chars[i..end.min(chars.len())];
-        out.push_str(if c == '"' || c == 'r' { "\"\"" } else { " " });
-        out.extend(skipped.iter().filter(|&&c| c == '\n'));
-        i = end;
-    }
-    out
+    without_test_items(tokenize(text))
 }
 
 /// The index after the (nested) block comment starting at `i`.
@@ -128,35 +100,76 @@ fn char_literal_len(chars: &[char], i: usize) -> Option<usize> {
     (chars.get(i + 2) == Some(&'\'')).then_some(3)
 }
 
-/// Identifiers, `::` and single punctuation characters, with their lines.
-fn tokenize(code: &str) -> Vec<Token> {
-    let chars: Vec<char> = code.chars().collect();
+/// Identifiers, `::`, single punctuation characters and string literals (a token `"…"` holding
+/// the literal's content, raw and byte strings included), with their lines; comments and
+/// character literals are left out.
+fn tokenize(text: &str) -> Vec<Token> {
+    let chars: Vec<char> = text.chars().collect();
     let mut tokens = Vec::new();
     let (mut i, mut line) = (0, 1);
     while i < chars.len() {
         let c = chars[i];
-        let start = i;
-        if c.is_alphanumeric() || c == '_' {
-            while i < chars.len() && (chars[i].is_alphanumeric() || chars[i] == '_') {
-                i += 1;
+        let next = chars.get(i + 1).copied();
+        let mut token = None;
+        let end = if c == '/' && next == Some('/') {
+            (i..chars.len())
+                .find(|&j| chars[j] == '\n')
+                .unwrap_or(chars.len())
+        } else if c == '/' && next == Some('*') {
+            block_comment_end(&chars, i)
+        } else if let Some(len) = (c == '\'').then(|| char_literal_len(&chars, i)).flatten() {
+            i + len
+        } else if c == '"' || (c == 'r' && raw_string_at(&chars, i)) {
+            let (end, content) = string_literal(&chars, i);
+            token = Some(format!("\"{content}\""));
+            end
+        } else if c.is_alphanumeric() || c == '_' {
+            let end = (i..chars.len())
+                .find(|&j| !(chars[j].is_alphanumeric() || chars[j] == '_'))
+                .unwrap_or(chars.len());
+            // `b"…"` and `br"…"` are byte strings: their `b` is no identifier.
+            let word = &chars[i..end];
+            let byte_string = (word == ['b'] && chars.get(end) == Some(&'"'))
+                || (word == ['b', 'r'] && raw_string_at(&chars, i + 1));
+            if byte_string {
+                i + 1
+            } else {
+                token = Some(word.iter().collect());
+                end
             }
-        } else if c == ':' && chars.get(i + 1) == Some(&':') {
-            i += 2;
+        } else if c == ':' && next == Some(':') {
+            token = Some(String::from("::"));
+            i + 2
         } else {
-            i += 1;
-            if c == '\n' {
-                line += 1;
-            }
-            if c.is_whitespace() {
-                continue;
-            }
+            token = (!c.is_whitespace()).then(|| c.to_string());
+            i + 1
+        };
+        if let Some(text) = token {
+            tokens.push(Token { text, line });
         }
-        tokens.push(Token {
-            text: chars[start..i].iter().collect(),
-            line,
-        });
+        let end = end.min(chars.len());
+        line += chars[i..end].iter().filter(|&&c| c == '\n').count();
+        i = end;
     }
     tokens
+}
+
+/// The end of the string literal (plain or raw) at `i` and its content.
+fn string_literal(chars: &[char], i: usize) -> (usize, String) {
+    if chars[i] == '"' {
+        let end = string_end(chars, i).min(chars.len());
+        (
+            end,
+            chars[i + 1..end.saturating_sub(1).max(i + 1)]
+                .iter()
+                .collect(),
+        )
+    } else {
+        let end = raw_string_end(chars, i).min(chars.len());
+        let hashes = chars[i + 1..].iter().take_while(|&&c| c == '#').count();
+        let content = &chars[(i + 2 + hashes).min(end)..end.saturating_sub(1 + hashes)];
+        (end, content.iter().collect())
+    }
 }
 
 /// The tokens without the items under `#[cfg(test)]` (a test module or a test-only item).
@@ -230,4 +243,10 @@ fn tokens_keep_their_lines_without_comments_strings_and_tests() {
         vec![(String::from("a"), 1, 6), (String::from("b"), 11, 11)]
     );
     assert!(tokens.iter().all(|t| !t.is("tests") && !t.is("not")));
+    assert!(tokens
+        .iter()
+        .any(|t| t.string() == Some("{ not a brace\n }")));
+    let raw = code_tokens("let a = r#\"x\"y\"#; let b = br\"z\"; let c = b\"w\";");
+    let strings: Vec<&str> = raw.iter().filter_map(Token::string).collect();
+    assert_eq!(strings, ["x\"y", "z", "w"]);
 }

@@ -65,7 +65,11 @@ pub(super) fn extend_spots_table(
             .map(|s| f(s).unwrap_or(0.0))
             .collect::<Vec<f64>>()
     };
-    t.push_float(spot_columns::TILT, Dimension::Dimensionless, column(&|s| s.tilt));
+    t.push_float(
+        spot_columns::TILT,
+        Dimension::Dimensionless,
+        column(&|s| s.tilt),
+    );
     t.push_text(
         spot_columns::PLANE,
         slopes
@@ -89,7 +93,11 @@ pub(super) fn extend_spots_table(
         Dimension::Dimensionless,
         column(&|s| s.groove_ratio),
     );
-    t.push_float(spot_columns::CAP_HEIGHT, Dimension::Length, column(&|s| s.cap_height));
+    t.push_float(
+        spot_columns::CAP_HEIGHT,
+        Dimension::Length,
+        column(&|s| s.cap_height),
+    );
     t.push_float(
         spot_columns::CONTACT_RADIUS,
         Dimension::Length,

@@ -33,7 +33,11 @@ impl FrictionTask {
         key.extend(material_fields(material));
         key.extend(law.reported_values().iter().map(reported_field));
         key.extend([
-            Field::float(names::ADHESION_ENERGY, adhesion.energy, Dimension::SurfaceEnergy),
+            Field::float(
+                names::ADHESION_ENERGY,
+                adhesion.energy,
+                Dimension::SurfaceEnergy,
+            ),
             Field::float(
                 names::EQUILIBRIUM_DISTANCE,
                 adhesion.equilibrium_distance,
@@ -65,9 +69,17 @@ fn material_fields(material: &Material) -> [Field; 3] {
         poisson_ratio,
     } = *material;
     [
-        Field::float(names::COMPOSITE_MODULUS, composite_modulus, Dimension::Pressure),
+        Field::float(
+            names::COMPOSITE_MODULUS,
+            composite_modulus,
+            Dimension::Pressure,
+        ),
         Field::float(names::HARDNESS, hardness, Dimension::Pressure),
-        Field::float(names::POISSON_RATIO, poisson_ratio, Dimension::Dimensionless),
+        Field::float(
+            names::POISSON_RATIO,
+            poisson_ratio,
+            Dimension::Dimensionless,
+        ),
     ]
 }
 
@@ -130,7 +142,11 @@ fn explicit_roughness_fields(summits: &SummitStatistics) -> [Field; 3] {
     [
         Field::float(names::SIGMA, summits.sigma, Dimension::Length),
         Field::float(names::SUMMIT_RADIUS, summits.radius, Dimension::Length),
-        Field::float(names::SUMMIT_DENSITY, summits.density, Dimension::InverseArea),
+        Field::float(
+            names::SUMMIT_DENSITY,
+            summits.density,
+            Dimension::InverseArea,
+        ),
     ]
 }
 

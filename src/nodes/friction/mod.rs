@@ -387,5 +387,9 @@ pub(crate) fn beyond_fit_field(load_beyond_fit: f64, normal_load: f64) -> Field 
     } else {
         0.0
     };
-    Field::float(names::LOAD_SHARE_BEYOND_FIT, share, Dimension::Dimensionless)
+    Field::float(
+        names::LOAD_SHARE_BEYOND_FIT,
+        share,
+        Dimension::Dimensionless,
+    )
 }

@@ -126,7 +126,11 @@ fn push_forces(
         force(names::NORMAL_LOAD, result.total_normal_force),
         force(names::ADHESION_FORCE, result.adhesion_force),
         force(names::FRICTION_FORCE, result.total_friction_force.max(0.0)),
-        Field::float(names::CONTACT_NORMAL_LOAD, contact_normal_load, Dimension::Force),
+        Field::float(
+            names::CONTACT_NORMAL_LOAD,
+            contact_normal_load,
+            Dimension::Force,
+        ),
     ]);
 }
 
@@ -155,7 +159,10 @@ fn push_spot_statistics(
         Field::int(names::SPOT_COUNT, spots.len() as i64),
         Field::int(names::ONE_PIXEL_SPOTS, result.one_pixel_spots as i64),
         n(names::LOAD_SHARE_ONE_PIXEL, share(result.load_one_pixel)),
-        Field::int(names::SPOTS_WITHOUT_RADIUS, result.spots_without_radius as i64),
+        Field::int(
+            names::SPOTS_WITHOUT_RADIUS,
+            result.spots_without_radius as i64,
+        ),
         n(
             names::LOAD_SHARE_WITHOUT_RADIUS,
             share(result.load_without_radius),
@@ -187,7 +194,11 @@ fn push_spot_statistics(
             (names::LOCAL_MU_P90, 0.9),
         ];
         for (name, q) in mu_quantiles {
-            metrics.push(Field::float(name, quantile(&local, q), Dimension::Dimensionless));
+            metrics.push(Field::float(
+                name,
+                quantile(&local, q),
+                Dimension::Dimensionless,
+            ));
         }
     }
 }
@@ -202,8 +213,14 @@ fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) 
     };
     let mut t = Table::default();
     t.push_int(spot_columns::SPOT, (0..spots.len() as i64).collect());
-    t.push_int(spot_columns::PEAK_IX, spots.iter().map(|s| s.peak.1 as i64).collect());
-    t.push_int(spot_columns::PEAK_IY, spots.iter().map(|s| s.peak.0 as i64).collect());
+    t.push_int(
+        spot_columns::PEAK_IX,
+        spots.iter().map(|s| s.peak.1 as i64).collect(),
+    );
+    t.push_int(
+        spot_columns::PEAK_IY,
+        spots.iter().map(|s| s.peak.0 as i64).collect(),
+    );
     t.push_float(
         spot_columns::PEAK_X,
         Dimension::Length,
@@ -214,9 +231,16 @@ fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) 
         Dimension::Length,
         float(&|s, _| s.peak.0 as f64 * dy),
     );
-    t.push_int(spot_columns::PIXELS, spots.iter().map(|s| s.pixels as i64).collect());
+    t.push_int(
+        spot_columns::PIXELS,
+        spots.iter().map(|s| s.pixels as i64).collect(),
+    );
     t.push_float(spot_columns::AREA, Dimension::Area, float(&|s, _| s.area));
-    t.push_float(spot_columns::NORMAL_FORCE, Dimension::Force, float(&|s, _| s.load));
+    t.push_float(
+        spot_columns::NORMAL_FORCE,
+        Dimension::Force,
+        float(&|s, _| s.load),
+    );
     t.push_float(
         spot_columns::MAX_PRESSURE,
         Dimension::Pressure,

@@ -185,7 +185,11 @@ fn push_forces(
             scale * (result.total_normal_force - result.total_adhesion_force),
             Dimension::Force,
         ),
-        Field::float(names::NOMINAL_PRESSURE, nominal_pressure, Dimension::Pressure),
+        Field::float(
+            names::NOMINAL_PRESSURE,
+            nominal_pressure,
+            Dimension::Pressure,
+        ),
         Field::float(
             names::NORMAL_LOAD,
             scale * result.total_normal_force,
@@ -265,12 +269,26 @@ fn summits_table_of(
         rows.iter().map(f).collect::<Vec<f64>>()
     };
     let mut t = Table::default();
-    t.push_int(summit_columns::IX, rows.iter().map(|r| r.0.ix as i64).collect());
-    t.push_int(summit_columns::IY, rows.iter().map(|r| r.0.iy as i64).collect());
+    t.push_int(
+        summit_columns::IX,
+        rows.iter().map(|r| r.0.ix as i64).collect(),
+    );
+    t.push_int(
+        summit_columns::IY,
+        rows.iter().map(|r| r.0.iy as i64).collect(),
+    );
     t.push_float(summit_columns::X, Dimension::Length, column(&|r| r.0.x));
     t.push_float(summit_columns::Y, Dimension::Length, column(&|r| r.0.y));
-    t.push_float(summit_columns::HEIGHT, Dimension::Length, column(&|r| r.0.height));
-    t.push_float(summit_columns::RADIUS, Dimension::Length, column(&|r| r.0.radius));
+    t.push_float(
+        summit_columns::HEIGHT,
+        Dimension::Length,
+        column(&|r| r.0.height),
+    );
+    t.push_float(
+        summit_columns::RADIUS,
+        Dimension::Length,
+        column(&|r| r.0.radius),
+    );
     t.push_float(
         summit_columns::INTERFERENCE,
         Dimension::Length,

@@ -97,7 +97,13 @@ pub(super) fn compute(
         Loads::Pressures(p) => p.iter().map(|p| p * area).collect(),
         Loads::Forces(f) => f.clone(),
         Loads::FromContact(c) => {
-            vec![float_metric(input(inputs, *c, roles::CONTACT)?, NOMINAL_PRESSURE, roles::CONTACT)? * area]
+            vec![
+                float_metric(
+                    input(inputs, *c, roles::CONTACT)?,
+                    NOMINAL_PRESSURE,
+                    roles::CONTACT,
+                )? * area,
+            ]
         }
     };
     let results = solve_each_load(&model, &forces, area)?;
@@ -173,12 +179,19 @@ fn result_fields(last: &StaticFrictionResult, summits: &SummitStatistics, area: 
         Field::float(names::GW_SIGMA, summits.sigma, Dimension::Length),
         Field::float(names::GW_SIGMA_S, summits.sigma_s, Dimension::Length),
         Field::float(names::GW_SUMMIT_RADIUS, summits.radius, Dimension::Length),
-        Field::float(names::GW_SUMMIT_DENSITY, summits.density, Dimension::InverseArea),
+        Field::float(
+            names::GW_SUMMIT_DENSITY,
+            summits.density,
+            Dimension::InverseArea,
+        ),
         n(names::GW_BETA, summits.beta),
         Field::int(names::ROOTS_FOUND, last.status.roots_found as i64),
         Field::int(names::ITERATIONS, last.status.brent_iterations as i64),
         n(names::RESIDUAL, last.status.relative_residual),
-        n(names::INTEGRAL_ERROR, last.status.max_integral_relative_error),
+        n(
+            names::INTEGRAL_ERROR,
+            last.status.max_integral_relative_error,
+        ),
     ]
 }
 
@@ -204,7 +217,11 @@ fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, Nod
         mu.iter().map(|m| m.max(0.0)).collect(),
     );
     t.push_float(names::MU_S_COMPUTED, Dimension::Dimensionless, mu);
-    t.push_float(names::NORMAL_LOAD, Dimension::Force, column(|r| r.contact_load));
+    t.push_float(
+        names::NORMAL_LOAD,
+        Dimension::Force,
+        column(|r| r.contact_load),
+    );
     t.push_float(
         names::ADHESION_FORCE,
         Dimension::Force,

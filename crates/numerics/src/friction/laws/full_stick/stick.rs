@@ -229,8 +229,7 @@ impl FullStickLaw {
         [
             self.stick_interference_factor,
             self.stick_interference_factor * STICK_LOAD_FIT_LIMIT,
-            JG_ELASTIC_LIMIT
-                * self.jackson_green.critical_interference_over_radius
+            JG_ELASTIC_LIMIT * self.jackson_green.critical_interference_over_radius
                 / self.critical_interference_over_radius,
         ]
     }
