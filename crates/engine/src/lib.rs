@@ -10,6 +10,7 @@
 pub mod artifact;
 pub mod cache;
 pub mod cache_admin;
+pub mod columns;
 pub mod execute;
 pub mod hash;
 pub mod node;

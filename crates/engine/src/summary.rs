@@ -12,6 +12,7 @@
 //! Sums run in scenario order, so the numbers are deterministic. A scenario whose node instance
 //! failed or has no value contributes nothing (its group's `n` is smaller than `scenarios`).
 
+use crate::columns::{SCENARIOS, SUMMARY_STATISTICS};
 use crate::execute::RunReport;
 use crate::plan::Plan;
 use crate::units::Dimension;
@@ -92,7 +93,7 @@ fn group_columns(plan: &Plan, by: &[usize], groups: &Groups) -> Vec<SummaryColum
         columns.push((column_name(param, dim), dim, cells));
     }
     columns.push((
-        String::from("scenarios"),
+        String::from(SCENARIOS),
         Dimension::Dimensionless,
         groups
             .iter()
@@ -175,9 +176,10 @@ fn push_statistics(
         .iter()
         .map(|x| sample_std(x).map(Value::Float))
         .collect();
-    columns.push((format!("{node}_{field}_n"), Dimension::Dimensionless, count));
-    columns.push((column_name(&format!("{node}_{field}_mean"), dim), dim, mean));
-    columns.push((column_name(&format!("{node}_{field}_std"), dim), dim, std));
+    let [n, mean_name, std_name] = SUMMARY_STATISTICS.map(|s| format!("{node}_{field}_{s}"));
+    columns.push((n, Dimension::Dimensionless, count));
+    columns.push((column_name(&mean_name, dim), dim, mean));
+    columns.push((column_name(&std_name, dim), dim, std));
 }
 
 fn param_cell(value: &ParamValue) -> Value {

@@ -15,6 +15,7 @@
 use std::borrow::Cow;
 
 use crate::artifact::{ColumnData, Table};
+use crate::columns::{KEY, MESSAGE, NODE, SCENARIO, STATUS, STEP};
 use crate::execute::RunReport;
 use crate::plan::Plan;
 use crate::units::Dimension;
@@ -43,7 +44,7 @@ pub(super) fn by_scenario_table(plan: &Plan, report: &RunReport, table: &str) ->
     let mut t = RowTable::default();
     for (s, row) in plan.scenarios.rows.iter().enumerate() {
         let mut scenario_cells: Vec<Cell> = vec![(
-            Cow::Borrowed("scenario"),
+            Cow::Borrowed(SCENARIO),
             Dimension::Dimensionless,
             Some(Value::Int(s as i64)),
         )];
@@ -63,12 +64,12 @@ pub(super) fn by_scenario_table(plan: &Plan, report: &RunReport, table: &str) ->
                 continue;
             };
             let mut head = scenario_cells.clone();
-            head.push(text("node", plan.node_names[n].as_str()));
-            head.push(text("key", node.key.to_hex()));
+            head.push(text(NODE, plan.node_names[n].as_str()));
+            head.push(text(KEY, node.key.to_hex()));
             let params = node.task.params();
             let tail = [
-                text("status", outcome.label()),
-                text("message", outcome.message()),
+                text(STATUS, outcome.label()),
+                text(MESSAGE, outcome.message()),
             ];
             let steps = node
                 .task
@@ -98,8 +99,8 @@ fn step_cells(steps: &Table, row: usize) -> impl Iterator<Item = Cell<'_>> {
     steps
         .columns
         .iter()
-        .filter(|c| c.name == "step")
-        .map(move |c| (Cow::Borrowed("step"), c.dimension, Some(cell(&c.data, row))))
+        .filter(|c| c.name == STEP)
+        .map(move |c| (Cow::Borrowed(STEP), c.dimension, Some(cell(&c.data, row))))
 }
 
 /// The metrics of one step: every column of the step table but `step`.
@@ -107,7 +108,7 @@ fn step_metrics(steps: &Table, row: usize) -> impl Iterator<Item = Cell<'_>> {
     steps
         .columns
         .iter()
-        .filter(|c| c.name != "step")
+        .filter(|c| c.name != STEP)
         .map(move |c| {
             (
                 Cow::Borrowed(c.name.as_ref()),

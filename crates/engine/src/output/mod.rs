@@ -30,6 +30,9 @@ use polars::prelude::{Column as PlColumn, DataFrame, ParquetCompression, Parquet
 use rayon::prelude::*;
 
 use crate::artifact::{ColumnData, Table};
+use crate::columns::{
+    key_column, FROM_CACHE, KEY, KIND, KIND_VERSION, MESSAGE, NODES, SCENARIO, STATUS,
+};
 use crate::execute::{NodeOutcome, NodeStatus, RunReport};
 use crate::plan::Plan;
 use crate::study::{Located, SCENARIOS_TABLE};
@@ -143,12 +146,12 @@ fn scenarios_table(plan: &Plan, report: &RunReport) -> RowTable {
     let key_columns: Vec<String> = plan
         .node_names
         .iter()
-        .map(|name| format!("{name}_key"))
+        .map(|name| key_column(name))
         .collect();
     let mut t = RowTable::default();
     for (s, row) in plan.scenarios.rows.iter().enumerate() {
         let mut cells = vec![(
-            Cow::Borrowed("scenario"),
+            Cow::Borrowed(SCENARIO),
             Dimension::Dimensionless,
             Some(Value::Int(s as i64)),
         )];
@@ -165,7 +168,7 @@ fn scenarios_table(plan: &Plan, report: &RunReport) -> RowTable {
             let outcome = report.outcomes.get(instance).and_then(Option::as_ref);
             labels.push(outcome.map_or("not_computed", NodeOutcome::label));
         }
-        cells.push(text("status", scenario_status(&labels)));
+        cells.push(text(STATUS, scenario_status(&labels)));
         t.push_row(cells);
     }
     t
@@ -238,21 +241,21 @@ fn kind_tables(
         let mut cells =
             Vec::with_capacity(5 + node.upstream.len() + params.len() + outcome.metrics.len());
         cells.extend([
-            text("key", key.clone()),
-            text("nodes", node.names.join(",")),
+            text(KEY, key.clone()),
+            text(NODES, node.names.join(",")),
             (
-                Cow::Borrowed("kind_version"),
+                Cow::Borrowed(KIND_VERSION),
                 Dimension::Dimensionless,
                 Some(Value::Int(i64::from(node.task.version()))),
             ),
         ]);
         for (role, u) in &node.upstream {
-            cells.push(text(format!("{role}_key"), plan.nodes[*u].key.to_hex()));
+            cells.push(text(key_column(role), plan.nodes[*u].key.to_hex()));
         }
         cells.extend(params.iter().map(field_cell));
         cells.extend(outcome.metrics.iter().map(field_cell));
-        cells.push(text("status", outcome.label()));
-        cells.push(text("message", outcome.message()));
+        cells.push(text(STATUS, outcome.label()));
+        cells.push(text(MESSAGE, outcome.message()));
         main.push_row(cells);
         add_long_tables(&mut long, &key, outcome);
     }
@@ -288,12 +291,12 @@ fn timings_table(plan: &Plan, report: &RunReport) -> RowTable {
         };
         let node = &plan.nodes[i];
         t.push_row(vec![
-            text("key", node.key.to_hex()),
-            text("kind", node.task.kind()),
-            text("nodes", node.names.join(",")),
-            text("status", outcome.label()),
+            text(KEY, node.key.to_hex()),
+            text(KIND, node.task.kind()),
+            text(NODES, node.names.join(",")),
+            text(STATUS, outcome.label()),
             (
-                Cow::Borrowed("from_cache"),
+                Cow::Borrowed(FROM_CACHE),
                 Dimension::Dimensionless,
                 Some(Value::Bool(matches!(outcome.status, NodeStatus::Cached))),
             ),
@@ -326,7 +329,7 @@ fn append_long(target: &mut RowTable, key: &str, t: &Table) {
         };
         (Cow::Borrowed(c.name.as_ref()), c.dimension, cells)
     });
-    let key_column = (Cow::Borrowed("key"), Dimension::Dimensionless, key_cells);
+    let key_column = (Cow::Borrowed(KEY), Dimension::Dimensionless, key_cells);
     target.push_columns(rows, std::iter::once(key_column).chain(columns));
 }
 

@@ -25,6 +25,7 @@ use indexmap::IndexMap;
 use petgraph::graph::DiGraph;
 use serde::Deserialize;
 
+use crate::columns::{key_column, SCENARIO, STATUS};
 use crate::node::NodeSpec;
 
 /// Name of the scenarios table, always available in `outputs`.
@@ -227,11 +228,11 @@ fn check_graph<N: NodeSpec>(file: &StudyFile<N>) -> Result<Vec<String>, CheckErr
 /// columns the engine writes there (`scenario`, `<node>_key`, `status`).
 fn check_scenario_columns<N: NodeSpec>(file: &StudyFile<N>) -> Result<(), CheckError> {
     let mut columns = names::Columns::default();
-    columns.fixed("scenario", "the scenario number");
+    columns.fixed(SCENARIO, "the scenario number");
     for node in file.nodes.keys() {
-        columns.fixed(&format!("{node}_key"), &format!("the key of node '{node}'"));
+        columns.fixed(&key_column(node), &format!("the key of node '{node}'"));
     }
-    columns.fixed("status", "the scenario's status");
+    columns.fixed(STATUS, "the scenario's status");
     let declared = file.parameters.declared_names();
     for (i, &(name, location)) in declared.iter().enumerate() {
         // A name declared twice is the parameter expansion's error, said as such there.

@@ -5,6 +5,7 @@ use serde::Deserialize;
 
 use super::names::{check_length, Columns};
 use super::{valid_node_name, CheckError, StudyFile};
+use crate::columns::{SCENARIOS, SUMMARY_STATISTICS};
 use crate::node::NodeSpec;
 use crate::syntax::{did_you_mean, Located};
 
@@ -23,7 +24,7 @@ pub struct SummarySpec {
 }
 
 /// The run-time column of `timings.parquet`, refused as a summary metric (see [`SummarySpec`]).
-pub const RUN_TIME_METRIC: &str = "compute_seconds";
+pub const RUN_TIME_METRIC: &str = crate::columns::COMPUTE_SECONDS;
 
 /// A metric reference `node.metric`, split.
 pub fn split_metric(reference: &str) -> Option<(&str, &str)> {
@@ -136,7 +137,7 @@ fn metric_table<N: NodeSpec>(
 /// `<node>_<metric>_n|mean|std`, with unit suffixes) clash with another's.
 fn check_columns(spec: &SummarySpec, context: &str) -> Result<(), CheckError> {
     let mut columns = Columns::default();
-    columns.fixed("scenarios", "the number of scenarios in a group");
+    columns.fixed(SCENARIOS, "the number of scenarios in a group");
     for (i, by) in spec.by.iter().enumerate() {
         if spec.by[..i].iter().any(|b| b.value == by.value) {
             return Err((
@@ -158,7 +159,7 @@ fn check_columns(spec: &SummarySpec, context: &str) -> Result<(), CheckError> {
             ));
         }
         let stem = metric.value.replacen('.', "_", 1);
-        for statistic in ["n", "mean", "std"] {
+        for statistic in SUMMARY_STATISTICS {
             columns
                 .add(
                     &format!("{stem}_{statistic}"),
