@@ -49,8 +49,8 @@ def test_python_contact_equals_the_cli_contact_bit_for_bit(asperity_bin, contact
 
 
 def test_two_surfaces_and_explicit_materials(tmp_path):
-    a = asperity.synthetic_surface(32, 1e-4, sq=0.5e-6, hurst=0.8, correlation_length=2e-5, seed=1)
-    b = asperity.synthetic_surface(32, 1e-4, sq=0.5e-6, hurst=0.8, correlation_length=2e-5, seed=2)
+    a = asperity.synthetic_surface(64, 1e-4, sq=0.5e-6, hurst=0.8, correlation_length=2e-5, seed=1)
+    b = asperity.synthetic_surface(64, 1e-4, sq=0.5e-6, hurst=0.8, correlation_length=2e-5, seed=2)
     steel = {"youngs_modulus": 210e9, "poisson_ratio": 0.3}
     pair = asperity.contact(a, upper=b, nominal_pressures=[20e6], lower_material=steel, upper_material="s235jr")
     assert 0 < pair["area_fraction"] < 1
