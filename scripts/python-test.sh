@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# The Python package's tests: a fresh virtual environment, maturin, pytest, numpy and polars from
-# PyPI, the wheel built from python/ in the dev profile into the workspace's target folder (so
-# the crates `cargo test` built are reused, not rebuilt in release), installed, then pytest.
+# The Python package's tests: a fresh virtual environment, maturin, pytest, numpy, polars, mypy
+# and matplotlib from PyPI, the wheel built from python/ in the dev profile into the workspace's
+# target folder (so the crates `cargo test` built are reused, not rebuilt in release), installed,
+# then pytest (which also runs the documentation's code blocks and `mypy --strict` on the package
+# and on those blocks).
 # Needs only the Rust toolchain and python3 (>= 3.9, with venv). The contact and study tests
 # compare against the `asperity` binary, built here if `cargo test` has not built it.
 set -euo pipefail
@@ -13,7 +15,7 @@ if [ ! -x "$venv/bin/python" ]; then
     "$python" -m venv "$venv"
 fi
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
-    "maturin>=1.7,<2" "pytest>=7" numpy polars
+    "maturin>=1.7,<2" "pytest>=7" numpy polars "mypy>=1.8" "matplotlib>=3.8"
 cargo build --bin asperity
 rm -rf "$root/target/wheels/asperity-"*.whl
 "$venv/bin/maturin" build --manifest-path python/Cargo.toml --profile dev \

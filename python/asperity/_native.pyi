@@ -1,6 +1,6 @@
 """Type stubs of the compiled module; the public, documented API is `asperity` (__init__.py)."""
 
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -11,6 +11,8 @@ TOOL_VERSION: str
 DEFAULT_TOLERANCE: float
 DEFAULT_ADHESION_ENERGY: float
 DEFAULT_EQUILIBRIUM_DISTANCE: float
+MATERIAL_RATIO_TABLE: str
+DIMENSIONS: Dict[str, Tuple[str, str, str]]
 
 class StudyError(Exception):
     file: str
@@ -30,14 +32,20 @@ def run_study(
 ) -> Tuple[str, List[str], Dict[str, Any]]: ...
 def plan_study(study: str, set: Sequence[str] = ..., cache: Optional[str] = ...) -> List[Dict[str, Any]]: ...
 def validate_study(study: str, set: Sequence[str] = ...) -> Dict[str, Any]: ...
+def parse_quantity(parameter: str, text: str, dimension_name: str) -> float: ...
 def topography_format(path: str) -> Optional[str]: ...
 def read_topography(
     path: str,
     pixel_size: Optional[Tuple[float, float]] = ...,
     size: Optional[Tuple[float, float]] = ...,
     override_file_spacing: bool = ...,
+    channel: Optional[str] = ...,
+    height_unit: Optional[float] = ...,
 ) -> Dict[str, Any]: ...
-def surface_statistics(heights: F64, dx: float, dy: float, periodic: bool = ...) -> Dict[str, Any]: ...
+def surface_report(
+    heights: F64, dx: float, dy: float, periodic: bool = ...
+) -> Tuple[Dict[str, Any], Dict[str, Dict[str, Any]], List[str]]: ...
+def scale_checks(heights: F64, dx: float, dy: float, periodic: bool = ...) -> Tuple[Optional[float], List[str]]: ...
 def remove_form(heights: F64, dx: float, dy: float, degree: int) -> Tuple[F64, float]: ...
 def gaussian_filter(
     heights: F64, dx: float, dy: float, kind: str, cutoff: float, long_cutoff: Optional[float] = ...
@@ -74,7 +82,9 @@ def contact(
     upper_body: Optional[Tuple[float, float]] = ...,
     periodic: bool = ...,
     tolerance: Optional[float] = ...,
-) -> Dict[str, Any]: ...
+    slopes: Sequence[float] = ...,
+) -> Tuple[Dict[str, Any], List[str]]: ...
+def friction_laws() -> List[Dict[str, Any]]: ...
 def static_friction(
     model: str,
     composite_modulus: float,
@@ -86,7 +96,7 @@ def static_friction(
     summits_explicit: Optional[Tuple[float, float, float]] = ...,
     adhesion_energy: float = ...,
     equilibrium_distance: float = ...,
-    parameters: Dict[str, Any] = ...,
+    parameters: Mapping[str, Union[float, str]] = ...,
     yield_strength: Optional[float] = ...,
     shear_strength: Optional[float] = ...,
 ) -> List[Dict[str, Any]]: ...
@@ -105,10 +115,9 @@ def per_summit_friction(
     periodic: bool = ...,
     adhesion_energy: float = ...,
     equilibrium_distance: float = ...,
-    parameters: Dict[str, Any] = ...,
+    parameters: Mapping[str, Union[float, str]] = ...,
     yield_strength: Optional[float] = ...,
 ) -> Dict[str, Any]: ...
-
 def per_spot_friction(
     pressure: F64,
     gap: F64,
@@ -123,7 +132,7 @@ def per_spot_friction(
     eight_connected: bool = ...,
     adhesion_energy: float = ...,
     equilibrium_distance: float = ...,
-    parameters: Dict[str, Any] = ...,
+    parameters: Mapping[str, Union[float, str]] = ...,
     yield_strength: Optional[float] = ...,
     shear_strength: Optional[float] = ...,
 ) -> Dict[str, Any]: ...

@@ -8,14 +8,17 @@ use asperity::contact::{
     Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver, FieldRequest, LoadStep,
     SolverOptions,
 };
-use asperity::engine::value::Value;
+use asperity::engine::artifact::Artifact;
 use asperity::materials::{find_material, BodyMaterial, MaterialPair};
 use asperity::nodes::final_step_metrics;
+use asperity::nodes::validity::cross::{contact_grid, contact_slope};
+use asperity::nodes::validity::{check_artifact, CONTACT};
 use numpy::{IntoPyArray, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::guard::{compute, value_error};
+use crate::row::set_fields;
 use crate::surface::height_map;
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -85,9 +88,12 @@ fn setup(
     })
 }
 
-/// Solves the load steps `nominal_pressures` (Pa, ascending); see `asperity.contact`.
+/// Solves the load steps `nominal_pressures` (Pa, ascending); see `asperity.contact`. `slopes`
+/// are the rms slopes Sdq of the given surfaces (from their statistics) for the node's flag of
+/// a composite slope beyond the half-space theory. Returns the result and the sentences that
+/// would flag the node's row.
 #[pyfunction]
-#[pyo3(signature = (lower, dx, dy, lower_body, nominal_pressures, flow_pressure, upper=None, upper_body=None, periodic=true, tolerance=None))]
+#[pyo3(signature = (lower, dx, dy, lower_body, nominal_pressures, flow_pressure, upper=None, upper_body=None, periodic=true, tolerance=None, slopes=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 fn contact<'py>(
     py: Python<'py>,
@@ -101,7 +107,8 @@ fn contact<'py>(
     upper_body: Option<(f64, f64)>,
     periodic: bool,
     tolerance: Option<f64>,
-) -> PyResult<Bound<'py, PyDict>> {
+    slopes: Vec<f64>,
+) -> PyResult<(Bound<'py, PyDict>, Vec<String>)> {
     let lower = height_map("lower", &lower, dx, dy)?;
     let upper = match (upper, upper_body) {
         (Some(h), Some(e)) => Some((height_map("upper", &h, dx, dy)?, e)),
@@ -118,8 +125,10 @@ fn contact<'py>(
         tolerance: tolerance.unwrap_or(SolverOptions::default().tolerance),
         ..SolverOptions::default()
     };
-    let (row, curve, fields) = compute(py, || {
+    let grid_flag = contact_grid(lower.nx(), lower.ny());
+    let (artifact, curve, fields) = compute(py, || {
         let s = setup(lower, upper, lower_body, flow_pressure, periodic)?;
+        check_strain(&nominal_pressures, s.composite_modulus)?;
         let mut solver =
             ContactSolver::new(s.problem, options).map_err(|e| value_error("tolerance", e))?;
         let curve = solver
@@ -129,20 +138,20 @@ fn contact<'py>(
             .steps
             .last()
             .ok_or_else(|| value_error("nominal_pressures", "needs at least one pressure (Pa)"))?;
-        let row = final_step_metrics(last, s.composite_modulus, s.spacing);
+        let mut artifact = Artifact {
+            metrics: final_step_metrics(last, s.composite_modulus, s.spacing),
+            flags: grid_flag
+                .into_iter()
+                .chain(contact_slope(&slopes))
+                .collect(),
+            ..Artifact::default()
+        };
+        check_artifact(CONTACT, &mut artifact).map_err(|e| value_error("contact", e.message))?;
         let fields = solver.last_fields(FieldRequest::ALL);
-        Ok((row, curve, fields))
+        Ok((artifact, curve, fields))
     })?;
     let d = PyDict::new(py);
-    for field in row {
-        let key = field.column_name();
-        match field.value {
-            Value::Float(v) => d.set_item(key, v)?,
-            Value::Int(v) => d.set_item(key, v)?,
-            Value::Bool(v) => d.set_item(key, v)?,
-            Value::Text(v) => d.set_item(key, v)?,
-        }
-    }
+    set_fields(&d, artifact.metrics)?;
     let steps = curve.steps.iter().map(step_dict).collect::<Vec<_>>();
     d.set_item("load_curve", steps.into_pyobject(py)?)?;
     if let Some(f) = fields {
@@ -159,7 +168,31 @@ fn contact<'py>(
             }
         }
     }
-    Ok(d)
+    Ok((d, artifact.flags))
+}
+
+/// Largest nominal pressure as a share of the composite modulus E*: a mean elastic strain p̄/E*
+/// of 1 (a pressure of the modulus' size) is far outside the small strains of linear elasticity
+/// — metals carry nominal pressures of 1e-4 E* and less — and is how a modulus in GPa or a
+/// pressure in MPa given as a plain number in Pa shows (A/A₀ = 1 without a word otherwise).
+const MAX_STRAIN: f64 = 1.0;
+
+/// Every nominal pressure (Pa) below [`MAX_STRAIN`] × E*.
+fn check_strain(pressures: &[f64], composite_modulus: f64) -> PyResult<()> {
+    for (i, &p) in pressures.iter().enumerate() {
+        if p >= MAX_STRAIN * composite_modulus {
+            return Err(value_error(
+                &format!("nominal_pressures[{i}]"),
+                format!(
+                    "{p:e} Pa is not below the composite modulus E* = {composite_modulus:e} Pa: \
+                     a mean strain p/E* of 1 or more is outside linear elasticity; was the \
+                     modulus given in GPa or MPa (E is in Pa, or a string such as '210 GPa') or \
+                     the pressure in other units than Pa?"
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Pressures must be finite, > 0, ascending and below the flow pressure (as in a study).

@@ -16,15 +16,20 @@ use asperity::friction::{
     find_law, law_names, per_spot_friction as spot_friction,
     per_summit_friction as summits_friction, static_friction_curve, summit_interference,
     AdhesionBeyondFits, AdhesionParameters, Connectivity, FrictionLaw, LawInputs, Material,
-    SolveSettings, SpotLoad, StatisticalModel, SummitContact, SummitFriction, SummitStatistics,
+    PerSummitResult, SolveSettings, SpotLoad, StatisticalModel, SummitContact, SummitFriction,
+    SummitStatistics,
 };
+use asperity::nodes::validity::cross::pressure_within_flow;
 use asperity::nodes::{DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE};
 use asperity::surface::{find_summits, Boundary, HeightMap, SummitOptions};
+use ndarray::ArrayView2;
 use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::guard::{compute, value_error};
+use crate::laws::{parameter_value, Parameter};
+use crate::row::set_coefficient;
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(static_friction, m)?)?;
@@ -33,13 +38,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DEFAULT_ADHESION_ENERGY", DEFAULT_ADHESION_ENERGY)?;
     m.add("DEFAULT_EQUILIBRIUM_DISTANCE", DEFAULT_EQUILIBRIUM_DISTANCE)?;
     Ok(())
-}
-
-/// A law parameter as Python gives it: a number (SI) or one of a choice's options.
-#[derive(FromPyObject)]
-enum Parameter {
-    Number(f64),
-    Choice(String),
 }
 
 /// The law `model` of the registry, built for `material` with the softer body's yield strength
@@ -73,12 +71,7 @@ fn build_law(
                 ),
             )
         })?;
-        let parsed = match value {
-            Parameter::Number(v) => spec.number(v),
-            Parameter::Choice(text) => spec.choice(&text),
-        }
-        .map_err(|e| value_error(&format!("parameters.{name}"), e))?;
-        values.set(&name, parsed);
+        values.set(&name, parameter_value(model, spec, value)?);
     }
     let yield_strength = yield_strength.unwrap_or_else(|| material.tabor_yield_strength());
     let inputs = LawInputs {
@@ -146,6 +139,10 @@ fn static_friction<'py>(
 ) -> PyResult<Vec<Bound<'py, PyDict>>> {
     let summits = summits(moments, summits_explicit)?;
     let material = material(composite_modulus, hardness, poisson_ratio)?;
+    for (i, &p) in nominal_pressures.iter().enumerate() {
+        pressure_within_flow(p, hardness)
+            .map_err(|e| value_error(&format!("nominal_pressures[{i}]"), e))?;
+    }
     let law = build_law(model, material, yield_strength, shear_strength, parameters)?;
     let laws = law.asperity_laws().ok_or_else(|| {
         value_error("model", format!("'{model}' has no single-asperity laws for the statistical method; use per_spot_friction"))
@@ -172,7 +169,7 @@ fn static_friction<'py>(
             let r = r.map_err(|e| value_error("nominal_pressures", format!("at {p:e} Pa: {e}")))?;
             let d = PyDict::new(py);
             d.set_item("nominal_pressure_Pa", p)?;
-            d.set_item("mu_s", r.mu_s)?;
+            set_coefficient(&d, r.mu_s)?;
             d.set_item("static_friction_force_N", r.static_friction_force)?;
             d.set_item("external_load_N", r.external_load)?;
             d.set_item("contact_load_N", r.contact_load)?;
@@ -235,7 +232,7 @@ fn per_spot_friction<'py>(
         Ok((spots, result))
     })?;
     let d = PyDict::new(py);
-    d.set_item("mu_s", result.mu_s)?;
+    set_coefficient(&d, result.mu_s)?;
     d.set_item("total_normal_force_N", result.total_normal_force)?;
     d.set_item("total_friction_force_N", result.total_friction_force)?;
     d.set_item("total_area_m2", result.total_area)?;
@@ -299,25 +296,15 @@ fn per_summit_friction<'py>(
     })?;
     let adhesion = adhesion(adhesion_energy, equilibrium_distance)?;
     let z = composite_height.as_array().to_owned();
-    let fields = [
-        ("pressure", pressure.as_array()),
-        ("gap", gap.as_array()),
-        ("deformation", deformation.as_array()),
-        ("plastic_penetration", plastic_penetration.as_array()),
-    ];
-    for (name, a) in &fields {
-        if a.dim() != z.dim() {
-            return Err(value_error(
-                name,
-                format!(
-                    "has shape {:?}; composite_height has {:?}",
-                    a.dim(),
-                    z.dim()
-                ),
-            ));
-        }
-    }
-    let [(_, p), (_, g), (_, u), (_, u_pl)] = fields;
+    let [p, g, u, u_pl] = same_shape(
+        z.dim(),
+        [
+            ("pressure", pressure.as_array()),
+            ("gap", gap.as_array()),
+            ("deformation", deformation.as_array()),
+            ("plastic_penetration", plastic_penetration.as_array()),
+        ],
+    )?;
     let (contacts, result) = compute(py, || {
         let map = HeightMap::new(z, dx, dy).map_err(|e| value_error("composite_height", e))?;
         let boundary = if periodic {
@@ -336,7 +323,7 @@ fn per_summit_friction<'py>(
             .iter()
             .filter(|s| s.radius.is_finite() && s.radius > 0.0)
             .map(|s| {
-                let at = |a: &ndarray::ArrayView2<f64>| a[(s.iy, s.ix)];
+                let at = |a: &ArrayView2<f64>| a[(s.iy, s.ix)];
                 SummitContact {
                     radius: s.radius,
                     interference: summit_interference(at(&p), at(&u), at(&u_pl), at(&g)),
@@ -353,8 +340,33 @@ fn per_summit_friction<'py>(
         .map_err(|e| value_error("model", e))?;
         Ok((contacts, result))
     })?;
+    summit_dict(py, &contacts, &result)
+}
+
+/// The contact solution's fields, each checked to have the composite height's shape `dim`.
+fn same_shape<'a, const N: usize>(
+    dim: (usize, usize),
+    fields: [(&str, ArrayView2<'a, f64>); N],
+) -> PyResult<[ArrayView2<'a, f64>; N]> {
+    for (name, a) in &fields {
+        if a.dim() != dim {
+            return Err(value_error(
+                name,
+                format!("has shape {:?}; composite_height has {dim:?}", a.dim()),
+            ));
+        }
+    }
+    Ok(fields.map(|(_, a)| a))
+}
+
+/// The per-summit result: μ_s, the totals (N) and one list per summit column.
+fn summit_dict<'py>(
+    py: Python<'py>,
+    contacts: &[SummitContact],
+    result: &PerSummitResult,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("mu_s", result.mu_s)?;
+    set_coefficient(&d, result.mu_s)?;
     d.set_item("total_normal_force_N", result.total_normal_force)?;
     d.set_item("total_adhesion_force_N", result.total_adhesion_force)?;
     d.set_item("total_friction_force_N", result.total_friction_force)?;

@@ -10,9 +10,12 @@
 mod contact;
 mod friction;
 mod guard;
+mod laws;
+mod row;
 mod study;
 mod surface;
 mod topography;
+mod units;
 
 use pyo3::prelude::*;
 
@@ -25,5 +28,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     surface::register(m)?;
     contact::register(m)?;
     friction::register(m)?;
+    laws::register(m)?;
+    units::register(m)?;
     Ok(())
 }

@@ -1,8 +1,10 @@
-//! Surfaces on arrays: statistics (the `surfaces` row of the command line), form removal,
-//! ISO 16610-61 Gaussian filters, filling of missing points, synthetic surfaces and twins.
+//! Surfaces on arrays: statistics and long tables (the `surfaces` row and tables of the command
+//! line, with the node's checks), form removal, ISO 16610-61 Gaussian filters, filling of
+//! missing points, synthetic surfaces and twins.
 
-use asperity::engine::value::Value;
-use asperity::nodes::surface_statistics as row_statistics;
+use asperity::engine::artifact::{ColumnData, Table};
+use asperity::nodes::validity::{check_artifact, SURFACE};
+use asperity::nodes::{scale_checks as node_scale_checks, surface_artifact};
 use asperity::surface::synthetic::{generate_synthetic_surface, Anisotropy, SyntheticSurfaceSpec};
 use asperity::surface::twins::{
     fit_twin_model, measure_texture, synthetic_twin as make_twin, TextureOptions, TwinGrid,
@@ -16,9 +18,15 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::guard::{compute, owned, value_error};
+use crate::row::set_fields;
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(surface_statistics, m)?)?;
+    m.add_function(wrap_pyfunction!(surface_report, m)?)?;
+    m.add_function(wrap_pyfunction!(scale_checks, m)?)?;
+    m.add(
+        "MATERIAL_RATIO_TABLE",
+        asperity::vocabulary::tables::MATERIAL_RATIO,
+    )?;
     m.add_function(wrap_pyfunction!(remove_form, m)?)?;
     m.add_function(wrap_pyfunction!(gaussian_filter, m)?)?;
     m.add_function(wrap_pyfunction!(fill_missing, m)?)?;
@@ -42,33 +50,78 @@ fn to_numpy<'py>(py: Python<'py>, map: HeightMap) -> Bound<'py, PyArray2<f64>> {
     map.into_heights().into_pyarray(py)
 }
 
-/// The `surfaces` row of the command line for this map: column name (with its SI unit) to value.
+/// What a study's surface node computes from this map (`nodes::surface_artifact`), checked by
+/// its validity rules: `(statistics, tables, flags)`, the `surfaces` row keyed by column name
+/// (with its SI unit), the long tables (`psd`, `acf`, `summits`, the material ratio curve) as
+/// `{table: {column: array}}`, and the sentences that would flag the row or warn of its lateral
+/// scale. A value the node would fail raises `ValueError`.
 #[pyfunction]
 #[pyo3(signature = (heights, dx, dy, periodic=false))]
-fn surface_statistics<'py>(
+fn surface_report<'py>(
     py: Python<'py>,
     heights: PyReadonlyArray2<'py, f64>,
     dx: f64,
     dy: f64,
     periodic: bool,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Report<'py>> {
     let map = height_map("heights", &heights, dx, dy)?;
     let boundary = if periodic {
         Boundary::Periodic
     } else {
         Boundary::Open
     };
-    let fields = compute(py, || {
-        row_statistics(&map, boundary).map_err(|e| value_error("heights", e.message))
+    let (artifact, lateral_scale_warning) = compute(py, || {
+        let (mut artifact, warning) =
+            surface_artifact(&map, boundary).map_err(|e| value_error("heights", e.message))?;
+        check_artifact(SURFACE, &mut artifact).map_err(|e| value_error("heights", e.message))?;
+        Ok((artifact, warning))
     })?;
+    let statistics = PyDict::new(py);
+    set_fields(&statistics, artifact.metrics)?;
+    let tables = PyDict::new(py);
+    for (name, table) in artifact.tables {
+        tables.set_item(name, table_dict(py, table)?)?;
+    }
+    let mut flags = artifact.flags;
+    flags.extend((!lateral_scale_warning.is_empty()).then_some(lateral_scale_warning));
+    Ok((statistics, tables, flags))
+}
+
+/// The surface node's checks of a map's scale (`nodes::scale_checks`) without its statistics:
+/// `(Sdq or None, sentences)`; a spacing the node would fail raises `ValueError`.
+#[pyfunction]
+#[pyo3(signature = (heights, dx, dy, periodic=false))]
+fn scale_checks<'py>(
+    py: Python<'py>,
+    heights: PyReadonlyArray2<'py, f64>,
+    dx: f64,
+    dy: f64,
+    periodic: bool,
+) -> PyResult<(Option<f64>, Vec<String>)> {
+    let map = height_map("heights", &heights, dx, dy)?;
+    let boundary = if periodic {
+        Boundary::Periodic
+    } else {
+        Boundary::Open
+    };
+    compute(py, || {
+        node_scale_checks(&map, boundary).map_err(|e| value_error("heights", e.message))
+    })
+}
+
+/// A surface report: statistics, long tables and sentences.
+type Report<'py> = (Bound<'py, PyDict>, Bound<'py, PyDict>, Vec<String>);
+
+/// A long table as `{column name (with its SI unit): NumPy array}`.
+fn table_dict(py: Python<'_>, table: Table) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
-    for field in fields {
-        let key = field.column_name();
-        match field.value {
-            Value::Float(v) => d.set_item(key, v)?,
-            Value::Int(v) => d.set_item(key, v)?,
-            Value::Bool(v) => d.set_item(key, v)?,
-            Value::Text(v) => d.set_item(key, v)?,
+    for column in table.columns {
+        let key = column.column_name();
+        match column.data {
+            ColumnData::Float(v) => d.set_item(key, v.into_pyarray(py))?,
+            ColumnData::Int(v) => d.set_item(key, v.into_pyarray(py))?,
+            ColumnData::Bool(v) => d.set_item(key, v)?,
+            ColumnData::Text(v) => d.set_item(key, v)?,
         }
     }
     Ok(d)

@@ -19,7 +19,7 @@ CASES = [
     (ValueError, "heights", lambda: asperity.surface_statistics(np.full((4, 4), np.inf), 1e-6)),
     (ValueError, "dx", lambda: asperity.surface_statistics(Z, -1.0)),
     (ValueError, "dy", lambda: asperity.surface_statistics(Z, 1e-6, float("nan"))),
-    (TypeError, "dx", lambda: asperity.surface_statistics(Z, "1 um")),
+    (ValueError, "dx", lambda: asperity.surface_statistics(Z, "1 MPa")),
     (ValueError, "kind", lambda: asperity.gaussian_filter(Z, 1e-6, kind="median", cutoff=1e-5)),
     (ValueError, "long_cutoff", lambda: asperity.gaussian_filter(Z, 1e-6, kind="band", cutoff=1e-5)),
     (ValueError, "degree", lambda: asperity.remove_form(Z, 1e-6, degree=-1)),

@@ -19,18 +19,19 @@ def same_bits(a, b) -> bool:
 def test_python_contact_equals_the_cli_contact_bit_for_bit(asperity_bin, contact_study, tmp_path, seed):
     cli = run_cli(asperity_bin, "run", str(contact_study), "--out", "out", "--cache", "cache", "-q", cwd=tmp_path)
     assert cli.returncode == 0, cli.stderr
-    heights, dx, dy = asperity.synthetic_surface(
+    t = asperity.synthetic_surface(
         C["grid"], C["size"], sq=C["sq"], hurst=C["hurst"], correlation_length=C["correlation_length"], seed=seed
     )
     surfaces = pl.read_parquet(tmp_path / "out" / "surfaces.parquet").filter(pl.col("seed") == seed)
-    stats = asperity.surface_statistics(heights, dx, dy, periodic=True)
+    stats = t.statistics()
+    assert asperity.surface_statistics(t.heights, t.dx, t.dy, periodic=True) == stats
     common = [c for c in surfaces.columns if c in stats]
     assert len(common) >= 30, common
     for column in common:
         assert same_bits(stats[column], surfaces[column][0]), column
-    ours = asperity.contact(
-        heights, dx, dy, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"]
-    )
+    ours = asperity.contact(t, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
+    arrays = asperity.contact(t.heights, t.dx, t.dy, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
+    assert same_bits(arrays["approach_m"], ours["approach_m"]) and np.array_equal(arrays["pressure"], ours["pressure"])
     key = surfaces["key"][0]
     row = pl.read_parquet(tmp_path / "out" / "contacts.parquet").filter(pl.col("lower_key") == key)
     assert len(row) == 1
@@ -48,11 +49,16 @@ def test_python_contact_equals_the_cli_contact_bit_for_bit(asperity_bin, contact
 
 
 def test_two_surfaces_and_explicit_materials(tmp_path):
-    a, dx, dy = asperity.synthetic_surface(32, 1e-4, sq=0.5e-6, hurst=0.8, correlation_length=2e-5, seed=1)
-    b, _, _ = asperity.synthetic_surface(32, 1e-4, sq=0.5e-6, hurst=0.8, correlation_length=2e-5, seed=2)
+    a = asperity.synthetic_surface(64, 1e-4, sq=0.5e-6, hurst=0.8, correlation_length=2e-5, seed=1)
+    b = asperity.synthetic_surface(64, 1e-4, sq=0.5e-6, hurst=0.8, correlation_length=2e-5, seed=2)
     steel = {"youngs_modulus": 210e9, "poisson_ratio": 0.3}
-    pair = asperity.contact(a, dx, dy, upper=b, nominal_pressures=[1e6], lower_material=steel, upper_material="s235jr")
+    pair = asperity.contact(a, upper=b, nominal_pressures=[20e6], lower_material=steel, upper_material="s235jr")
     assert 0 < pair["area_fraction"] < 1
     assert pair["deformation_upper"].shape == a.shape
-    flat = asperity.contact(a, dx, nominal_pressures=1e6, lower_material=steel)
+    mixed = asperity.contact(a.heights, a.dx, upper=b.heights, nominal_pressures=[20e6], lower_material=steel, upper_material="s235jr")
+    assert mixed["area_fraction"] == pair["area_fraction"]
+    with pytest.raises(ValueError, match="upper: spacing"):
+        wide = asperity.Topography(b.heights, 2 * b.dx)
+        asperity.contact(a, upper=wide, nominal_pressures=[1e6], lower_material=steel, upper_material="s235jr")
+    flat = asperity.contact(a, nominal_pressures=20e6, lower_material=steel)
     assert flat["composite_modulus_Pa"] == pytest.approx(210e9 / (1 - 0.3**2))

@@ -14,10 +14,10 @@ def test_static_friction_equals_the_cli_friction_node(asperity_bin, contact_stud
     friction = pl.read_parquet(tmp_path / "out" / "friction.parquet")
     surfaces = pl.read_parquet(tmp_path / "out" / "surfaces.parquet")
     for seed in (3, 4):
-        heights, dx, dy = asperity.synthetic_surface(
+        t = asperity.synthetic_surface(
             C["grid"], C["size"], sq=C["sq"], hurst=C["hurst"], correlation_length=C["correlation_length"], seed=seed
         )
-        s = asperity.surface_statistics(heights, dx, dy, periodic=True)
+        s = t.statistics()
         results = asperity.static_friction(
             model="kogut_etsion",
             nominal_pressures=C["pressures"],
@@ -29,9 +29,14 @@ def test_static_friction_equals_the_cli_friction_node(asperity_bin, contact_stud
         row = friction.filter(pl.col("lower_key") == key)
         assert len(row) == 1
         assert len(results) == 2
-        # The node floors a negative μ_s (the literal KE 2004 polynomial) and keeps the model's value.
-        assert results[-1]["mu_s"] == pytest.approx(row["mu_s_computed"][0], rel=1e-9)
+        # The node floors a negative μ_s (the literal KE 2004 polynomial) and keeps the model's
+        # value, and so does the function.
+        assert results[-1]["mu_s_computed"] == pytest.approx(row["mu_s_computed"][0], rel=1e-9)
+        assert results[-1]["mu_s"] == pytest.approx(row["mu_s"][0], rel=1e-9, abs=0.0)
+        assert results[-1]["mu_s_floored"] == row["mu_s_floored"][0]
         assert results[-1]["plasticity_index"] == pytest.approx(row["plasticity_index"][0], rel=1e-9)
+        # The same from the Topography, whose size is the node's nominal area.
+        assert asperity.static_friction(model="kogut_etsion", nominal_pressures=C["pressures"], material=C["material"], surface=t) == results
 
 
 def test_explicit_summits_and_bad_models():
@@ -56,11 +61,13 @@ def test_per_spot_friction_equals_the_cli_per_spot_node(asperity_bin, contact_st
     friction = pl.read_parquet(tmp_path / "out" / "friction.parquet")
     contacts = pl.read_parquet(tmp_path / "out" / "contacts.parquet")
     surfaces = pl.read_parquet(tmp_path / "out" / "surfaces.parquet")
-    heights, dx, dy = asperity.synthetic_surface(
+    t = asperity.synthetic_surface(
         C["grid"], C["size"], sq=C["sq"], hurst=C["hurst"], correlation_length=C["correlation_length"], seed=3
     )
-    c = asperity.contact(heights, dx, dy, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
-    spots = asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"])
+    heights, dx, dy = t.heights, t.dx, t.dy
+    c = asperity.contact(t, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
+    spots = asperity.per_spot_friction(c, t, model="full_stick", material=C["material"])
+    assert asperity.per_spot_friction(c, heights, dx, dy, model="full_stick", material=C["material"]) == spots
     key = surfaces.filter(pl.col("seed") == 3)["key"][0]
     contact_key = contacts.filter(pl.col("lower_key") == key)["key"][0]
     row = friction.filter((pl.col("contact_key") == contact_key) & (pl.col("method") == "per_spot"))
@@ -87,17 +94,20 @@ def test_per_summit_friction_equals_the_cli_per_summit_node(asperity_bin, tmp_pa
     friction = pl.read_parquet(tmp_path / "out" / "friction.parquet")
     contacts = pl.read_parquet(tmp_path / "out" / "contacts.parquet")
     surfaces = pl.read_parquet(tmp_path / "out" / "surfaces.parquet")
-    heights, dx, dy = asperity.synthetic_surface(
+    t = asperity.synthetic_surface(
         C["grid"], C["size"], sq=C["sq"], hurst=C["hurst"], correlation_length=C["correlation_length"], seed=4
     )
-    c = asperity.contact(heights, dx, dy, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
+    heights, dx, dy = t.heights, t.dx, t.dy
+    c = asperity.contact(t, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
     summits = asperity.per_summit_friction(c, heights, dx, dy, model="kogut_etsion", material=C["material"])
     key = surfaces.filter(pl.col("seed") == 4)["key"][0]
     contact_key = contacts.filter(pl.col("lower_key") == key)["key"][0]
     row = friction.filter((pl.col("contact_key") == contact_key) & (pl.col("method") == "per_summit"))
     assert len(row) == 1
     # The same summits, interferences and laws: the same sums, so μ_s to rounding.
-    assert summits["mu_s"] == pytest.approx(row["mu_s_computed"][0], rel=1e-12)
+    assert summits["mu_s_computed"] == pytest.approx(row["mu_s_computed"][0], rel=1e-12)
+    assert summits["mu_s"] == pytest.approx(row["mu_s"][0], rel=1e-12, abs=0.0)
+    assert summits["mu_s_floored"] == row["mu_s_floored"][0]
     assert summits["summit_count"] == len(summits["summit_radius_m"]) > 0
     assert sum(summits["summit_normal_force_N"]) == pytest.approx(summits["total_normal_force_N"])
     with pytest.raises(ValueError, match="single-asperity"):

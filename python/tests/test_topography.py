@@ -1,6 +1,7 @@
 """Every file of the shared topography folder whose format asperity reads gives its reference Sq."""
 
 import json
+import warnings
 
 import numpy as np
 import pytest
@@ -40,19 +41,32 @@ def reference_sq(entry, height_unit_from_file, name=None):
 
 
 def sq_of(t) -> float:
-    z = t["heights"]
+    z = t.heights
     valid = z[~np.isnan(z)]
     return float(np.sqrt(np.mean((valid - valid.mean()) ** 2)))
+
+
+def read_any(path, **calibration):
+    """An areal map as a Topography, a line scan as a LineScan (read_topography of a line scan
+    is deprecated: its warning says which)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DeprecationWarning)
+        warnings.simplefilter("ignore", asperity.PlausibilityWarning)
+        try:
+            return asperity.read_topography(path, **calibration)
+        except DeprecationWarning as e:
+            assert "read_line_scan" in str(e), e
+            return asperity.read_line_scan(path, **calibration)
 
 
 def read(path):
     """The file as the command line reads it; a file without a lateral calibration gets one."""
     try:
-        return asperity.read_topography(path)
+        return read_any(path)
     except ValueError as e:
         assert "pixel_size" in str(e) and "not in the file" in str(e), e
-        t = asperity.read_topography(path, pixel_size=1e-6)
-        assert not t["spacing_from_file"]
+        t = read_any(path, pixel_size=1e-6)
+        assert t.spacing_source == "given"
         return t
 
 
@@ -74,24 +88,41 @@ def test_every_readable_file_gives_its_reference_sq(data_dir):
                 asperity.read_topography(path, pixel_size=1e-6)
             continue
         t = read(path)
-        expected = reference_sq(entry, t["height_unit_from_file"], name)
+        expected = reference_sq(entry, t.height_unit_source == "file", name)
         assert expected is not None, name
-        if t["heights"].ndim == 2:
-            stats = asperity.surface_statistics(t["heights"], t["dx"], t["dy"])
-            assert stats["sq_m"] == pytest.approx(expected, rel=1e-6), name
+        if isinstance(t, asperity.Topography):
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", asperity.PlausibilityWarning)
+                assert t.statistics()["sq_m"] == pytest.approx(expected, rel=1e-6), name
         assert sq_of(t) == pytest.approx(expected, rel=1e-6), name
         checked.append(name)
     assert len(checked) >= 20, (checked, unreadable)
 
 
+@pytest.mark.filterwarnings("ignore:.*stores no height unit:asperity.PlausibilityWarning")
 def test_a_map_without_calibration_is_not_given_one(data_dir):
     line = data_dir / "xyz" / "xy-4.txt"
     with pytest.raises(ValueError, match="pixel_size"):
-        asperity.read_topography(line)
-    t = asperity.read_topography(line, size=1e-3)
-    assert t["x"][1] == 1e-3 / len(t["x"]) and not t["spacing_from_file"]
+        asperity.read_line_scan(line)
+    t = asperity.read_line_scan(line, size=1e-3)
+    assert t.x[1] == 1e-3 / len(t.x) and t.spacing_source == "given"
+    with pytest.raises(ValueError, match="read_topography"):
+        asperity.read_line_scan(data_dir / "x3p" / "x3p-2.x3p")
     calibrated = data_dir / "x3p" / "x3p-2.x3p"
     with pytest.raises(ValueError, match="override_file_spacing"):
         asperity.read_topography(calibrated, pixel_size=1e-3)
-    t = asperity.read_topography(calibrated, pixel_size=(1e-3, 2e-3), override_file_spacing=True)
-    assert (t["dx"], t["dy"]) == (1e-3, 2e-3)
+    with pytest.warns(asperity.PlausibilityWarning, match="coarser than a millimetre"):
+        t = asperity.read_topography(calibrated, pixel_size=(1e-3, 2e-3), override_file_spacing=True)
+    assert (t.dx, t.dy) == (1e-3, 2e-3) and t.spacing_source == "given"
+
+
+@pytest.mark.filterwarnings("ignore:.*stores no height unit:asperity.PlausibilityWarning")
+def test_the_old_dict_keys_still_read_with_a_deprecation_warning(data_dir):
+    """read_topography returned a dict before; its keys still work, with a DeprecationWarning."""
+    t = asperity.read_topography(data_dir / "x3p" / "x3p-2.x3p")
+    with pytest.warns(DeprecationWarning, match="t.heights"):
+        assert t["heights"] is t.heights and t["dx"] == t.dx and t["spacing_from_file"] is True
+    with pytest.warns(DeprecationWarning, match="read_line_scan"):
+        line = asperity.read_topography(data_dir / "xyz" / "xy-4.txt", size=1e-3)
+    with pytest.warns(DeprecationWarning):
+        assert line["x"] is line.x

@@ -23,13 +23,14 @@ use crate::units::format_number;
 
 pub use contact::{final_step_metrics, ContactSpec, ContactTask, CONTACT_KIND_VERSION};
 pub use friction::{
-    friction_models_markdown, FrictionSpec, FrictionTask, DEFAULT_ADHESION_ENERGY,
-    DEFAULT_EQUILIBRIUM_DISTANCE, FRICTION_KIND_VERSION,
+    coefficient_fields, friction_models_markdown, FrictionSpec, FrictionTask,
+    DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE, FRICTION_KIND_VERSION,
 };
 pub use material_spec::{MaterialMapping, MaterialSpec};
 pub use surface::{
-    apply_lateral_calibration, surface_statistics, AnisotropySpec, FileSpec, LateralCalibration,
-    SurfaceSpec, SurfaceTask, SyntheticSpec, SURFACE_KIND_VERSION,
+    apply_height_unit, apply_lateral_calibration, height_unit_rule, scale_checks, surface_artifact,
+    AnisotropySpec, FileSpec, HeightUnitSource, LateralCalibration, SurfaceSpec, SurfaceTask,
+    SyntheticSpec, SURFACE_KIND_VERSION,
 };
 
 /// A node of a study: `name: {<kind>: {...}}`.

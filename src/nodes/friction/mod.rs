@@ -370,7 +370,7 @@ impl FrictionTask {
 /// The coefficient columns of a row: `mu_s` (never negative), `mu_s_computed` (the model's value
 /// as computed) and `mu_s_floored` (true when a negative computed value is reported as 0: a
 /// negative total Q_max, e.g. the literal KE 2004 polynomial at high plasticity index).
-pub(crate) fn coefficient_fields(mu_computed: f64) -> [Field; 3] {
+pub fn coefficient_fields(mu_computed: f64) -> [Field; 3] {
     let floored = mu_computed < 0.0;
     [
         Field::float(names::MU_S, mu_computed.max(0.0), Dimension::Dimensionless),

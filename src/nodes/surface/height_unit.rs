@@ -56,7 +56,7 @@ impl schemars::JsonSchema for HeightUnit {
 
 /// Where the heights' unit came from (the `height_unit_source` column).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum HeightUnitSource {
+pub enum HeightUnitSource {
     /// The file states it.
     File,
     /// The node's `height_unit`.
@@ -67,7 +67,7 @@ pub(crate) enum HeightUnitSource {
 
 impl HeightUnitSource {
     /// The column's text.
-    pub(crate) fn name(self) -> &'static str {
+    pub fn name(self) -> &'static str {
         match self {
             Self::File => "file",
             Self::Study => "study",
@@ -77,28 +77,41 @@ impl HeightUnitSource {
 }
 
 /// The map with its heights in metres: the file's unit, the node's `height_unit` (for a file
-/// without one), or metres assumed — with the flag that says so.
-pub(crate) fn apply_height_unit(
+/// without one), or metres assumed — with the flag that says so ([`height_unit_rule`]).
+pub fn apply_height_unit(
     map: HeightMap,
     file_unit: ScaleSource,
     given: Option<f64>,
     path: &std::path::Path,
 ) -> Result<(HeightMap, HeightUnitSource, Option<String>), NodeError> {
+    let (factor, source, flag) = height_unit_rule(file_unit, given, path)?;
+    let Some(unit) = factor else {
+        return Ok((map, source, flag));
+    };
+    let (dx, dy) = (map.dx(), map.dy());
+    let scaled = HeightMap::new(map.into_heights() * unit, dx, dy)
+        .map_err(|e| NodeError::new(format!("{}: `height_unit`: {e}", path.display())))?;
+    Ok((scaled, source, flag))
+}
+
+/// The rule of the height unit for heights stored with `file_unit`: the factor (m per stored
+/// value) to multiply them by (`None`: they are metres already), where the unit came from, and
+/// the flag of a unit assumed. A file that states its unit refuses `given`.
+pub fn height_unit_rule(
+    file_unit: ScaleSource,
+    given: Option<f64>,
+    path: &std::path::Path,
+) -> Result<(Option<f64>, HeightUnitSource, Option<String>), NodeError> {
     match (file_unit, given) {
-        (ScaleSource::File, None) => Ok((map, HeightUnitSource::File, None)),
+        (ScaleSource::File, None) => Ok((None, HeightUnitSource::File, None)),
         (ScaleSource::File, Some(_)) => Err(NodeError::new(format!(
             "{}: `height_unit`: the file states its own height unit (its heights are already \
              converted to metres); remove `height_unit`",
             path.display()
         ))),
-        (ScaleSource::Assumed, Some(unit)) => {
-            let (dx, dy) = (map.dx(), map.dy());
-            let scaled = HeightMap::new(map.into_heights() * unit, dx, dy)
-                .map_err(|e| NodeError::new(format!("{}: `height_unit`: {e}", path.display())))?;
-            Ok((scaled, HeightUnitSource::Study, None))
-        }
+        (ScaleSource::Assumed, Some(unit)) => Ok((Some(unit), HeightUnitSource::Study, None)),
         (ScaleSource::Assumed, None) => Ok((
-            map,
+            None,
             HeightUnitSource::Assumed,
             Some(format!(
                 "{}: the file stores no height unit, so its values were read as metres; give \

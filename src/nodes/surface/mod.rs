@@ -10,7 +10,7 @@ use crate::engine::value::Field;
 use crate::nodes::surface_view::HEIGHTS;
 use crate::nodes::validity;
 use crate::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
-use crate::surface::{Boundary, HeightMap};
+use crate::surface::{amplitude_statistics, Boundary, HeightMap};
 
 mod height_unit;
 mod lateral_scale;
@@ -21,6 +21,7 @@ mod synthetic;
 mod twin;
 mod twin_band;
 
+pub use height_unit::{apply_height_unit, height_unit_rule, HeightUnitSource};
 pub use measured::FileSpec;
 pub use synthetic::{AnisotropySpec, SyntheticSpec};
 pub use twin::TwinSpec;
@@ -108,12 +109,53 @@ impl SurfaceTask {
     }
 }
 
-/// The metrics of a `surfaces` row for `map` (amplitude, hybrid, spectral and summit
-/// statistics; see `metrics`), the one computation the surface node and the Python package
-/// share. `boundary` is [`Boundary::Periodic`] for a synthetic map, [`Boundary::Open`] for a
-/// measured one.
-pub fn surface_statistics(map: &HeightMap, boundary: Boundary) -> Result<Vec<Field>, NodeError> {
-    metrics::surface_report(map, boundary).map(|report| report.metrics)
+/// What a surface node computes from `map`, the one computation the node and the Python package
+/// share: the `surfaces` row's metrics (amplitude, hybrid, functional, spectral and summit
+/// statistics; see `metrics`), its long tables (`psd`, `acf`, `summits`, the material ratio
+/// curve) and the flag of heights beyond the field of view, after the spacing is checked; and
+/// the lateral-scale warning (empty when the rms slope is plausible), which the node writes to
+/// the row of a measured map. `boundary` is [`Boundary::Periodic`] for a synthetic map,
+/// [`Boundary::Open`] for a measured one. The caller adds its own metrics and then checks the
+/// artifact with [`validity::check_artifact`].
+pub fn surface_artifact(
+    map: &HeightMap,
+    boundary: Boundary,
+) -> Result<(Artifact, String), NodeError> {
+    validity::check_fields(KIND, &metrics::spacing_fields(map))?;
+    let report = metrics::surface_report(map, boundary)?;
+    let warning = lateral_scale_warning(report.sdq, map.dx(), map.dy());
+    let flags = validity::cross::surface_size(
+        report.sq,
+        map.nx() as f64 * map.dx(),
+        map.ny() as f64 * map.dy(),
+    );
+    let artifact = Artifact {
+        metrics: report.metrics,
+        tables: report.tables,
+        flags: flags.into_iter().collect(),
+        ..Artifact::default()
+    };
+    Ok((artifact, warning))
+}
+
+/// The checks a surface node makes of a map's scale, without the rest of its statistics (for
+/// callers that take a map without a surface node: the Python package's contact and friction
+/// functions): the spacing (a value the node fails is `Err`), then the rms slope Sdq and the
+/// sentences that would flag heights beyond the field of view or warn of an implausible lateral
+/// scale — the rules [`surface_artifact`] applies.
+pub fn scale_checks(
+    map: &HeightMap,
+    boundary: Boundary,
+) -> Result<(Option<f64>, Vec<String>), NodeError> {
+    validity::check_fields(KIND, &metrics::spacing_fields(map))?;
+    let a = amplitude_statistics(map, boundary)
+        .map_err(|e| NodeError::new(format!("statistics: {e}")))?;
+    let flags =
+        validity::cross::surface_size(a.sq, map.nx() as f64 * map.dx(), map.ny() as f64 * map.dy())
+            .into_iter()
+            .chain(Some(lateral_scale_warning(a.sdq, map.dx(), map.dy())).filter(|w| !w.is_empty()))
+            .collect();
+    Ok((a.sdq, flags))
 }
 
 impl NodeTask for SurfaceTask {
@@ -167,27 +209,16 @@ impl NodeTask for SurfaceTask {
     /// computed, every value after.
     fn compute(&self, _inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
         let (map, boundary, source_metrics, source_flags) = self.heights()?;
-        validity::check_fields(KIND, &metrics::spacing_fields(&map))?;
-        let mut report = metrics::surface_report(&map, boundary)?;
-        report.metrics.extend(source_metrics);
+        let (mut artifact, warning) = surface_artifact(&map, boundary)?;
+        artifact.metrics.extend(source_metrics);
         if let SurfaceSource::Measured(_) = self.source {
-            let warning = lateral_scale_warning(report.sdq, map.dx(), map.dy());
-            report
+            artifact
                 .metrics
                 .push(Field::text("lateral_scale_warning", warning));
         }
-        let flags = validity::cross::surface_size(
-            report.sq,
-            map.nx() as f64 * map.dx(),
-            map.ny() as f64 * map.dy(),
-        );
+        artifact.flags = source_flags.into_iter().chain(artifact.flags).collect();
         let heights = map.into_heights().into_dyn();
-        let mut artifact = Artifact {
-            metrics: report.metrics,
-            arrays: [(String::from(HEIGHTS), heights)].into_iter().collect(),
-            tables: report.tables,
-            flags: source_flags.into_iter().chain(flags).collect(),
-        };
+        artifact.arrays = [(String::from(HEIGHTS), heights)].into_iter().collect();
         validity::check_artifact(KIND, &mut artifact)?;
         Ok(artifact)
     }

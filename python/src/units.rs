@@ -1,0 +1,39 @@
+//! Quantities at the Python boundary, read by the study files' own parser
+//! (`asperity::units`): a plain number is SI, a string carries its unit (`"0.5 um"`,
+//! `"20 MPa"`, `"90 deg"`) and must have the dimension the argument expects.
+
+use asperity::units::{parse_quantity_as, Dimension};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::guard::value_error;
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(parse_quantity, m)?)?;
+    let dimensions = PyDict::new(m.py());
+    for d in Dimension::ALL {
+        dimensions.set_item(d.name(), (d.si_symbol(), d.example(), d.accepted_units()))?;
+    }
+    m.add("DIMENSIONS", dimensions)?;
+    Ok(())
+}
+
+/// The dimension called `name` (as `Dimension::name` writes it: "length", "pressure", …).
+fn dimension(name: &str) -> PyResult<Dimension> {
+    Dimension::from_name(name.as_bytes()).ok_or_else(|| {
+        let known: Vec<_> = Dimension::ALL.iter().map(|d| d.name()).collect();
+        value_error(
+            "dimension",
+            format!(
+                "'{name}' is not a dimension; expected one of: {}",
+                known.join(", ")
+            ),
+        )
+    })
+}
+
+/// `text` ("<number> [unit]") in SI units of `dimension`; an error naming `parameter`.
+#[pyfunction]
+fn parse_quantity(parameter: &str, text: &str, dimension_name: &str) -> PyResult<f64> {
+    parse_quantity_as(text, dimension(dimension_name)?).map_err(|e| value_error(parameter, e))
+}

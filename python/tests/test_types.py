@@ -1,0 +1,67 @@
+"""Every result's keys are those of its TypedDict (asperity/_results.py, the one place they are
+spelled): each key returned is declared, each required key is returned, so a type checker sees
+what the functions return."""
+
+import inspect
+import typing
+
+import numpy as np
+import pytest
+
+import asperity
+
+T = asperity.synthetic_surface(64, 64e-6, sq=0.05e-6, hurst=0.8, correlation_length=20e-6)
+MISSING = np.array(T.heights)
+MISSING[3, 5] = np.nan
+
+
+def check(result, typed, name):
+    declared = set(typing.get_type_hints(typed))
+    required = set(typed.__required_keys__)
+    undeclared = sorted(set(result) - declared)
+    absent = sorted(required - set(result))
+    assert not undeclared, f"{name}: keys returned but not declared in {typed.__name__}: {undeclared}"
+    assert not absent, f"{name}: required keys of {typed.__name__} not returned: {absent}"
+
+
+def test_surface_results():
+    check(T.statistics(), asperity.SurfaceStatistics, "statistics (complete map)")
+    check(asperity.surface_statistics(MISSING, T.dx), asperity.SurfaceStatistics, "surface_statistics (missing points)")
+    check(T.psd(), asperity.Psd, "psd")
+    check(T.acf(), asperity.Acf, "acf")
+    check(T.material_ratio(), asperity.MaterialRatio, "material_ratio")
+    check(T.summits(), asperity.Summits, "summits")
+    # Every optional key is returned for some map: the declarations are not stale.
+    optional = set(typing.get_type_hints(asperity.SurfaceStatistics)) - set(asperity.SurfaceStatistics.__required_keys__)
+    assert optional <= set(T.statistics()), sorted(optional - set(T.statistics()))
+
+
+def test_contact_and_friction_results():
+    c = asperity.contact(T, nominal_pressures=[5e6, 20e6], lower_material="s235jr")
+    check(c, asperity.ContactResult, "contact")
+    for step in c["load_curve"]:
+        check(step, asperity.LoadStep, "contact load_curve")
+    two = asperity.contact(T, upper=T, nominal_pressures=1e6, lower_material="s235jr", upper_material="s235jr")
+    check(two, asperity.ContactResult, "contact of two surfaces")
+    check(asperity.material("s235jr"), asperity.MaterialConstants, "material")
+    for law in asperity.friction_laws():
+        check(law, asperity.FrictionLaw, "friction_laws")
+        for p in law["parameters"]:
+            check(p, asperity.FrictionLawParameter, f"friction_laws {law['name']} parameter")
+    for row in asperity.static_friction(model="full_stick", surface=T, nominal_pressures=[5e6, 20e6], material="s235jr"):
+        check(row, asperity.StaticFrictionRow, "static_friction")
+    check(asperity.per_spot_friction(c, T, model="full_stick", material="s235jr"), asperity.PerSpotResult, "per_spot_friction")
+    check(asperity.per_summit_friction(c, T, material="s235jr"), asperity.PerSummitResult, "per_summit_friction")
+
+
+def test_study_counts(contact_study):
+    check(asperity.validate(contact_study), asperity.StudyCounts, "validate")
+
+
+@pytest.mark.parametrize("name", [n for n in asperity.__all__ if hasattr(getattr(asperity, n), "__required_keys__")])
+def test_every_typed_result_is_returned_by_a_function(name):
+    functions = [getattr(asperity, f) for f in asperity.__all__ if inspect.isfunction(getattr(asperity, f))]
+    functions += [getattr(asperity.Topography, m) for m in ("statistics", "psd", "acf", "material_ratio", "summits")]
+    returned = " ".join(str(inspect.signature(f).return_annotation) for f in functions)
+    nested = " ".join(str(typing.get_type_hints(t)) for t in (asperity.ContactResult, asperity.FrictionLaw))
+    assert name in returned + " " + nested, f"{name}: no public function returns it"
