@@ -3,6 +3,8 @@
 //! Everything inside asperity is SI. Study files may write a quantity either as a plain number
 //! (taken as SI) or as a string `"<number> <unit>"`; the unit's dimension is checked against what
 //! the field expects, so a pressure where a length is expected is an error, not a silent number.
+//! Angles are the one exception to plain numbers being SI ([`plain_number_as`]): an angle needs
+//! its unit, except 0.
 
 use std::fmt;
 use std::marker::PhantomData;
@@ -189,6 +191,12 @@ pub enum UnitError {
     #[error("'{text}' is not finite")]
     NotFinite { text: String },
     #[error(
+        "{text} is an angle without its unit: write '{text} deg' or '{text} rad' (angles are \
+         written in degrees as often as in radians, so a plain number other than 0 is refused \
+         rather than guessed)"
+    )]
+    AngleWithoutUnit { text: String },
+    #[error(
         "expected a {expected} such as '{example}' (units: {units}), got '{text}', which is a {found}",
         expected = expected.name(), example = expected.example(),
         units = expected.accepted_units(), found = found.name()
@@ -254,10 +262,13 @@ pub fn parse_quantity(text: &str) -> Result<DimensionedValue, UnitError> {
     })
 }
 
-/// Parses a quantity that must have dimension `expected`; a bare number is taken as SI.
+/// Parses a quantity that must have dimension `expected`; a bare number follows
+/// [`plain_number_as`].
 pub fn parse_quantity_as(text: &str, expected: Dimension) -> Result<f64, UnitError> {
     let v = parse_quantity(text)?;
-    if v.dimension == expected || v.dimension == Dimension::Dimensionless {
+    if v.dimension == Dimension::Dimensionless {
+        plain_number_as(v.si, expected)
+    } else if v.dimension == expected {
         Ok(v.si)
     } else {
         Err(UnitError::WrongDimension {
@@ -265,6 +276,21 @@ pub fn parse_quantity_as(text: &str, expected: Dimension) -> Result<f64, UnitErr
             expected,
             found: v.dimension,
         })
+    }
+}
+
+/// The one rule for a plain number (no unit) written where a quantity of dimension `expected`
+/// belongs: it is the value in SI units, except for an angle, which needs its unit (`rad`,
+/// `deg`, `°`): a plain angle other than 0 (the same in every unit) is refused. Engineers write
+/// angles in degrees as often as in radians, and a guessed unit would turn `90` into a valid but
+/// different direction (90 rad ≈ 116.6°) without a word.
+pub fn plain_number_as(value: f64, expected: Dimension) -> Result<f64, UnitError> {
+    if expected == Dimension::Angle && value != 0.0 {
+        Err(UnitError::AngleWithoutUnit {
+            text: format_number(value),
+        })
+    } else {
+        Ok(value)
     }
 }
 
@@ -398,17 +424,13 @@ impl<'de, D: DimensionMarker> serde::Deserialize<'de> for Quantity<D> {
         impl<D: DimensionMarker> serde::de::Visitor<'_> for QuantityVisitor<D> {
             type Value = Quantity<D>;
             fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                write!(
-                    f,
-                    "a {} as a number in {} or a string such as '{}'",
-                    D::DIMENSION.name(),
-                    D::DIMENSION.si_symbol(),
-                    D::DIMENSION.example()
-                )
+                f.write_str(&plain_number_rule(D::DIMENSION))
             }
             fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Self::Value, E> {
                 if v.is_finite() {
-                    Ok(Quantity::from_si(v))
+                    plain_number_as(v, D::DIMENSION)
+                        .map(Quantity::from_si)
+                        .map_err(E::custom)
                 } else {
                     Err(E::custom(format!(
                         "{v} is not a finite {}",
@@ -417,10 +439,10 @@ impl<'de, D: DimensionMarker> serde::Deserialize<'de> for Quantity<D> {
                 }
             }
             fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Self::Value, E> {
-                Ok(Quantity::from_si(v as f64))
+                self.visit_f64(v as f64)
             }
             fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Self::Value, E> {
-                Ok(Quantity::from_si(v as f64))
+                self.visit_f64(v as f64)
             }
             fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Self::Value, E> {
                 parse_quantity_as(v, D::DIMENSION)
@@ -438,25 +460,50 @@ impl<D: DimensionMarker> schemars::JsonSchema for Quantity<D> {
     }
 
     fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
-        let name = D::DIMENSION.name();
-        let article = if name.starts_with(['a', 'e', 'i', 'o', 'u']) {
-            "An"
-        } else {
-            "A"
-        };
-        let description = format!(
-            "{article} {name} as a plain number in SI ({}) or a string with units such as '{}' (units: {}).",
-            D::DIMENSION.si_symbol(),
-            D::DIMENSION.example(),
+        let mut description = plain_number_rule(D::DIMENSION);
+        if let Some(first) = description.get_mut(..1) {
+            first.make_ascii_uppercase();
+        }
+        description = format!(
+            "{description} (units: {}).",
             D::DIMENSION.accepted_units()
         );
+        let plain = if D::DIMENSION == Dimension::Angle {
+            schemars::json_schema!({"const": 0})
+        } else {
+            schemars::json_schema!({"type": "number"})
+        };
         schemars::json_schema!({
             "description": description,
             "anyOf": [
-                {"type": "number"},
+                plain,
                 {"type": "string", "pattern": r"^\s*[-+]?[0-9.]+([eE][-+]?[0-9]+)?\s*\S*\s*$"}
             ]
         })
+    }
+}
+
+/// How a quantity of `dimension` is written, for messages and the schema: "a length as a plain
+/// number in SI (m) or a string with units such as '1.19 um'"; for an angle, the unit is required
+/// ([`plain_number_as`]).
+pub fn plain_number_rule(dimension: Dimension) -> String {
+    let name = dimension.name();
+    let article = if name.starts_with(['a', 'e', 'i', 'o', 'u']) {
+        "an"
+    } else {
+        "a"
+    };
+    if dimension == Dimension::Angle {
+        format!(
+            "{article} {name} with its unit such as '{}'; a plain number other than 0 is refused",
+            dimension.example()
+        )
+    } else {
+        format!(
+            "{article} {name} as a plain number in SI ({}) or a string with units such as '{}'",
+            dimension.si_symbol(),
+            dimension.example()
+        )
     }
 }
 
@@ -520,5 +567,44 @@ mod tests {
     #[test]
     fn bare_numbers_are_si() {
         assert_eq!(parse_quantity_as("2e-6", Dimension::Length).unwrap(), 2e-6);
+    }
+
+    #[test]
+    fn a_plain_angle_needs_its_unit_unless_it_is_zero() {
+        assert_eq!(plain_number_as(0.0, Dimension::Angle), Ok(0.0));
+        assert_eq!(plain_number_as(-0.0, Dimension::Angle), Ok(0.0));
+        assert_eq!(plain_number_as(6.2832, Dimension::Length), Ok(6.2832));
+        let err = plain_number_as(6.2832, Dimension::Angle).unwrap_err();
+        assert_eq!(
+            err,
+            UnitError::AngleWithoutUnit {
+                text: String::from("6.2832")
+            }
+        );
+        let text = err.to_string();
+        assert!(
+            text.contains("'6.2832 deg'") && text.contains("'6.2832 rad'"),
+            "{text}"
+        );
+        assert!(parse_quantity_as("90", Dimension::Angle).is_err());
+        assert_eq!(parse_quantity_as("0", Dimension::Angle), Ok(0.0));
+        let tau = parse_quantity_as("6.2832 rad", Dimension::Angle).unwrap();
+        assert_eq!(tau, 6.2832);
+        let full = parse_quantity_as("360 deg", Dimension::Angle).unwrap();
+        assert_eq!(full, parse_quantity_as("360 °", Dimension::Angle).unwrap());
+        assert!((full - std::f64::consts::TAU).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_plain_angle_is_refused_in_a_quantity_field() {
+        let parse = |yaml: &str| serde_saphyr::from_str::<Quantity<Angle>>(yaml);
+        assert_eq!(parse("0").unwrap().si(), 0.0);
+        assert_eq!(parse("\"90 deg\"").unwrap().si(), 90f64.to_radians());
+        for plain in ["6.2832", "90", "1"] {
+            let message = parse(plain).unwrap_err().to_string();
+            assert!(message.contains("without its unit"), "{plain}: {message}");
+        }
+        let length = serde_saphyr::from_str::<Quantity<Length>>("1e-6").unwrap();
+        assert_eq!(length.si(), 1e-6);
     }
 }
