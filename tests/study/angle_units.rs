@@ -51,7 +51,9 @@ fn key(plan: &Plan, kind: &str) -> String {
 }
 
 fn assert_refused(result: Result<Plan, String>, field: &str, plain: &str) {
-    let message = result.err().expect("a plain angle must be refused");
+    let Err(message) = result else {
+        panic!("a plain angle must be refused");
+    };
     let both = format!("'{plain} deg' or '{plain} rad'");
     assert!(
         message.contains(field) && message.contains("without its unit") && message.contains(&both),
@@ -62,7 +64,11 @@ fn assert_refused(result: Result<Plan, String>, field: &str, plain: &str) {
 #[test]
 fn an_angle_with_its_unit_is_read_in_every_unit_and_zero_may_be_plain() {
     let base = plan("0 deg", "90 deg", "1", &[]).unwrap();
-    for (lay, dir) in [("0", "90°"), ("0 rad", "1.5707963267948966 rad"), ("0°", "90 deg")] {
+    for (lay, dir) in [
+        ("0", "90°"),
+        ("0 rad", "1.5707963267948966 rad"),
+        ("0°", "90 deg"),
+    ] {
         let other = plan(lay, dir, "1", &[]).unwrap();
         assert_eq!(key(&base, "surface"), key(&other, "surface"), "{lay}");
         assert_eq!(key(&base, "friction"), key(&other, "friction"), "{dir}");
