@@ -19,7 +19,7 @@ use crate::friction::laws::{
     ParameterSpec, ParameterValue, Unit,
 };
 use crate::friction::FrictionLaw;
-use crate::units::{plain_number_as, Dimension};
+use crate::units::{angle_without_unit, plain_number_as, Dimension, UnitError};
 
 use super::spec_fields::spec_error;
 
@@ -220,8 +220,12 @@ fn resolve_value(
 ) -> Result<ParameterValue, SpecError> {
     let convert = |v: &LawValue| match (v, spec.kind) {
         (LawValue::Number(x), ParameterKind::Number { unit, .. }) => {
+            // The value is already named before the message: say only what is wrong with it.
             plain_number_as(*x, dimension_of(unit))
-                .map_err(|e| e.to_string())
+                .map_err(|e| match e {
+                    UnitError::AngleWithoutUnit { text } => angle_without_unit(&text),
+                    other => other.to_string(),
+                })
                 .and_then(|x| spec.number(x))
         }
         (LawValue::Quantity(x, d), ParameterKind::Number { unit, .. })

@@ -194,11 +194,7 @@ pub enum UnitError {
     },
     #[error("'{text}' is not finite")]
     NotFinite { text: String },
-    #[error(
-        "{text} is an angle without its unit: write '{text} deg' or '{text} rad' (angles are \
-         written in degrees as often as in radians, so a plain number other than 0 is refused \
-         rather than guessed)"
-    )]
+    #[error("{text} {}", angle_without_unit(text))]
     AngleWithoutUnit { text: String },
     #[error(
         "expected a {expected} such as '{example}' (units: {units}), got '{text}', which is a {found}",
@@ -296,6 +292,16 @@ pub fn plain_number_as(value: f64, expected: Dimension) -> Result<f64, UnitError
     } else {
         Ok(value)
     }
+}
+
+/// What is said of the plain number `text` written as an angle, after the value: "is an angle
+/// without its unit: write '90 deg' or '90 rad' (…)".
+pub fn angle_without_unit(text: &str) -> String {
+    format!(
+        "is an angle without its unit: write '{text} deg' or '{text} rad' (angles are written in \
+         degrees as often as in radians, so a plain number other than 0 is refused rather than \
+         guessed)"
+    )
 }
 
 /// Formats an SI value with its unit for messages and metadata ("1.19e-6 m").
