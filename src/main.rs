@@ -20,8 +20,15 @@ fn main() -> ExitCode {
     sigpipe::reset();
     let args = cli::Cli::parse();
     cli::init_tracing(args.verbose);
+    if let Err(e) = cli::interrupt::install() {
+        eprintln!("warning: Ctrl-C cannot be handled cleanly ({e}); it ends the process at once");
+    }
     match cli::run(args) {
         Ok(code) => code,
+        Err(e) if e.downcast_ref::<cli::interrupt::Interrupted>().is_some() => {
+            eprintln!("interrupted");
+            ExitCode::from(cli::interrupt::EXIT_CODE)
+        }
         Err(e) => {
             eprintln!("error: {}", cli::error_text(&e));
             ExitCode::from(1)

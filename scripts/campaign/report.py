@@ -16,6 +16,9 @@ FLAG_COLUMNS = {
     "studies": ["impossible_ok", "debug_text", "repeated_clause", "late_failure", "no_message", "lost_tables"],
     "files": ["impossible_ok", "nonfinite_printed", "accepted_corrupt", "debug_text", "repeated_clause",
               "no_message", "lost_tables"],
+    "folders": ["debug_text", "repeated_clause", "late_failure", "lost_tables"],
+    "angles": ["impossible_ok", "debug_text", "repeated_clause", "late_failure", "no_message", "lost_tables"],
+    "per_spot": ["impossible_ok", "debug_text", "repeated_clause", "late_failure", "no_message", "lost_tables"],
 }
 EXTRA_COLUMNS = {
     "cache": [("detected by verify", "detected"), ("rerun identical", "rerun_identical"),
@@ -24,6 +27,14 @@ EXTRA_COLUMNS = {
     "kills": [("killed mid-run", "killed"), ("rerun identical", "rerun_identical"),
               ("verify ok after rerun", "verify_after_run"), ("temp files left", "leftovers")],
     "concurrency": [("complete folder", "complete"), ("identical to reference", "identical")],
+    "interrupts": [("exit 130", "interrupted"), ("said interrupted", "said interrupted"),
+                   ("tmp clean", "tmp clean"), ("verify ok at once", "verify ok at once"),
+                   ("rerun identical", "rerun identical")],
+}
+NAMED_TITLES = {
+    "folders": "Folder cases of issue #42 (small study; unprivileged user when run as root)",
+    "angles": "Angle forms of issue #42 (shrunk ground-validation study)",
+    "per_spot": "Per-spot cases of issue #42 (shrunk quickstart)",
 }
 
 
@@ -34,6 +45,7 @@ class Report:
         self.cases = defaultdict(list)
         self.family_time = {}
         self.issue_cases = []
+        self.named = {}
         self.anomalies = []
         self.jsonl = open(os.path.join(folder, "cases.jsonl"), "w")
 
@@ -96,6 +108,12 @@ class Report:
                 said = c.notes[0] if c.notes else (first_words(c.procs[-1].stderr) if c.procs else "")
                 out.append(f"| {c.name.split(': ', 1)[1]} | {c.outcome} | {', '.join(sorted(c.flags)) or '-'} | "
                            f"{cell(said)} |")
+            out.append("")
+        for fam, cases in self.named.items():
+            out += [f"### {NAMED_TITLES[fam]}", "", "| case | outcome | flags | what it said |", "|---|---|---|---|"]
+            for c in cases:
+                said = "; ".join(c.notes[:2]) if c.notes else ""
+                out.append(f"| {cell(c.name, 60)} | {c.outcome} | {', '.join(sorted(c.flags)) or '-'} | {cell(said, 160)} |")
             out.append("")
         out += [f"Anomalous cases: {len(self.anomalies)} (each in the report folder with its input, "
                 "commands and output tails)."]

@@ -2,6 +2,7 @@
 
 mod cache;
 mod inspect;
+pub mod interrupt;
 mod progress;
 mod report;
 mod run;

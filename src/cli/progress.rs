@@ -5,12 +5,12 @@ use std::sync::Mutex;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use asperity::engine::execute::{NodeStatus, Progress};
+use asperity::engine::execute::{NodeStatus, Progress, StoreGate};
 use asperity::engine::plan::PlannedNode;
 
 /// A progress bar with ETA on stderr (hidden with `--quiet` or when stderr is not a terminal).
-/// Each distinct warning is printed once: one cause met by many nodes (a damaged cache folder
-/// every result of a kind fails to be stored in) is one line, not one per node.
+/// Each distinct warning is printed once. The run stops starting nodes after a Ctrl-C, and its
+/// cache writes pass the gate a second Ctrl-C closes ([`super::interrupt`]).
 pub struct BarProgress {
     bar: ProgressBar,
     warned: Mutex<HashSet<String>>,
@@ -28,6 +28,7 @@ impl BarProgress {
             )
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
+        super::interrupt::set_bar(Some(bar.clone()));
         Self {
             bar,
             warned: Mutex::default(),
@@ -35,6 +36,7 @@ impl BarProgress {
     }
 
     pub fn finish(&self) {
+        super::interrupt::set_bar(None);
         self.bar.finish_and_clear();
     }
 }
@@ -65,5 +67,13 @@ impl Progress for BarProgress {
         if warned.insert(message.to_string()) {
             self.bar.suspend(|| eprintln!("warning: {message}"));
         }
+    }
+
+    fn cancelled(&self) -> bool {
+        super::interrupt::requested()
+    }
+
+    fn store_gate(&self) -> Option<&StoreGate> {
+        Some(super::interrupt::store_gate())
     }
 }

@@ -64,6 +64,22 @@ pub fn report(args: ReportArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// Writes the page as `<out>.tmp` and renames it into place. A Ctrl-C meanwhile is left until
+/// the page is written or its temporary file deleted, then stops the command ([`Interrupted`]).
+///
+/// [`Interrupted`]: super::interrupt::Interrupted
+fn write_page(out: &std::path::Path, html: &str) -> Result<()> {
+    let _section = super::interrupt::cooperative();
+    let tmp = out.with_extension("html.tmp");
+    std::fs::write(&tmp, html).with_context(|| format!("cannot write {}", tmp.display()))?;
+    if super::interrupt::requested() {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(super::interrupt::Interrupted.into());
+    }
+    std::fs::rename(&tmp, out).with_context(|| format!("cannot write {}", out.display()))?;
+    Ok(())
+}
+
 /// How often the report is rebuilt when runs keep publishing into the results folder.
 const READ_ATTEMPTS: usize = 3;
 
@@ -82,10 +98,7 @@ fn read_one_set(
     for _ in 0..READ_ATTEMPTS {
         let before = generation()?;
         let report = build_report(options, Some(cache))?;
-        let tmp = out.with_extension("html.tmp");
-        std::fs::write(&tmp, &report.html)
-            .with_context(|| format!("cannot write {}", tmp.display()))?;
-        std::fs::rename(&tmp, out).with_context(|| format!("cannot write {}", out.display()))?;
+        write_page(out, &report.html)?;
         if generation()? == before {
             return Ok(report);
         }

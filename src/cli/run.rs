@@ -6,11 +6,13 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 
 use asperity::engine::execute::{execute, execute_nodes, NodeOutcome, NodeStatus, RunReport};
-use asperity::engine::output::check_target;
 use asperity::engine::plan::Plan;
 use asperity::engine::shard::{Shard, ShardPlan};
-use asperity::study_run::{default_memory_budget, default_out, execute_options, write_results};
+use asperity::study_run::{
+    check_results_folder, default_memory_budget, default_out, execute_options, write_results_unless,
+};
 
+use super::interrupt;
 use super::progress::BarProgress;
 use super::CacheArg;
 
@@ -26,6 +28,10 @@ pub struct RunArgs {
     /// report.html, go with it); only an absent, empty or earlier results folder is replaced.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Replace a results folder written by another study file (one with the same `study:`
+    /// name); without it such a folder is refused before anything is computed.
+    #[arg(long)]
+    force: bool,
     #[command(flatten)]
     cache: CacheArg,
     /// Worker threads [default: all cores].
@@ -62,15 +68,24 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
             .map(|m| m.saturating_mul(1 << 20))
             .unwrap_or_else(default_memory_budget),
     );
-    if args.shard.is_none() {
-        check_target(&out)?;
+    let folder_warnings = match args.shard {
+        Some(_) => Vec::new(),
+        None => check_results_folder(&study, &out, args.force)?,
+    };
+    for warning in &folder_warnings {
+        eprintln!("warning: {warning}");
     }
+    // From here on a first Ctrl-C lets the running nodes finish and be cached (interrupt.rs).
+    let _section = interrupt::cooperative();
     let progress = BarProgress::new(args.quiet);
     if let Some(shard) = args.shard {
         let split = ShardPlan::split(&plan, &plan.needed_for(&study.outputs), shard.count);
         let report = execute_nodes(&plan, &cache, split.nodes(shard), &options, &progress)?;
         progress.finish();
         report_failures(&plan, &report);
+        if interrupt::requested() {
+            return Ok(interrupted(&report, "no tables are written by a shard"));
+        }
         println!(
             "{} shard {shard}: {} computed, {} reused from cache, {} failed, {} skipped in {:.2} s \
              (no tables written: run the study without --shard to assemble them)",
@@ -85,10 +100,24 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     }
     let report = execute(&plan, &cache, &options, &progress)?;
     progress.finish();
-    let files = write_results(&study, &plan, &report, &out)?;
     report_failures(&plan, &report);
+    if interrupt::requested() {
+        return Ok(interrupted(&report, "no tables written"));
+    }
+    let Some(published) =
+        write_results_unless(&study, &plan, &report, &out, &interrupt::requested)?
+    else {
+        return Ok(interrupted(&report, "no tables written"));
+    };
+    for warning in published
+        .warnings
+        .iter()
+        .filter(|w| !folder_warnings.contains(w))
+    {
+        eprintln!("warning: {warning}");
+    }
     println!(
-        "{}: {} computed, {} reused from cache, {} failed, {} skipped{} in {:.2} s",
+        "{}: {} computed, {} reused from cache, {} failed, {} skipped{}{} in {:.2} s",
         study.name(),
         report.computed,
         report.cached,
@@ -99,13 +128,39 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         } else {
             String::new()
         },
+        if report.not_stored > 0 {
+            format!(" ({} not stored in the cache)", report.not_stored)
+        } else {
+            String::new()
+        },
         report.wall_seconds
     );
     println!("tables in {}:", out.display());
-    for f in files {
+    for f in published.files {
         println!("  {}", f.display());
     }
+    if interrupt::requested() {
+        eprintln!("interrupted once the tables were complete: they are written");
+        return Ok(ExitCode::from(interrupt::EXIT_CODE));
+    }
     Ok(exit_code(&report))
+}
+
+/// Says what an interrupted run did (everything computed is cached, so a rerun continues
+/// from there) and returns exit code 130.
+fn interrupted(report: &RunReport, tables: &str) -> ExitCode {
+    eprintln!(
+        "interrupted: {} node(s) computed{}, {} reused from the cache; {tables} (run the study \
+         again to continue from the cache)",
+        report.computed,
+        if report.not_stored > 0 {
+            format!(" ({} not stored in the cache)", report.not_stored)
+        } else {
+            String::from(" and cached")
+        },
+        report.cached,
+    );
+    ExitCode::from(interrupt::EXIT_CODE)
 }
 
 fn exit_code(report: &RunReport) -> ExitCode {

@@ -95,7 +95,9 @@ fn an_angle_without_its_unit_is_refused() {
     let text = GROUND.replace("sliding_direction: 90 deg", "sliding_direction: 1.57");
     let message = plan_error(&text);
     assert!(
-        message.contains("model.ploughing.sliding_direction") && message.contains("30 deg"),
+        message.contains("model.ploughing.sliding_direction")
+            && message.contains("without its unit")
+            && message.contains("'1.57 deg' or '1.57 rad'"),
         "{message}"
     );
     let wrong = GROUND.replace("sliding_direction: 90 deg", "sliding_direction: 90 um");

@@ -1,5 +1,6 @@
-//! The study format: broken studies, the messages of a corpus of failures, parameter references inside strings and glob axes, overrides, parser robustness, summaries, input traps of measured files.
+//! The study format: angles and their units, broken studies, the messages of a corpus of failures, parameter references inside strings and glob axes, overrides, parser robustness, summaries, input traps of measured files.
 
+mod angle_units;
 mod input_traps;
 mod message_corpus;
 mod special_files;

@@ -19,7 +19,7 @@ use crate::friction::laws::{
     ParameterSpec, ParameterValue, Unit,
 };
 use crate::friction::FrictionLaw;
-use crate::units::Dimension;
+use crate::units::{angle_without_unit, plain_number_as, Dimension, UnitError};
 
 use super::spec_fields::spec_error;
 
@@ -219,12 +219,15 @@ fn resolve_value(
     field: &str,
 ) -> Result<ParameterValue, SpecError> {
     let convert = |v: &LawValue| match (v, spec.kind) {
-        (LawValue::Number(_), ParameterKind::Number { unit, .. })
-            if unit != Unit::Dimensionless =>
-        {
-            Err(format!("expected {}", unit_example(unit)))
+        (LawValue::Number(x), ParameterKind::Number { unit, .. }) => {
+            // The value is already named before the message: say only what is wrong with it.
+            plain_number_as(*x, dimension_of(unit))
+                .map_err(|e| match e {
+                    UnitError::AngleWithoutUnit { text } => angle_without_unit(&text),
+                    other => other.to_string(),
+                })
+                .and_then(|x| spec.number(x))
         }
-        (LawValue::Number(x), ParameterKind::Number { .. }) => spec.number(*x),
         (LawValue::Quantity(x, d), ParameterKind::Number { unit, .. })
             if *d == dimension_of(unit) =>
         {

@@ -10,19 +10,24 @@ use std::cmp::Reverse;
 use std::collections::{BTreeMap, BinaryHeap};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Arc, Mutex};
-use std::time::{Instant, SystemTime, UNIX_EPOCH};
+use std::time::Instant;
 
 use crate::artifact::Artifact;
-use crate::cache::{Cache, CacheError, CachedEntry, Manifest};
+use crate::cache::{Cache, CacheError, CachedEntry};
 use crate::hash::NodeKey;
 use crate::node::{ArrayStorage, NodeError};
 use crate::plan::{Plan, PlannedNode};
 
+mod cache_access;
 mod memory_budget;
 mod outcome;
+mod store;
+mod store_gate;
 
 use memory_budget::MemoryBudget;
 pub use outcome::{NodeOutcome, NodeStatus};
+use store::Storing;
+pub use store_gate::StoreGate;
 
 /// Receives progress events; the CLI draws a progress bar, tests ignore them.
 pub trait Progress: Sync {
@@ -37,6 +42,11 @@ pub trait Progress: Sync {
     /// instances never started have no outcome and [`RunReport::cancelled`] is set.
     fn cancelled(&self) -> bool {
         false
+    }
+    /// The gate every cache write of the run passes (see [`StoreGate`]), for a front end that
+    /// may end the process at once; `None`: writes are not counted.
+    fn store_gate(&self) -> Option<&StoreGate> {
+        None
     }
 }
 
@@ -73,6 +83,9 @@ pub struct RunReport {
     pub flagged: usize,
     /// Corrupt cache entries found, discarded and recomputed.
     pub discarded: usize,
+    /// Computed results not stored in the cache (a read-only cache, a full disk, …): said once
+    /// by a warning, counted here.
+    pub not_stored: usize,
     /// The run stopped early on [`Progress::cancelled`]: some needed instances never ran.
     pub cancelled: bool,
     pub wall_seconds: f64,
@@ -112,6 +125,13 @@ pub fn execute_nodes(
             "removed {stale} temporary cache folder(s) left by interrupted runs"
         ));
     }
+    let storing = match cache_access::probe(cache) {
+        Ok(()) => Storing::Yes,
+        Err(e) => {
+            progress.warn(&cache_access::read_only_warning(cache, &e));
+            Storing::No
+        }
+    };
     let needed = plan.upstream_closure(nodes, None);
     let n = plan.nodes.len();
     let entries: Vec<(&str, &NodeKey)> = needed
@@ -158,6 +178,7 @@ pub fn execute_nodes(
         waiting,
         ready,
         running: 0,
+        storing,
         report: RunReport::default(),
     });
     let ctx = RunContext {
@@ -198,6 +219,8 @@ struct Shared {
     ready: BinaryHeap<(usize, Reverse<usize>)>,
     /// Instances being loaded or computed.
     running: usize,
+    /// Whether computed results are stored in the cache.
+    storing: Storing,
     report: RunReport,
 }
 
@@ -357,7 +380,7 @@ impl<'a> RunContext<'a> {
                     "discarding corrupt cache entry {} ({reason}); recomputing",
                     path.display()
                 ));
-                if let Err(e) = self.cache.discard(kind, &node.key) {
+                if let Some(Err(e)) = self.write(|| self.cache.discard(kind, &node.key)) {
                     self.progress.warn(&e.to_string());
                 }
                 self.lock().report.discarded += 1;
@@ -443,100 +466,6 @@ impl<'a> RunContext<'a> {
     fn compute(&self, node: &PlannedNode) -> (NodeOutcome, Option<Arc<Artifact>>) {
         match self.run_compute(node) {
             (Ok(artifact), seconds) => self.store_computed(node, artifact, seconds),
-            (Err(failed), _) => (failed, None),
-        }
-    }
-
-    /// Stores a computed artifact (without its arrays under [`ArrayStorage::Regenerate`]) and
-    /// makes its outcome.
-    fn store_computed(
-        &self,
-        node: &PlannedNode,
-        artifact: Artifact,
-        seconds: f64,
-    ) -> (NodeOutcome, Option<Arc<Artifact>>) {
-        let manifest = Manifest {
-            key: node.key.to_hex(),
-            kind: node.task.kind().to_string(),
-            version: node.task.version(),
-            params: node.task.params(),
-            upstream: node
-                .upstream
-                .iter()
-                .map(|(r, u)| (r.to_string(), self.plan.nodes[*u].key.to_hex()))
-                .collect(),
-            metrics: artifact.metrics.clone(),
-            flags: artifact.flags.clone(),
-            payloads: Vec::new(),
-            compute_seconds: seconds,
-            tool_version: self.options.tool_version.clone(),
-            created_unix: SystemTime::now()
-                .duration_since(UNIX_EPOCH)
-                .map_or(0, |d| d.as_secs()),
-        };
-        let stored = match node.task.array_storage() {
-            ArrayStorage::Store => self.cache.store(manifest, &artifact),
-            ArrayStorage::Regenerate => {
-                let without_arrays = Artifact {
-                    metrics: artifact.metrics.clone(),
-                    tables: artifact.tables.clone(),
-                    flags: artifact.flags.clone(),
-                    ..Artifact::default()
-                };
-                self.cache.store(manifest, &without_arrays)
-            }
-        };
-        if let Err(e) = stored {
-            self.progress.warn(&format!(
-                "result not cached ({e}); it is still used in this run"
-            ));
-        }
-        let outcome = NodeOutcome {
-            status: NodeStatus::Computed,
-            metrics: artifact.metrics.clone(),
-            tables: artifact.tables.clone(),
-            flags: artifact.flags.clone(),
-            compute_seconds: seconds,
-        };
-        (outcome, Some(Arc::new(artifact)))
-    }
-
-    /// The arrays of a cached [`ArrayStorage::Regenerate`] entry, recomputed. The recomputed
-    /// metrics and flags must equal the cached ones; if they do not, the entry is replaced (and counted
-    /// as discarded) and the node counts as computed.
-    fn regenerate(
-        &self,
-        node: &PlannedNode,
-        entry: CachedEntry,
-    ) -> (NodeOutcome, Option<Arc<Artifact>>) {
-        match self.run_compute(node) {
-            (Ok(artifact), _)
-                if artifact.metrics == entry.artifact.metrics
-                    && artifact.flags == entry.artifact.flags =>
-            {
-                let outcome = NodeOutcome {
-                    status: NodeStatus::Cached,
-                    metrics: entry.artifact.metrics,
-                    tables: entry.artifact.tables,
-                    flags: entry.artifact.flags,
-                    compute_seconds: entry.manifest.compute_seconds,
-                };
-                (outcome, Some(Arc::new(artifact)))
-            }
-            (Ok(artifact), seconds) => {
-                self.progress.warn(&format!(
-                    "{} node '{}' ({}): recomputing its arrays did not reproduce its cached \
-                     metrics or flags; the cache entry is replaced",
-                    node.task.kind(),
-                    node.names.join(", "),
-                    node.key.short()
-                ));
-                if let Err(e) = self.cache.discard(node.task.kind(), &node.key) {
-                    self.progress.warn(&e.to_string());
-                }
-                self.lock().report.discarded += 1;
-                self.store_computed(node, artifact, seconds)
-            }
             (Err(failed), _) => (failed, None),
         }
     }

@@ -16,6 +16,7 @@
 //! run or the previous one, never a mix, and a failed write leaves the previous set untouched.
 
 mod by_scenario;
+mod origin;
 mod result_set;
 mod row_table;
 
@@ -43,7 +44,8 @@ use crate::value::{ParamValue, Value};
 use row_table::{field_cell, text, to_series, RowTable};
 
 pub use by_scenario::{BY_SCENARIO_SUFFIX, PARAMETER_PREFIX};
-pub use result_set::{check_target, Generation, ResultSet};
+pub use origin::{results_origin, ResultsOrigin, STUDY_FILE_HASH_KEY, STUDY_FILE_KEY, STUDY_KEY};
+pub use result_set::{check_target, remove_stale_stagings, Generation, ResultSet};
 
 /// Identification written into every file's metadata.
 #[derive(Debug, Clone)]
@@ -89,7 +91,7 @@ impl ResultSet {
                 };
                 files
                     .into_par_iter()
-                    .map(|(name, t)| write_parquet(dirs, &name, t, meta))
+                    .map(|(name, t)| write_parquet(dirs, &name, t, meta, &[]))
                     .collect()
             })
             .collect();
@@ -116,7 +118,7 @@ impl ResultSet {
                 }
             })?;
             let dirs = (self.staging(), self.target());
-            let file = write_parquet(dirs, &table, RowTable::from_columns(columns), meta)?;
+            let file = write_parquet(dirs, &table, RowTable::from_columns(columns), meta, &[])?;
             self.record(file);
         }
         Ok(())
@@ -133,7 +135,11 @@ impl ResultSet {
         meta: &OutputMetadata,
     ) -> Result<(), OutputError> {
         let dirs = (self.staging(), self.target());
-        let file = write_parquet(dirs, TIMINGS_TABLE, timings_table(plan, report), meta)?;
+        let study_file = self
+            .study_file()
+            .map(|p| (STUDY_FILE_KEY, p.to_string_lossy().into_owned()));
+        let table = timings_table(plan, report);
+        let file = write_parquet(dirs, TIMINGS_TABLE, table, meta, study_file.as_slice())?;
         self.record(file);
         Ok(())
     }
@@ -333,13 +339,14 @@ fn append_long(target: &mut RowTable, key: &str, t: &Table) {
     target.push_columns(rows, std::iter::once(key_column).chain(columns));
 }
 
-/// Writes `<name>.parquet` into the staging folder, fsynced; returns its file name. Errors name
-/// the file as it is published, in the target folder.
+/// Writes `<name>.parquet` into the staging folder, fsynced, with `extra` metadata besides
+/// `meta`; returns its file name. Errors name the file as it is published, in the target folder.
 fn write_parquet(
     (staging, target): (&Path, &Path),
     name: &str,
     table: RowTable,
     meta: &OutputMetadata,
+    extra: &[(&str, String)],
 ) -> Result<String, OutputError> {
     let file_name = format!("{name}.parquet");
     let path = staging.join(&file_name);
@@ -360,10 +367,10 @@ fn write_parquet(
         .map(|(n, _, v)| PlColumn::from(to_series(&n, v)))
         .collect();
     let mut df = DataFrame::new(rows, columns).map_err(|e| err(e.to_string()))?;
-    let metadata = KeyValueMetadata::from_static(vec![
-        (String::from("asperity.study"), meta.study.clone()),
+    let mut pairs = vec![
+        (String::from(STUDY_KEY), meta.study.clone()),
         (
-            String::from("asperity.study_file_blake3"),
+            String::from(STUDY_FILE_HASH_KEY),
             meta.study_file_hash.clone(),
         ),
         (
@@ -377,7 +384,9 @@ fn write_parquet(
                 .map_err(|e| err(e.to_string()))?,
         ),
         (String::from("asperity.units"), units),
-    ]);
+    ];
+    pairs.extend(extra.iter().map(|(k, v)| (k.to_string(), v.clone())));
+    let metadata = KeyValueMetadata::from_static(pairs);
     let mut file = File::create(&path).map_err(|e| err(e.to_string()))?;
     ParquetWriter::new(&mut file)
         .with_compression(ParquetCompression::Uncompressed)

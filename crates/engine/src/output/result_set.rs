@@ -15,9 +15,15 @@
 //! `timings.parquet` (every run writes one) and no sub-folder ([`check_target`]); anything else is
 //! refused before the run computes.
 //!
+//! Before computing, a run checks that it may write there ([`check_target`]: the folder and the
+//! one it is made in writable by this user), so a run never computes for hours to fail at the end.
+//!
 //! A set dropped without being published (a failed write) deletes its staging folder. One left by
 //! a killed process is deleted by the next run into the same target when it is stale: made on
-//! this host by a process that no longer runs, or older than a day (another host's).
+//! this host by a process that no longer runs, or older than a day (another host's). One that
+//! cannot be deleted (a folder made read-only) is made writable first, as it is a run's own
+//! leftover; what still cannot be deleted is named, with the command that deletes it, in one
+//! warning ([`remove_stale_stagings`], [`ResultSet::warnings`]).
 
 use std::fs::{self, File};
 use std::io::ErrorKind;
@@ -40,6 +46,10 @@ pub struct ResultSet {
     staging: PathBuf,
     /// File names written so far, in the order they were written.
     files: Vec<String>,
+    /// The study file the run read, recorded in `timings.parquet` ([`super::results_origin`]).
+    study_file: Option<PathBuf>,
+    /// What the user should know and nothing failed of: leftovers that could not be deleted.
+    warnings: Vec<String>,
     published: bool,
 }
 
@@ -52,15 +62,34 @@ impl ResultSet {
         check_target(&target)?;
         let (parent, name) = split(&target)?;
         fs::create_dir_all(&parent).map_err(write_err(&parent))?;
-        remove_stale(&parent, &name);
+        let warnings = remove_stale(&parent, &name).into_iter().collect();
         let staging = parent.join(format!(".{name}.staging.{}", owner_suffix()));
         fs::create_dir(&staging).map_err(write_err(&staging))?;
         Ok(Self {
             target,
             staging,
             files: Vec::new(),
+            study_file: None,
+            warnings,
             published: false,
         })
+    }
+
+    /// Records the study file the set comes from (its absolute path) in `timings.parquet`, so
+    /// a later run of another study file into the same folder can tell ([`super::results_origin`]).
+    pub fn from_study_file(mut self, path: &Path) -> Self {
+        self.study_file = Some(fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf()));
+        self
+    }
+
+    /// The study file recorded by [`ResultSet::from_study_file`].
+    pub(super) fn study_file(&self) -> Option<&Path> {
+        self.study_file.as_deref()
+    }
+
+    /// Warnings so far (folders of earlier runs that could not be deleted), one sentence each.
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
     }
 
     /// The folder the set is published to.
@@ -80,7 +109,13 @@ impl ResultSet {
 
     /// Puts the staged set in the target's place (see the module documentation) and deletes the
     /// set it replaces. Returns the published files, in the order they were written.
-    pub fn publish(mut self) -> Result<Vec<PathBuf>, OutputError> {
+    pub fn publish(self) -> Result<Vec<PathBuf>, OutputError> {
+        self.publish_with_warnings().map(|(files, _)| files)
+    }
+
+    /// [`ResultSet::publish`], also returning the warnings ([`ResultSet::warnings`], and the
+    /// replaced set when it could not be deleted).
+    pub fn publish_with_warnings(mut self) -> Result<(Vec<PathBuf>, Vec<String>), OutputError> {
         File::open(&self.staging)
             .and_then(|d| d.sync_all())
             .map_err(write_err(&self.staging))?;
@@ -88,10 +123,14 @@ impl ResultSet {
         let mut last = None;
         for _ in 0..PUBLISH_ATTEMPTS {
             match self.try_publish(&parent, &name) {
-                Ok(()) => {
+                Ok(replaced) => {
                     self.published = true;
                     let _ = File::open(&parent).and_then(|d| d.sync_all());
-                    return Ok(self.files.iter().map(|f| self.target.join(f)).collect());
+                    if let Some(left) = replaced.and_then(|old| remove_leftover(&old).err()) {
+                        self.warnings.push(cannot_remove(&self.target, &[left]));
+                    }
+                    let files = self.files.iter().map(|f| self.target.join(f)).collect();
+                    return Ok((files, std::mem::take(&mut self.warnings)));
                 }
                 Err(e) => last = Some(e),
             }
@@ -101,34 +140,35 @@ impl ResultSet {
     }
 
     /// One attempt: a plain rename when the target is absent, else an exchange (or, without
-    /// one, rename aside and in). An error that another run's publication can explain is
-    /// retried by the caller.
-    fn try_publish(&self, parent: &Path, name: &str) -> std::io::Result<()> {
+    /// one, rename aside and in). Returns where the replaced set now is, to be deleted. An error
+    /// that another run's publication can explain is retried by the caller.
+    fn try_publish(&self, parent: &Path, name: &str) -> std::io::Result<Option<PathBuf>> {
         match fs::rename(&self.staging, &self.target) {
-            Ok(()) => return Ok(()),
+            Ok(()) => return Ok(None),
             Err(e) if !self.target.exists() => return Err(e),
             Err(_) => {}
         }
         match exchange(&self.staging, &self.target) {
-            Ok(()) => {
-                // The staging name now holds the replaced set.
-                let _ = fs::remove_dir_all(&self.staging);
-                return Ok(());
-            }
+            // The staging name now holds the replaced set.
+            Ok(()) => return Ok(Some(self.staging.clone())),
             Err(e) if e.kind() != ErrorKind::Unsupported => return Err(e),
             Err(_) => {}
         }
         self.replace_by_renames(parent, name)
     }
 
-    /// Renames the target aside, the staging folder in, and deletes the set aside: where the
-    /// folders cannot be exchanged.
-    fn replace_by_renames(&self, parent: &Path, name: &str) -> std::io::Result<()> {
+    /// Renames the target aside and the staging folder in: where the folders cannot be
+    /// exchanged. Returns the folder aside.
+    fn replace_by_renames(&self, parent: &Path, name: &str) -> std::io::Result<Option<PathBuf>> {
         let aside = parent.join(format!(".{name}.old.{}", owner_suffix()));
         fs::rename(&self.target, &aside)?;
-        let moved_in = fs::rename(&self.staging, &self.target);
-        let _ = fs::remove_dir_all(&aside);
-        moved_in
+        match fs::rename(&self.staging, &self.target) {
+            Ok(()) => Ok(Some(aside)),
+            Err(e) => {
+                let _ = remove_leftover(&aside);
+                Err(e)
+            }
+        }
     }
 }
 
@@ -142,8 +182,15 @@ impl Drop for ResultSet {
 }
 
 /// Checks that `target` may be replaced by a run's results: absent, empty, or a results folder
-/// (a `timings.parquet`, no sub-folder). Cheap; a run calls it before computing as well.
+/// (a `timings.parquet`, no sub-folder), and that this user may write there ([`check_writable`]).
+/// Cheap; a run calls it before computing as well.
 pub fn check_target(target: &Path) -> Result<(), OutputError> {
+    check_shape(target)?;
+    check_writable(target)
+}
+
+/// The shape half of [`check_target`].
+fn check_shape(target: &Path) -> Result<(), OutputError> {
     let refuse = |why: String| OutputError::Write {
         path: target.to_path_buf(),
         message: format!(
@@ -178,6 +225,81 @@ pub fn check_target(target: &Path) -> Result<(), OutputError> {
         Err(refuse(format!(
             "it holds files but no {TIMINGS_TABLE}.parquet, so it is not a results folder"
         )))
+    }
+}
+
+/// Checks that this user may publish a set at `target`: create the staging folder beside it (in
+/// the folder that holds it, or the nearest existing folder above, where the missing ones are
+/// made), and delete the files of the set it replaces (`target` itself, when it exists). The
+/// system's own test (`access(2)`: permission bits, ACLs, read-only file systems) where there is
+/// one, else the read-only attribute.
+fn check_writable(target: &Path) -> Result<(), OutputError> {
+    let (parent, _) = split(target)?;
+    let mut holder = parent.as_path();
+    while !holder.exists() {
+        holder = match holder.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+    }
+    let refuse = |folder: &Path, why: String, fix: String| OutputError::Write {
+        path: target.to_path_buf(),
+        message: format!(
+            "{why} ({}): {fix}, or choose another results folder (--out); nothing was computed",
+            writable(folder)
+                .err()
+                .map_or_else(String::new, |e| e.to_string())
+        ),
+    };
+    if writable(holder).is_err() {
+        return Err(refuse(
+            holder,
+            format!(
+                "the folder {} it is made in is not writable by this user",
+                holder.display()
+            ),
+            format!("make it writable (`chmod u+w {}`)", quote(holder)),
+        ));
+    }
+    if target.is_dir() && writable(target).is_err() {
+        return Err(refuse(
+            target,
+            String::from(
+                "the folder is read-only for this user, and a run replaces it whole, deleting \
+                 the files of the set it replaces",
+            ),
+            format!("make it writable (`chmod -R u+w {}`)", quote(target)),
+        ));
+    }
+    Ok(())
+}
+
+/// `Ok` when this user may create and delete entries in the folder `dir`.
+#[cfg(target_os = "linux")]
+fn writable(dir: &Path) -> std::io::Result<()> {
+    use rustix::fs::{access, Access};
+    access(dir, Access::WRITE_OK | Access::EXEC_OK).map_err(std::io::Error::from)
+}
+
+#[cfg(not(target_os = "linux"))]
+fn writable(dir: &Path) -> std::io::Result<()> {
+    if fs::metadata(dir)?.permissions().readonly() {
+        Err(std::io::Error::from(ErrorKind::PermissionDenied))
+    } else {
+        Ok(())
+    }
+}
+
+/// A path for a shell command line, in single quotes when it needs them.
+fn quote(path: &Path) -> String {
+    let text = path.display().to_string();
+    if text
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || "/._-+=:,@%".contains(c))
+    {
+        text
+    } else {
+        format!("'{}'", text.replace('\'', r"'\''"))
     }
 }
 
@@ -240,13 +362,22 @@ fn owner_suffix() -> String {
     format!("{}.{}.{nanos}-{count}", hostname(), std::process::id())
 }
 
+/// Deletes the stale staging and set-aside folders of earlier runs into `target` (see
+/// `remove_stale`); a run calls it before computing. Returns a warning naming what could not be
+/// deleted, with the command that deletes it.
+pub fn remove_stale_stagings(target: &Path) -> Result<Option<String>, OutputError> {
+    let target = resolve(target)?;
+    let (parent, name) = split(&target)?;
+    Ok(remove_stale(&parent, &name))
+}
+
 /// Deletes the staging and set-aside folders of runs into `<parent>/<name>` that are stale: made
-/// on this host by a process that no longer runs, or older than a day.
-fn remove_stale(parent: &Path, name: &str) {
-    let Ok(entries) = fs::read_dir(parent) else {
-        return;
-    };
+/// on this host by a process that no longer runs, or older than a day. Returns a warning naming
+/// those that could not be deleted.
+fn remove_stale(parent: &Path, name: &str) -> Option<String> {
+    let entries = fs::read_dir(parent).ok()?;
     let host = hostname();
+    let mut left = Vec::new();
     let prefixes = [format!(".{name}.staging."), format!(".{name}.old.")];
     for entry in entries.flatten() {
         let file = entry.file_name().to_string_lossy().to_string();
@@ -266,9 +397,80 @@ fn remove_stale(parent: &Path, name: &str) {
                 .is_some_and(|age| age > FOREIGN_TMP_MAX_AGE),
         };
         if stale {
-            let _ = fs::remove_dir_all(entry.path());
+            if let Err(e) = remove_leftover(&entry.path()) {
+                left.push(e);
+            }
         }
     }
+    (!left.is_empty()).then(|| cannot_remove(&parent.join(name), &left))
+}
+
+/// A folder a run left (a staging folder, a replaced set) that could not be deleted, and why.
+#[derive(Debug)]
+struct Leftover {
+    path: PathBuf,
+    error: std::io::Error,
+}
+
+/// Deletes a folder a run left. A set the user made read-only cannot be emptied as it is; as it
+/// is asperity's own leftover, its folders are made writable by their owner and the deletion is
+/// tried again.
+fn remove_leftover(path: &Path) -> Result<(), Leftover> {
+    let first = match fs::remove_dir_all(path) {
+        Ok(()) => return Ok(()),
+        Err(e) if e.kind() == ErrorKind::NotFound => return Ok(()),
+        Err(e) => e,
+    };
+    if first.kind() == ErrorKind::PermissionDenied
+        && make_folders_writable(path)
+            .and_then(|()| fs::remove_dir_all(path))
+            .is_ok()
+    {
+        return Ok(());
+    }
+    Err(Leftover {
+        path: path.to_path_buf(),
+        error: first,
+    })
+}
+
+/// Gives the owner write and search permission on `dir` and every folder below it.
+fn make_folders_writable(dir: &Path) -> std::io::Result<()> {
+    let meta = fs::symlink_metadata(dir)?;
+    if !meta.is_dir() {
+        return Ok(());
+    }
+    let mut permissions = meta.permissions();
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        permissions.set_mode(permissions.mode() | 0o700);
+    }
+    #[cfg(not(unix))]
+    permissions.set_readonly(false);
+    fs::set_permissions(dir, permissions)?;
+    for entry in fs::read_dir(dir)? {
+        make_folders_writable(&entry?.path())?;
+    }
+    Ok(())
+}
+
+/// One sentence for the leftovers of runs into `target` that could not be deleted.
+fn cannot_remove(target: &Path, left: &[Leftover]) -> String {
+    let paths: Vec<String> = left.iter().map(|l| quote(&l.path)).collect();
+    format!(
+        "cannot delete {} left by earlier runs into {} ({}): delete {} with `rm -rf {}`",
+        if left.len() == 1 {
+            String::from("a folder")
+        } else {
+            format!("{} folders", left.len())
+        },
+        target.display(),
+        left.first()
+            .map_or_else(String::new, |l| l.error.to_string()),
+        if left.len() == 1 { "it" } else { "them" },
+        paths.join(" ")
+    )
 }
 
 /// Swaps the folders `a` and `b` in one step. `Unsupported` where the platform or filesystem
@@ -332,7 +534,8 @@ mod tests {
         let target = dir.join("out");
         staged(&target, "old").publish().unwrap();
         let set = staged(&target, "new");
-        set.replace_by_renames(&dir, "out").unwrap();
+        let aside = set.replace_by_renames(&dir, "out").unwrap().unwrap();
+        remove_leftover(&aside).unwrap();
         assert_eq!(
             fs::read_to_string(target.join("timings.parquet")).unwrap(),
             "new"

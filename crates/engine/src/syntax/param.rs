@@ -8,7 +8,7 @@ use serde::{Deserialize, Deserializer};
 
 use crate::syntax::located::{Located, SourceLocation};
 use crate::syntax::raw::RawValue;
-use crate::units::{Dimension, DimensionMarker, Quantity};
+use crate::units::{plain_number_as, Dimension, DimensionMarker, Quantity};
 use crate::value::ParamValue;
 
 /// A field that is a literal value or a `${name}` reference to a study parameter. Conversion and
@@ -182,8 +182,11 @@ impl FromParamValue for PathBuf {
 impl<D: DimensionMarker> FromParamValue for Quantity<D> {
     fn from_param(value: &ParamValue) -> Result<Self, String> {
         match value.as_dimensioned() {
-            Some(v) if v.dimension == D::DIMENSION || v.dimension == Dimension::Dimensionless => {
-                Ok(Quantity::from_si(v.si))
+            Some(v) if v.dimension == D::DIMENSION => Ok(Quantity::from_si(v.si)),
+            Some(v) if v.dimension == Dimension::Dimensionless => {
+                plain_number_as(v.si, D::DIMENSION)
+                    .map(Quantity::from_si)
+                    .map_err(|e| e.to_string())
             }
             _ => Err(format!(
                 "expected a {} such as '{}' (units: {}), got {value}, which is a {}",

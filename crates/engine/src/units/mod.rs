@@ -3,9 +3,15 @@
 //! Everything inside asperity is SI. Study files may write a quantity either as a plain number
 //! (taken as SI) or as a string `"<number> <unit>"`; the unit's dimension is checked against what
 //! the field expects, so a pressure where a length is expected is an error, not a silent number.
+//! Angles are the one exception to plain numbers being SI ([`plain_number_as`]): an angle needs
+//! its unit, except 0.
 
-use std::fmt;
-use std::marker::PhantomData;
+mod quantity;
+
+pub use quantity::{
+    plain_number_rule, Angle, Area, DimensionMarker, Force, Length, Pressure, Quantity,
+    SurfaceEnergy,
+};
 
 /// The physical dimension of a quantity.
 #[derive(
@@ -188,6 +194,8 @@ pub enum UnitError {
     },
     #[error("'{text}' is not finite")]
     NotFinite { text: String },
+    #[error("{text} {}", angle_without_unit(text))]
+    AngleWithoutUnit { text: String },
     #[error(
         "expected a {expected} such as '{example}' (units: {units}), got '{text}', which is a {found}",
         expected = expected.name(), example = expected.example(),
@@ -254,10 +262,13 @@ pub fn parse_quantity(text: &str) -> Result<DimensionedValue, UnitError> {
     })
 }
 
-/// Parses a quantity that must have dimension `expected`; a bare number is taken as SI.
+/// Parses a quantity that must have dimension `expected`; a bare number follows
+/// [`plain_number_as`].
 pub fn parse_quantity_as(text: &str, expected: Dimension) -> Result<f64, UnitError> {
     let v = parse_quantity(text)?;
-    if v.dimension == expected || v.dimension == Dimension::Dimensionless {
+    if v.dimension == Dimension::Dimensionless {
+        plain_number_as(v.si, expected)
+    } else if v.dimension == expected {
         Ok(v.si)
     } else {
         Err(UnitError::WrongDimension {
@@ -266,6 +277,31 @@ pub fn parse_quantity_as(text: &str, expected: Dimension) -> Result<f64, UnitErr
             found: v.dimension,
         })
     }
+}
+
+/// The one rule for a plain number (no unit) written where a quantity of dimension `expected`
+/// belongs: it is the value in SI units, except for an angle, which needs its unit (`rad`,
+/// `deg`, `°`): a plain angle other than 0 (the same in every unit) is refused. Engineers write
+/// angles in degrees as often as in radians, and a guessed unit would turn `90` into a valid but
+/// different direction (90 rad ≈ 116.6°) without a word.
+pub fn plain_number_as(value: f64, expected: Dimension) -> Result<f64, UnitError> {
+    if expected == Dimension::Angle && value != 0.0 {
+        Err(UnitError::AngleWithoutUnit {
+            text: format_number(value),
+        })
+    } else {
+        Ok(value)
+    }
+}
+
+/// What is said of the plain number `text` written as an angle, after the value: "is an angle
+/// without its unit: write '90 deg' or '90 rad' (…)".
+pub fn angle_without_unit(text: &str) -> String {
+    format!(
+        "is an angle without its unit: write '{text} deg' or '{text} rad' (angles are written in \
+         degrees as often as in radians, so a plain number other than 0 is refused rather than \
+         guessed)"
+    )
 }
 
 /// Formats an SI value with its unit for messages and metadata ("1.19e-6 m").
@@ -329,137 +365,6 @@ fn unit_hint(unit: &str) -> String {
     }
 }
 
-/// A marker for a dimension known at compile time, used by [`Quantity`].
-pub trait DimensionMarker: Send + Sync + 'static {
-    const DIMENSION: Dimension;
-}
-
-macro_rules! dimension_marker {
-    ($name:ident, $dim:expr) => {
-        #[doc = concat!("Marker type for the dimension `", stringify!($dim), "`.")]
-        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-        pub struct $name;
-        impl DimensionMarker for $name {
-            const DIMENSION: Dimension = $dim;
-        }
-    };
-}
-
-dimension_marker!(Length, Dimension::Length);
-dimension_marker!(Area, Dimension::Area);
-dimension_marker!(Pressure, Dimension::Pressure);
-dimension_marker!(Force, Dimension::Force);
-dimension_marker!(SurfaceEnergy, Dimension::SurfaceEnergy);
-dimension_marker!(Angle, Dimension::Angle);
-
-/// An SI value of the dimension `D`, parsed from a plain number (SI) or a string with units.
-pub struct Quantity<D> {
-    si: f64,
-    _dimension: PhantomData<D>,
-}
-
-impl<D: DimensionMarker> Quantity<D> {
-    /// A quantity from an SI value.
-    pub fn from_si(si: f64) -> Self {
-        Self {
-            si,
-            _dimension: PhantomData,
-        }
-    }
-
-    /// The value in SI units.
-    pub fn si(&self) -> f64 {
-        self.si
-    }
-}
-
-impl<D> Clone for Quantity<D> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-impl<D> Copy for Quantity<D> {}
-
-impl<D> PartialEq for Quantity<D> {
-    fn eq(&self, other: &Self) -> bool {
-        self.si == other.si
-    }
-}
-
-impl<D: DimensionMarker> fmt::Debug for Quantity<D> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&format_si(self.si, D::DIMENSION))
-    }
-}
-
-impl<'de, D: DimensionMarker> serde::Deserialize<'de> for Quantity<D> {
-    fn deserialize<De: serde::Deserializer<'de>>(deserializer: De) -> Result<Self, De::Error> {
-        struct QuantityVisitor<D>(PhantomData<D>);
-        impl<D: DimensionMarker> serde::de::Visitor<'_> for QuantityVisitor<D> {
-            type Value = Quantity<D>;
-            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                write!(
-                    f,
-                    "a {} as a number in {} or a string such as '{}'",
-                    D::DIMENSION.name(),
-                    D::DIMENSION.si_symbol(),
-                    D::DIMENSION.example()
-                )
-            }
-            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Self::Value, E> {
-                if v.is_finite() {
-                    Ok(Quantity::from_si(v))
-                } else {
-                    Err(E::custom(format!(
-                        "{v} is not a finite {}",
-                        D::DIMENSION.name()
-                    )))
-                }
-            }
-            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Self::Value, E> {
-                Ok(Quantity::from_si(v as f64))
-            }
-            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Self::Value, E> {
-                Ok(Quantity::from_si(v as f64))
-            }
-            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Self::Value, E> {
-                parse_quantity_as(v, D::DIMENSION)
-                    .map(Quantity::from_si)
-                    .map_err(E::custom)
-            }
-        }
-        deserializer.deserialize_any(QuantityVisitor(PhantomData))
-    }
-}
-
-impl<D: DimensionMarker> schemars::JsonSchema for Quantity<D> {
-    fn schema_name() -> std::borrow::Cow<'static, str> {
-        format!("{:?}Quantity", D::DIMENSION).into()
-    }
-
-    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
-        let name = D::DIMENSION.name();
-        let article = if name.starts_with(['a', 'e', 'i', 'o', 'u']) {
-            "An"
-        } else {
-            "A"
-        };
-        let description = format!(
-            "{article} {name} as a plain number in SI ({}) or a string with units such as '{}' (units: {}).",
-            D::DIMENSION.si_symbol(),
-            D::DIMENSION.example(),
-            D::DIMENSION.accepted_units()
-        );
-        schemars::json_schema!({
-            "description": description,
-            "anyOf": [
-                {"type": "number"},
-                {"type": "string", "pattern": r"^\s*[-+]?[0-9.]+([eE][-+]?[0-9]+)?\s*\S*\s*$"}
-            ]
-        })
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -520,5 +425,44 @@ mod tests {
     #[test]
     fn bare_numbers_are_si() {
         assert_eq!(parse_quantity_as("2e-6", Dimension::Length).unwrap(), 2e-6);
+    }
+
+    #[test]
+    fn a_plain_angle_needs_its_unit_unless_it_is_zero() {
+        assert_eq!(plain_number_as(0.0, Dimension::Angle), Ok(0.0));
+        assert_eq!(plain_number_as(-0.0, Dimension::Angle), Ok(0.0));
+        assert_eq!(plain_number_as(6.5, Dimension::Length), Ok(6.5));
+        let err = plain_number_as(6.5, Dimension::Angle).unwrap_err();
+        assert_eq!(
+            err,
+            UnitError::AngleWithoutUnit {
+                text: String::from("6.5")
+            }
+        );
+        let text = err.to_string();
+        assert!(
+            text.contains("'6.5 deg'") && text.contains("'6.5 rad'"),
+            "{text}"
+        );
+        assert!(parse_quantity_as("90", Dimension::Angle).is_err());
+        assert_eq!(parse_quantity_as("0", Dimension::Angle), Ok(0.0));
+        let turn = parse_quantity_as("6.5 rad", Dimension::Angle).unwrap();
+        assert_eq!(turn, 6.5);
+        let full = parse_quantity_as("360 deg", Dimension::Angle).unwrap();
+        assert_eq!(full, parse_quantity_as("360 °", Dimension::Angle).unwrap());
+        assert!((full - std::f64::consts::TAU).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_plain_angle_is_refused_in_a_quantity_field() {
+        let parse = |yaml: &str| serde_saphyr::from_str::<Quantity<Angle>>(yaml);
+        assert_eq!(parse("0").unwrap().si(), 0.0);
+        assert_eq!(parse("\"90 deg\"").unwrap().si(), 90f64.to_radians());
+        for plain in ["6.2832", "90", "1"] {
+            let message = parse(plain).unwrap_err().to_string();
+            assert!(message.contains("without its unit"), "{plain}: {message}");
+        }
+        let length = serde_saphyr::from_str::<Quantity<Length>>("1e-6").unwrap();
+        assert_eq!(length.si(), 1e-6);
     }
 }
