@@ -96,13 +96,16 @@ def run(
     *,
     memory_mib: Optional[int] = None,
     progress: Union[bool, Progress, None] = None,
+    force: bool = False,
 ) -> RunResult:
     """Run a study as ``asperity run`` does and return its tables as polars DataFrames.
 
     ``set`` overrides parameter axes (``{"sq": ["0.4 um", "1 um"]}`` or ``["n=64"]``); ``out``
     is the results folder (default ``results/<study>``), ``cache`` the cache folder (default
     ``$ASPERITY_CACHE`` or ``./cache``), ``jobs`` the worker threads (default all cores),
-    ``memory_mib`` the memory budget of the nodes computed at once (MiB).
+    ``memory_mib`` the memory budget of the nodes computed at once (MiB). A results folder
+    that holds the results of another study file (same ``study:`` name) is refused unless
+    ``force=True`` (then a warning names both files), as ``asperity run --force`` does.
     ``progress=True`` shows a progress line on stderr; a callable receives
     ``(event, value, text)`` with events ``"start"`` (total), ``"node"`` (status, node) and
     ``"warning"`` (message). Ctrl-C stops the run after the nodes being computed (the cache
@@ -126,6 +129,7 @@ def run(
         None if jobs is None else _args.integer("jobs", jobs, 1, "a number of worker threads"),
         None if memory_mib is None else _args.integer("memory_mib", memory_mib, 1, "a memory budget in MiB"),
         callback,
+        _args.boolean("force", force),
     )
     tables = {Path(f).stem: pl.read_parquet(f) for f in files if str(f).endswith(".parquet")}
     return RunResult(

@@ -7,6 +7,7 @@
 //! finish and are stored, so the cache holds only complete entries, no results folder is
 //! written, and the interrupt is raised once the run thread is done.
 
+use std::ffi::CString;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -16,13 +17,12 @@ use std::time::Duration;
 
 use asperity::engine::cache::Cache;
 use asperity::engine::execute::{execute, NodeStatus, Progress, RunReport};
-use asperity::engine::output::check_target;
 use asperity::engine::plan::{Plan, PlannedNode};
 use asperity::engine::study::{ParameterOverride, Study, StudyError as EngineStudyError};
 use asperity::nodes::TribologyNode;
 use asperity::study_run;
 use pyo3::create_exception;
-use pyo3::exceptions::{PyException, PyRuntimeError};
+use pyo3::exceptions::{PyException, PyRuntimeError, PyUserWarning};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -179,7 +179,7 @@ struct RunSettings {
 /// failures and flags. `progress(event, a, b)` is called with `("start", total, "")`,
 /// `("node", status, "kind names")` and `("warning", message, "")`.
 #[pyfunction]
-#[pyo3(signature = (study, set=Vec::new(), out=None, cache=None, jobs=None, memory_mib=None, progress=None))]
+#[pyo3(signature = (study, set=Vec::new(), out=None, cache=None, jobs=None, memory_mib=None, progress=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 fn run_study<'py>(
     py: Python<'py>,
@@ -190,13 +190,18 @@ fn run_study<'py>(
     jobs: Option<usize>,
     memory_mib: Option<u64>,
     progress: Option<Bound<'py, PyAny>>,
+    force: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     if jobs == Some(0) {
         return Err(value_error("jobs", "must be at least 1 (worker threads)"));
     }
     let (loaded, plan) = load(py, &study, &set)?;
     let out = out.unwrap_or_else(|| study_run::default_out(&loaded));
-    check_target(&out).map_err(|e| value_error("out", e))?;
+    for warning in study_run::check_results_folder(&loaded, &out, force)
+        .map_err(|e| value_error("out", e))?
+    {
+        PyErr::warn(py, &py.get_type::<PyUserWarning>(), &CString::new(warning)?, 1)?;
+    }
     let settings = RunSettings {
         out,
         cache: open_cache(cache)?,
