@@ -6,6 +6,7 @@ mod damage;
 mod damaged_files;
 mod every_shared_file;
 mod lying_headers;
+mod mnt_mask;
 mod readers_a;
 #[path = "../readers_a_common/mod.rs"]
 mod readers_a_common;
