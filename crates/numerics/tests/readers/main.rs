@@ -5,6 +5,7 @@ mod common;
 mod damage;
 mod damaged_files;
 mod every_shared_file;
+mod header_checks;
 mod lying_headers;
 mod mnt_mask;
 mod readers_a;

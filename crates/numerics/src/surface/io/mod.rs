@@ -11,6 +11,7 @@ mod error;
 mod limits;
 mod mnt_tlv;
 mod opdx_items;
+mod plausible;
 mod reader;
 mod text_header;
 mod text_units;
