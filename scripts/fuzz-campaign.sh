@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# Runs every reader fuzz target for a number of executions each, then the study target for a
-# wall-clock time, one target at a time, and prints a Markdown table (target, runs, seconds,
-# crashes, peak RSS). Not part of `cargo test` or CI. Needs the nightly toolchain and
-# cargo-fuzz (`cargo install cargo-fuzz`); see fuzz/README.md.
+# Fuzzes every topography reader for a number of executions each (the `reader` target with
+# FUZZ_READER set to the reader's name; the names come from the registry, printed by the
+# `reader_names` example), then `topography` for as many, then the study target for a
+# wall-clock time, one at a time, and prints a Markdown table (target, runs, seconds, crashes,
+# peak RSS). Not part of `cargo test` or CI. Needs the nightly toolchain and cargo-fuzz
+# (`cargo install cargo-fuzz`); see fuzz/README.md.
 #
 #   scripts/fuzz-campaign.sh [RUNS_PER_READER] [STUDY_SECONDS] [TARGET...]
 #
-# Defaults: 1000000 runs per reader target, 3600 s for `study`, every target. Seeds: the
+# A TARGET is a reader name (`x3p`, …), `topography` or `study`. Defaults: 1000000 runs per
+# reader and for `topography`, 3600 s for `study`, every target. Seeds: the
 # fixtures in tests/data and the shared instrument files. Inputs are at most MAX_LEN bytes
 # (default 4096, libFuzzer's own default; longer seeds are truncated): headers, where the
 # readers' sizes and offsets are declared, lie within it, and a run of 10^6 inputs takes
@@ -17,9 +20,10 @@ runs=${1:-1000000}
 study_seconds=${2:-3600}
 max_len=${MAX_LEN:-4096}
 shift 2 2>/dev/null || shift $#
-readers=(al3d bcrf frt gsf gwy hdf5 ibw metropro mi nanoscope netcdf nid nms npy opd opdx park-tiff plu sdf sur text tmd wsxm x3p zon topography)
+mapfile -t readers < <(cd .. && cargo run -q -p asperity-numerics --example reader_names)
+[ ${#readers[@]} -gt 0 ] || { echo "no reader names (cargo run --example reader_names failed)" >&2; exit 1; }
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=("${readers[@]}" study)
+[ ${#targets[@]} -gt 0 ] || targets=("${readers[@]}" topography study)
 shared=../../shared/data/topography
 log_dir=target/fuzz-logs
 mkdir -p "$log_dir"
@@ -42,9 +46,18 @@ for t in "${targets[@]}"; do
     limit=(-runs="$runs")
     features=()
   fi
+  # A reader name runs the `reader` target on that reader alone, its crashes kept apart.
+  fuzz_target=$t
+  reader_env=()
+  if [ "$t" != study ] && [ "$t" != topography ]; then
+    fuzz_target=reader
+    reader_env=(FUZZ_READER="$t")
+    mkdir -p "artifacts/$t"
+    limit+=(-artifact_prefix="artifacts/$t/")
+  fi
   start=$(date +%s)
   status=0
-  cargo +nightly fuzz run "${features[@]}" "$t" "$corpus" "$seeds" -- \
+  env "${reader_env[@]}" cargo +nightly fuzz run "${features[@]}" "$fuzz_target" "$corpus" "$seeds" -- \
     "${limit[@]}" -max_len="$max_len" -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
     > "$log_dir/$t.log" 2>&1 || status=$?
   seconds=$(( $(date +%s) - start ))

@@ -1,7 +1,12 @@
 """Family 2: damaged instrument files. Every topography file of the data folders, mutated
-(truncated, bytes flipped in header and body, a header spliced onto another file's body,
-declared sizes inflated, a height set to 1e308; x3p: XML edits, checksums broken), then
-`asperity inspect`; a sampled part also runs a one-node surface study reading the file."""
+(truncated, bytes flipped in header and body, single bits flipped in the header's first 4 KiB
+where the size and scale fields lie, 256 header bytes zeroed, a header spliced onto another
+file's body, declared sizes inflated, a height set to 1e308; x3p: XML edits, checksums broken),
+then `asperity inspect`; a sampled part also runs a one-node surface study reading the file.
+
+A header mutation that `inspect` reads as valid although its grid, spacing or Sq differ from the
+unmutated file's is flagged `accepted_corrupt` (a silently wrong number: the reader should have
+refused the damaged header), with the change in the notes."""
 
 import io
 import os
@@ -13,6 +18,11 @@ from common import HEIGHT_MAX, NONFINITE_WORD, Case, classify_run, message_flags
 
 SKIP = re.compile(r"(\.md|\.json|\.py|LICENSE|Licen[cs]e|GPL)", re.I)
 HEIGHT_LINE = re.compile(r"\b(Sq|Sa|Sz|Sp|Sv)\b[^=\n]*=\s*([-+\d.eE]+|inf|NaN)\s*(\w+)?")
+# What a header mutation must not change silently: the grid, the spacing and Sq as inspect
+# prints them.
+READ_VALUES = re.compile(r"^(grid:.*|spacing:.*|points:.*|length:.*|\s*Sq\s*=.*|Rq .*)$", re.M)
+# Names of the mutations that damage the header (see header_mutations and generic_mutations).
+HEADER_MUTATION = re.compile(r"(byte flips in the header|header bit|header bytes .* zeroed)")
 
 
 def data_files(folders):
@@ -64,6 +74,42 @@ def huge_height(data, rng):
     return data[: m.start()] + b"1e308" + data[m.end() :]
 
 
+def header_mutations(data, rng):
+    """(name, bytes): single bits flipped in the first 4 KiB (where size and scale fields lie,
+    e.g. an NMS file's nx and ny at byte 1368) and 256 header bytes zeroed."""
+    n = len(data)
+    out = []
+    for _ in range(3):
+        i = rng.randrange(min(4096, max(1, n // 4)))
+        bit = rng.randrange(8)
+        b = bytearray(data)
+        b[i] ^= 1 << bit
+        out.append((f"header bit {bit} of byte {i} flipped", bytes(b)))
+    for start in (0, 256):
+        if n >= start + 512:
+            out.append((f"header bytes {start}-{start + 255} zeroed",
+                        data[:start] + bytes(256) + data[start + 256:]))
+    return out
+
+
+def read_values(stdout):
+    """The grid, spacing and Sq lines `inspect` printed (the values a header mutation must not
+    change silently)."""
+    return [m.group(1).strip() for m in READ_VALUES.finditer(stdout)]
+
+
+def differs(before, after):
+    """Two lines of read_values: an Sq/Rq line differs beyond 0.1 %, any other at all."""
+    numbers = [re.search(r"=\s*([-+\d.eE]+)", line) for line in (before, after)]
+    if before.lstrip().startswith(("Sq", "Rq")) and all(numbers):
+        try:
+            b, a = (float(m.group(1)) for m in numbers)
+        except ValueError:
+            return before != after
+        return abs(a - b) > 1e-3 * abs(b)
+    return before != after
+
+
 def generic_mutations(path, data, others, rng):
     """(name, bytes) for any file."""
     n = len(data)
@@ -80,6 +126,7 @@ def generic_mutations(path, data, others, rng):
         body = f.read()
     h = min(n, max(64, n // 20), 8192)
     out.append((f"header ({h} B) spliced onto {os.path.basename(other)}'s body", data[:h] + body[h:]))
+    out += header_mutations(data, rng)
     for name, f in (("declared size inflated (text)", inflate_text_number),
                     ("declared size inflated (binary)", inflate_binary_word),
                     ("one height 1e308", huge_height)):
@@ -172,6 +219,7 @@ class FileFamily:
         self.cache = os.path.join(self.dir, "cache")
         self.rng = ctx.rng("files")
         self.files = data_files(ctx.data_dirs)
+        self.baseline = {}  # path -> read_values of the unmutated file
         self.cases = self.build()
 
     def build(self):
@@ -207,6 +255,8 @@ class FileFamily:
             with open(path, "rb") as f:
                 case = self.run_case(path, "unmutated", f.read(), True)
             case.family = "baselines"
+            if case.outcome == "ok":
+                self.baseline[path] = read_values(case.procs[0].stdout)
             if "unknown topography format" in case.procs[0].stderr:
                 unknown.add(path)  # its mutations would all end there
             yield case
@@ -262,9 +312,25 @@ class FileFamily:
         if "checksum" in name.lower() or "point data flipped" in name:
             case.flags.add("accepted_corrupt")
             case.notes.append("inspect read a file whose checksum does not match")
+        self.compare_with_baseline(case, path, name, p.stdout)
         if with_study:
             self.surface_study(case, base, p.stdout)
         return case
+
+    def compare_with_baseline(self, case, path, name, stdout):
+        """Flags a header mutation read as valid with another grid or spacing than the
+        unmutated file's, or an Sq (Rq) more than 0.1 % away: a flipped bit in a data value
+        that happens to lie in the first bytes moves Sq far less."""
+        before = self.baseline.get(path)
+        if before is None or not HEADER_MUTATION.search(name):
+            return
+        after = read_values(stdout)
+        changed = [f"{b!r} -> {a!r}" for b, a in zip(before, after) if differs(b, a)]
+        if len(before) != len(after):
+            changed.append(f"{len(before)} values printed -> {len(after)}")
+        if changed:
+            case.flags.add("accepted_corrupt")
+            case.notes.append("header damage read as valid: " + "; ".join(changed[:3]))
 
     def surface_study(self, case, base, inspect_out):
         ctx = self.ctx

@@ -43,9 +43,13 @@ pub fn inspect(args: InspectArgs) -> Result<ExitCode> {
         println!("format:    {} ({})", reader.name, reader.description);
     }
     describe_source(&topo);
+    let source = match reader {
+        Some(r) => format!("{} ({})", args.file.display(), r.name),
+        None => args.file.display().to_string(),
+    };
     match &topo.data {
-        TopographyData::Areal(map) => describe_map(map, topo.spacing, topo.height_unit)?,
-        TopographyData::Line(line) => describe_line(line)?,
+        TopographyData::Areal(map) => describe_map(map, topo.spacing, topo.height_unit, &source)?,
+        TopographyData::Line(line) => describe_line(line, &source)?,
     }
     for (k, v) in &topo.metadata {
         println!("  {k}: {v}");
@@ -89,7 +93,13 @@ fn describe_source(topo: &Topography) {
     println!("channels:  {}", channels.join(", "));
 }
 
-fn describe_map(map: &HeightMap, spacing: ScaleSource, height_unit: ScaleSource) -> Result<()> {
+/// `source` names the file and its format in errors.
+fn describe_map(
+    map: &HeightMap,
+    spacing: ScaleSource,
+    height_unit: ScaleSource,
+    source: &str,
+) -> Result<()> {
     let (lx, ly) = map.size();
     println!("kind:      areal map");
     println!("grid:      {} × {} points (nx × ny)", map.nx(), map.ny());
@@ -119,7 +129,7 @@ fn describe_map(map: &HeightMap, spacing: ScaleSource, height_unit: ScaleSource)
         ),
     }
     let a = amplitude_statistics(map, Boundary::Open)?;
-    check_values(map, spacing, &a)?;
+    check_values(map, spacing, &a, source)?;
     let functional = functional_parameters(map, FunctionalOptions::default())?;
     println!(
         "missing:   {} of {} points ({:.3} %)",
@@ -166,9 +176,14 @@ fn print_functional(f: &FunctionalParameters) {
 }
 
 /// The surface node's validity rules on what `inspect` prints: an impossible value (a spacing
-/// that is not a positive length, an Sq that overflowed) is an error, heights larger than the
-/// field of view a warning on stderr.
-fn check_values(map: &HeightMap, spacing: ScaleSource, a: &AmplitudeStatistics) -> Result<()> {
+/// that is not a positive length, an Sq that overflowed) is an error naming the file (`source`)
+/// and the value, heights larger than the field of view a warning on stderr.
+fn check_values(
+    map: &HeightMap,
+    spacing: ScaleSource,
+    a: &AmplitudeStatistics,
+    source: &str,
+) -> Result<()> {
     let len = |name: &'static str, v: f64| Field::float(name, v, Dimension::Length);
     let mut fields = vec![
         len("sq", a.sq),
@@ -193,7 +208,7 @@ fn check_values(map: &HeightMap, spacing: ScaleSource, a: &AmplitudeStatistics) 
             .filter_map(|(n, v)| v.map(|v| Field::float(n, v, Dimension::Dimensionless))),
     );
     validity::check_fields(validity::SURFACE, &fields)
-        .map_err(|e| anyhow::anyhow!("this file's values are not physically possible: {e}"))?;
+        .map_err(|e| anyhow::anyhow!("{source}: {}: {e}", impossible("this file's values")))?;
     if spacing == ScaleSource::File {
         let (lx, ly) = map.size();
         if let Some(warning) = validity::cross::surface_size(a.sq, lx, ly) {
@@ -203,7 +218,8 @@ fn check_values(map: &HeightMap, spacing: ScaleSource, a: &AmplitudeStatistics) 
     Ok(())
 }
 
-fn describe_line(line: &LineScan) -> Result<()> {
+/// `source` names the file and its format in errors.
+fn describe_line(line: &LineScan, source: &str) -> Result<()> {
     let valid: Vec<f64> = line.z.iter().copied().filter(|z| !z.is_nan()).collect();
     println!("kind:      line scan (profile)");
     println!(
@@ -220,11 +236,23 @@ fn describe_line(line: &LineScan) -> Result<()> {
             (valid.iter().map(|z| (z - mean).powi(2)).sum::<f64>() / valid.len() as f64).sqrt();
         let field = [Field::float("sq", rq, Dimension::Length)];
         validity::check_fields(validity::SURFACE, &field).map_err(|e| {
-            anyhow::anyhow!("this profile's values are not physically possible (its Rq as Sq): {e}")
+            anyhow::anyhow!(
+                "{source}: {} (its Rq as Sq): {e}",
+                impossible("this profile's values")
+            )
         })?;
         println!("Rq (point average, no levelling) = {rq:.9e} m");
     }
     Ok(())
+}
+
+/// The sentence for values a reader accepted but no surface can have: `what` is not physically
+/// possible, and the likely cause.
+fn impossible(what: &str) -> String {
+    format!(
+        "{what} are not physically possible (the reader accepted the file: a damaged height \
+         scale, spacing or data block is the likely cause; compare with the instrument's software)"
+    )
 }
 
 fn write_png(map: &HeightMap, out: &Path) -> Result<()> {

@@ -10,7 +10,9 @@ use serde::Deserialize;
 use crate::engine::node::NodeError;
 use crate::engine::study::{Param, ResolveContext, SpecError};
 use crate::engine::value::Field;
-use crate::surface::io::{declared_points, read_topography_channel, TopographyData};
+use crate::surface::io::{
+    declared_points, read_topography_channel, supported_formats, TopographyData,
+};
 use crate::surface::HeightMap;
 
 use super::lateral_scale::LateralLengths;
@@ -25,10 +27,10 @@ with_preprocessing_fields! {
     #[derive(Debug, Deserialize, schemars::JsonSchema)]
     #[serde(deny_unknown_fields)]
     pub struct FileSpec {
-        /// Topography file in any format `asperity inspect` reads (x3p, sdf, sur, plu, dat, opd,
-        /// di, gsf, gwy, al3d, zon, nid, mi, frt, opdx, nms, tmd, bcrf, ibw, tiff, top/stp, hfm,
-        /// nc, h5, txt/csv, npy; docs/study-format.md); relative paths are relative to the study
-        /// file.
+        /// Topography file in any format `asperity inspect` reads; relative paths are relative
+        /// to the study file. The schema's text lists the formats of the reader registry
+        /// ([`path_description`]).
+        #[schemars(description = path_description())]
         pub path: Param<String>,
         /// The channel to read from a file holding several (height, amplitude, phase, …), by
         /// name as `asperity inspect` lists it (ASCII case ignored). Default: the file's height
@@ -36,6 +38,16 @@ with_preprocessing_fields! {
         #[serde(default)]
         pub channel: Option<Param<String>>,
     }
+}
+
+/// The schema text of `file.path`, built from the reader registry (`READERS`): every format
+/// with its extensions, so the schema never lists formats the readers do not have.
+fn path_description() -> String {
+    format!(
+        "Topography file in any format `asperity inspect` reads: {} (docs/study-format.md, \
+         \"Topography formats\"); relative paths are relative to the study file.",
+        supported_formats()
+    )
 }
 
 /// A measured file, found and hashed.

@@ -42,8 +42,9 @@ pub(crate) const HEIGHT_UNIT_SOURCE: &str = "height_unit_source";
 /// fail impossible values and flag heights beyond the field of view; 9: the ISO 25178-2
 /// functional and volume parameters and the material ratio table, `height_unit_source` instead
 /// of `height_unit_from_file`, a flag when a file's height unit is assumed; a twin without
-/// `hurst_band` finds its band per file and reports it).
-pub const SURFACE_KIND_VERSION: u32 = 9;
+/// `hurst_band` finds its band per file and reports it; 10: an MNT file's mask image, not a
+/// count of 0, marks its missing points).
+pub const SURFACE_KIND_VERSION: u32 = 10;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
 /// cache but regenerated when a dependant needs their heights.

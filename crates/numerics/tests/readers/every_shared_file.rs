@@ -3,42 +3,17 @@
 //! fails this test instead of going unnoticed. Where the folder's `reference_values.json` gives
 //! SurfaceTopography's Sq for the channel read, ours must agree to 1e-6 relative.
 
-use std::path::{Path, PathBuf};
-
 use asperity_numerics::surface::io::{read_topography, Topography, TopographyData};
 use asperity_numerics::surface::{amplitude_statistics, Boundary};
 
 use crate::common::data_dir;
+use crate::damage::shared_files;
 
 /// Files the readers refuse on purpose, with why (relative to the shared folder).
 const REFUSED: &[(&str, &str)] = &[(
     "di/di_corrupted.di",
     "a damaged Nanoscope file (the trap of the folder)",
 )];
-
-/// Not topography: the folder's own documentation.
-fn is_documentation(relative: &Path) -> bool {
-    relative.starts_with("LICENSES")
-        || matches!(
-            relative.to_str(),
-            Some("SOURCES.md" | "reference_values.json")
-        )
-}
-
-fn files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|e| e.map(|e| e.path()).unwrap_or_else(|e| panic!("{e}")))
-        .collect();
-    entries.sort();
-    for path in entries {
-        if path.is_dir() {
-            files(&path, out);
-        } else {
-            out.push(path);
-        }
-    }
-}
 
 /// Metres per unit of `reference_values.json` (`None`: a unit this test does not compare).
 fn unit_factor(unit: &str) -> Option<f64> {
@@ -90,16 +65,12 @@ fn every_shared_file_is_read_or_refused_for_a_stated_reason() {
         .unwrap_or_else(|e| panic!("reference_values.json: {e}"));
     let reference: serde_json::Value =
         serde_json::from_str(&text).unwrap_or_else(|e| panic!("reference_values.json: {e}"));
-    let mut all = Vec::new();
-    files(&root, &mut all);
+    let all = shared_files(&root);
     let mut problems = Vec::new();
     let mut read = 0;
     let mut compared = Vec::new();
     for path in &all {
         let relative = path.strip_prefix(&root).unwrap_or(path);
-        if is_documentation(relative) {
-            continue;
-        }
         let name = relative.to_string_lossy().replace('\\', "/");
         let refused = REFUSED.iter().find(|(f, _)| *f == name);
         match (read_topography(path), refused) {

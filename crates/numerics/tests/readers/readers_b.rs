@@ -6,11 +6,11 @@
 //! When it is missing the data tests fail if `CI` is set and are skipped (with a note) otherwise.
 
 use crate::common;
+use crate::readers_a_common::parse_as;
 use std::path::Path;
 
 use asperity_numerics::surface::io::{
-    gsf, gwy, nanoscope, parse_topography, read_topography, ParseError, ReadError, Topography,
-    TopographyData,
+    parse_topography, read_topography, ParseError, ReadError, Topography, TopographyData,
 };
 use asperity_numerics::surface::HeightMap;
 fn areal(t: &Topography) -> &HeightMap {
@@ -299,21 +299,23 @@ fn nanoscope_lists_and_selects_channels() {
         return;
     };
     let bytes = std::fs::read(dir.join("di/di-5.di")).unwrap_or_else(|e| panic!("{e}"));
-    let names = nanoscope::channel_names(&bytes).unwrap_or_else(|e| panic!("{e}"));
+    let names = parse_as("nanoscope", &bytes, None)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .channels;
     assert_eq!(names, ["ZSensor", "PeakForceError"]);
     // The peak-force error is a force (sensitivity without a length unit): not a topography.
-    let err = nanoscope::parse_channel(&bytes, Some("PeakForceError")).map(|_| ());
+    let err = parse_as("nanoscope", &bytes, Some("PeakForceError")).map(|_| ());
     assert!(
         matches!(err, Err(ParseError::Unsupported { .. })),
         "{err:?}"
     );
-    let err = nanoscope::parse_channel(&bytes, Some("Height")).map(|_| ());
+    let err = parse_as("nanoscope", &bytes, Some("Height")).map(|_| ());
     assert!(
         matches!(&err, Err(ParseError::UnknownChannel { wanted, available })
             if wanted == "Height" && available == &["ZSensor", "PeakForceError"]),
         "{err:?}"
     );
-    let t = nanoscope::parse_channel(&bytes, Some("zsensor")).unwrap_or_else(|e| panic!("{e}"));
+    let t = parse_as("nanoscope", &bytes, Some("zsensor")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(t.channel.as_deref(), Some("ZSensor"));
     assert_eq!(t.channels, ["ZSensor", "PeakForceError"]);
 }
@@ -324,12 +326,14 @@ fn gwy_lists_channels() {
         return;
     };
     let bytes = std::fs::read(dir.join("gwy/file_square.gwy")).unwrap_or_else(|e| panic!("{e}"));
-    let names = gwy::channel_names(&bytes).unwrap_or_else(|e| panic!("{e}"));
+    let names = parse_as("gwy", &bytes, None)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .channels;
     assert_eq!(names, ["Left_Top_Right_Bottom"]);
     let t =
-        gwy::parse_channel(&bytes, Some("Left_Top_Right_Bottom")).unwrap_or_else(|e| panic!("{e}"));
+        parse_as("gwy", &bytes, Some("Left_Top_Right_Bottom")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(areal(&t).nx(), 256);
-    let err = gwy::parse_channel(&bytes, Some("nope")).map(|_| ());
+    let err = parse_as("gwy", &bytes, Some("nope")).map(|_| ());
     assert!(
         matches!(err, Err(ParseError::UnknownChannel { .. })),
         "{err:?}"
@@ -376,7 +380,7 @@ fn gsf_header_length_multiple_of_four_gets_four_nuls() {
     // Magic (26 bytes) + "XRes = 2\nYRes = 2\n" (18 bytes) = 44: padding must be 4 NULs.
     let bytes = gsf_bytes("XRes = 2\nYRes = 2\n", &[1.0, 2.0, 3.0, 4.0]);
     assert_eq!(bytes.len(), 44 + 4 + 16);
-    let t = gsf::parse(&bytes).unwrap_or_else(|e| panic!("{e}"));
+    let t = parse_as("gsf", &bytes, None).unwrap_or_else(|e| panic!("{e}"));
     let m = areal(&t);
     // No units: metres; no XReal/YReal: 1 m wide.
     assert_eq!(m.heights()[[1, 1]], 4.0);
@@ -395,7 +399,7 @@ fn gsf_bad_headers_are_clear_errors() {
         ("XRes = 1000000000\nYRes = 1000000000\n", "truncated"),
     ];
     for (header, expected) in cases {
-        let err = gsf::parse(&gsf_bytes(header, &values))
+        let err = parse_as("gsf", &gsf_bytes(header, &values), None)
             .map(|_| ())
             .unwrap_err();
         assert!(
@@ -403,7 +407,7 @@ fn gsf_bad_headers_are_clear_errors() {
             "`{header}` gave `{err}`"
         );
     }
-    let err = gsf::parse(b"Gwyddion Simple Field 1.0\nXRes = 2\n")
+    let err = parse_as("gsf", b"Gwyddion Simple Field 1.0\nXRes = 2\n", None)
         .map(|_| ())
         .unwrap_err();
     assert!(matches!(err, ParseError::Truncated { .. }), "{err}");

@@ -6,10 +6,11 @@
 //! `shared/data/topography`; missing → fail under `CI`, skip otherwise.
 
 use crate::common;
+use crate::readers_a_common::parse_as;
 
 use asperity_numerics::surface::io::{
-    detect_format, hdf5, ibw, read_topography, read_topography_channel, ParseError, ScaleSource,
-    Topography, TopographyData,
+    detect_format, read_topography, read_topography_channel, ParseError, ScaleSource, Topography,
+    TopographyData,
 };
 use asperity_numerics::surface::HeightMap;
 
@@ -139,7 +140,9 @@ fn ibw_reproduces_reference_and_lists_channels() {
     );
     let dir = common::data_dir().expect("checked above");
     let bytes = std::fs::read(dir.join("ibw/spot_1-1000nm.ibw")).expect("read");
-    let names = ibw::channel_names(&bytes).unwrap_or_else(|e| panic!("{e}"));
+    let names = parse_as("ibw", &bytes, None)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .channels;
     assert_eq!(
         names,
         [
@@ -161,7 +164,7 @@ fn ibw_reproduces_reference_and_lists_channels() {
     assert_eq!(retrace.channel.as_deref(), Some("HeightRetrace"));
     assert_ne!(areal(&retrace).heights(), areal(&t).heights());
     // Phase is saved under the wave's unit `m`: refused, not read as metres.
-    let err = ibw::parse_channel(&bytes, Some("PhaseTrace")).map(|_| ());
+    let err = parse_as("ibw", &bytes, Some("PhaseTrace")).map(|_| ());
     assert!(
         matches!(err, Err(ParseError::Unsupported { .. })),
         "{err:?}"
@@ -172,7 +175,7 @@ fn ibw_reproduces_reference_and_lists_channels() {
         text.contains("`AmplitudeRetrace`") && !text.contains("`PhaseRetrace`"),
         "{text}"
     );
-    let err = ibw::parse_channel(&bytes, Some("Height")).map(|_| ());
+    let err = parse_as("ibw", &bytes, Some("Height")).map(|_| ());
     assert!(
         matches!(&err, Err(ParseError::UnknownChannel { available, .. }) if available == &names),
         "{err:?}"
@@ -403,13 +406,15 @@ fn hdf5_datasets_are_channels() {
     assert_eq!(t.height_unit, ScaleSource::Assumed);
     let dir = common::data_dir().expect("checked above");
     let bytes = std::fs::read(dir.join("h5/multiple_data_sets.h5")).expect("read");
-    let names = hdf5::channel_names(&bytes).unwrap_or_else(|e| panic!("{e}"));
+    let names = parse_as("hdf5", &bytes, None)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .channels;
     assert_eq!(names, ["dataset1", "dataset2"]);
     assert_eq!(t.channels, names);
-    let second = hdf5::parse_channel(&bytes, Some("dataset2")).unwrap_or_else(|e| panic!("{e}"));
+    let second = parse_as("hdf5", &bytes, Some("dataset2")).unwrap_or_else(|e| panic!("{e}"));
     let m = areal(&second);
     assert_eq!((m.nx(), m.ny()), (640, 480));
-    let err = hdf5::parse_channel(&bytes, Some("dataset3"))
+    let err = parse_as("hdf5", &bytes, Some("dataset3"))
         .map(|_| ())
         .unwrap_err();
     assert!(err.to_string().contains("dataset2"), "{err}");

@@ -62,3 +62,110 @@ fn a_single_channel_file_reports_its_one_channel_and_refuses_another() {
         "{message}"
     );
 }
+
+/// The repository's root (two levels above this crate).
+fn repository() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// `(format, extensions)` of each row of the table "Topography formats" of
+/// docs/study-format.md.
+fn documented_formats() -> Vec<(String, Vec<String>)> {
+    let path = repository().join("docs/study-format.md");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let section = text
+        .split("### Topography formats")
+        .nth(1)
+        .expect("docs/study-format.md has a section \"Topography formats\"");
+    section
+        .lines()
+        .skip_while(|l| !l.starts_with("| format"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .map(|row| {
+            let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+            let extensions = cells[2].split(',').map(|e| e.trim().to_string()).collect();
+            (cells[1].trim_matches('`').to_string(), extensions)
+        })
+        .collect()
+}
+
+/// The format table of docs/study-format.md has one row per reader, with the reader's
+/// extensions: a new reader without its row fails here, naming it.
+#[test]
+fn the_documented_formats_are_the_registry() {
+    let documented = documented_formats();
+    let mut problems = Vec::new();
+    for reader in READERS {
+        let extensions: Vec<String> = reader.extensions.iter().map(|e| e.to_string()).collect();
+        match documented.iter().find(|(name, _)| name == reader.name) {
+            None => problems.push(format!(
+                "`{}` has no row; add `| `{}` | {} | … | {} |`",
+                reader.name,
+                reader.name,
+                extensions.join(", "),
+                reader.description
+            )),
+            Some((_, listed)) if *listed != extensions => problems.push(format!(
+                "`{}` lists extensions {listed:?}, the reader {extensions:?}",
+                reader.name
+            )),
+            Some(_) => {}
+        }
+    }
+    for (name, _) in &documented {
+        if reader_named(name).is_none() {
+            problems.push(format!("the row `{name}` names no reader"));
+        }
+    }
+    assert!(
+        problems.is_empty(),
+        "docs/study-format.md, \"Topography formats\":\n{}",
+        problems.join("\n")
+    );
+}
+
+/// The fuzz crate holds the generic targets only (`reader` takes its reader from the registry):
+/// every `[[bin]]` of fuzz/Cargo.toml has its file and every file its `[[bin]]`, and no target,
+/// the fuzz README or the campaign script names readers one by one.
+#[test]
+fn the_fuzz_targets_take_their_readers_from_the_registry() {
+    let fuzz = repository().join("fuzz");
+    let manifest = std::fs::read_to_string(fuzz.join("Cargo.toml")).expect("fuzz/Cargo.toml");
+    let mut bins: Vec<String> = manifest
+        .lines()
+        .filter_map(|l| l.strip_prefix("path = \"fuzz_targets/"))
+        .map(|l| l.trim_end_matches(".rs\"").to_string())
+        .collect();
+    bins.sort();
+    let mut files: Vec<String> = std::fs::read_dir(fuzz.join("fuzz_targets"))
+        .expect("fuzz/fuzz_targets")
+        .map(|e| e.expect("entry").path())
+        .filter_map(|p| Some(p.file_stem()?.to_str()?.to_string()))
+        .collect();
+    files.sort();
+    assert_eq!(
+        bins, files,
+        "fuzz/Cargo.toml's [[bin]] paths and fuzz/fuzz_targets/"
+    );
+    assert_eq!(files, ["reader", "study", "topography"]);
+    let names: Vec<&str> = READERS.iter().map(|r| r.name).collect();
+    for doc in [
+        "fuzz/README.md",
+        "scripts/fuzz-campaign.sh",
+        "fuzz/src/lib.rs",
+    ] {
+        let text = std::fs::read_to_string(repository().join(doc)).expect(doc);
+        for line in text.lines() {
+            let listed: Vec<&&str> = names
+                .iter()
+                .filter(|n| line.contains(&format!("`{n}`")) || line.contains(&format!(" {n} ")))
+                .collect();
+            assert!(
+                listed.len() < 4,
+                "{doc} lists readers by hand ({listed:?}); take them from the registry \
+                 (`cargo run -p asperity-numerics --example reader_names`): {line}"
+            );
+        }
+    }
+}

@@ -4,7 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use asperity_numerics::surface::io::{read_topography, Topography, TopographyData};
+use asperity_numerics::surface::io::{
+    read_topography, reader_named, ParseError, Topography, TopographyData,
+};
 use asperity_numerics::surface::HeightMap;
 
 /// Path of a fixture in the repository's `tests/data/` (two levels above this crate).
@@ -12,6 +14,18 @@ pub fn fixture(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../tests/data")
         .join(name)
+}
+
+/// Parses `bytes` with the registry's reader `format` (its `Reader::name`), reading the channel
+/// `channel` (`None`: the height channel): the path every reader test goes through.
+pub fn parse_as(
+    format: &str,
+    bytes: &[u8],
+    channel: Option<&str>,
+) -> Result<Topography, ParseError> {
+    reader_named(format)
+        .unwrap_or_else(|| panic!("no reader named {format}"))
+        .parse(bytes, channel)
 }
 
 pub fn read_areal(path: &Path) -> HeightMap {

@@ -56,7 +56,64 @@ fn read_tag(bytes: &[u8], index: usize) -> Result<(String, String), ParseError> 
 }
 
 /// Parses an AL3D file into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+    let tags = read_tags(bytes)?;
+    let get = |key: &str| -> Result<&String, ParseError> {
+        tags.get(key)
+            .ok_or_else(|| ParseError::malformed(format!("AL3D header has no `{key}` tag")))
+    };
+    let int = |key: &str| -> Result<usize, ParseError> {
+        let v = get(key)?;
+        v.parse().map_err(|_| {
+            ParseError::malformed(format!("AL3D {key} `{v}` is not a non-negative integer"))
+        })
+    };
+    let real = |key: &str| -> Result<f64, ParseError> {
+        let v = get(key)?;
+        v.parse()
+            .map_err(|_| ParseError::malformed(format!("AL3D {key} `{v}` is not a number")))
+    };
+    let (nx, ny) = (int("Cols")?, int("Rows")?);
+    let (dx, dy) = (real("PixelSizeXMeter")?, real("PixelSizeYMeter")?);
+    let depth = DepthImage {
+        nx,
+        ny,
+        offset: int("DepthImageOffset")?,
+        texture_offset: int("TextureImageOffset").unwrap_or(0),
+        invalid: match tags.get("InvalidPixelValue") {
+            Some(v) => v.parse::<f64>().ok().map(|x| x as f32),
+            None => None,
+        },
+    };
+    let values = depth.heights(bytes)?;
+    let heights = Array2::from_shape_vec((ny, nx), values)
+        .map_err(|e| ParseError::malformed(format!("AL3D array shape: {e}")))?;
+    let map =
+        HeightMap::new(heights, dx, dy).map_err(|e| ParseError::malformed(format!("AL3D: {e}")))?;
+    let mut metadata = BTreeMap::new();
+    metadata.insert("vendor".into(), "Alicona".into());
+    for key in [
+        "Version",
+        "CreatingApplication",
+        "NumberOfPlanes",
+        "DepthResShiftVal",
+    ] {
+        if let Some(v) = tags.get(key) {
+            metadata.insert(key.into(), v.clone());
+        }
+    }
+    Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
+        data: TopographyData::Areal(map),
+        channel: Some("depth".into()),
+        channels: Vec::new(),
+        metadata,
+    })
+}
+
+/// Every tag of the header: `Version` and `TagCount` first, then `TagCount` more.
+fn read_tags(bytes: &[u8]) -> Result<BTreeMap<String, String>, ParseError> {
     if !bytes.starts_with(MAGIC) {
         return Err(ParseError::malformed("missing `AliconaImaging` magic"));
     }
@@ -83,93 +140,74 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         let (key, value) = read_tag(bytes, index)?;
         tags.insert(key, value);
     }
-    let get = |key: &str| -> Result<&String, ParseError> {
-        tags.get(key)
-            .ok_or_else(|| ParseError::malformed(format!("AL3D header has no `{key}` tag")))
-    };
-    let int = |key: &str| -> Result<usize, ParseError> {
-        let v = get(key)?;
-        v.parse().map_err(|_| {
-            ParseError::malformed(format!("AL3D {key} `{v}` is not a non-negative integer"))
-        })
-    };
-    let real = |key: &str| -> Result<f64, ParseError> {
-        let v = get(key)?;
-        v.parse()
-            .map_err(|_| ParseError::malformed(format!("AL3D {key} `{v}` is not a number")))
-    };
-    let (nx, ny) = (int("Cols")?, int("Rows")?);
-    let (dx, dy) = (real("PixelSizeXMeter")?, real("PixelSizeYMeter")?);
-    let depth_offset = int("DepthImageOffset")?;
-    let texture_offset = int("TextureImageOffset").unwrap_or(0);
-    let invalid = match tags.get("InvalidPixelValue") {
-        Some(v) => v.parse::<f64>().ok().map(|x| x as f32),
-        None => None,
-    };
-    if nx == 0 || ny == 0 || depth_offset == 0 {
-        return Err(ParseError::unsupported("AL3D file without a depth image"));
-    }
-    let available = bytes.len().saturating_sub(depth_offset) / 4;
-    if nx.checked_mul(ny).is_none_or(|n| n > available) {
-        return Err(ParseError::truncated(format!(
-            "AL3D depth image of {nx} × {ny} float32 at byte {depth_offset}"
-        )));
-    }
-    let padded = nx.div_ceil(8) * 8;
-    let stride = if texture_offset > depth_offset && (texture_offset - depth_offset) % (4 * ny) == 0
-    {
-        (texture_offset - depth_offset) / (4 * ny)
-    } else if padded.checked_mul(ny).is_some_and(|n| n <= available) {
-        padded
-    } else {
-        nx
-    };
-    if stride < nx {
-        return Err(ParseError::malformed(format!(
-            "AL3D depth rows of {stride} values are shorter than Cols = {nx}"
-        )));
-    }
-    let n_values = stride * ny;
-    if n_values > available {
-        return Err(ParseError::truncated(format!(
-            "AL3D depth image of {ny} rows × {stride} float32 at byte {depth_offset}"
-        )));
-    }
-    let data = &bytes[depth_offset..depth_offset + 4 * n_values];
-    check_points(nx, ny, "AL3D header (Cols × Rows)")?;
-    let mut values = Vec::with_capacity(nx * ny);
-    for row in data.chunks_exact(4 * stride) {
-        values.extend(row[..4 * nx].chunks_exact(4).map(|c| {
-            let v = f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
-            if !v.is_finite() || Some(v) == invalid {
-                f64::NAN
-            } else {
-                f64::from(v)
-            }
-        }));
-    }
-    let heights = Array2::from_shape_vec((ny, nx), values)
-        .map_err(|e| ParseError::malformed(format!("AL3D array shape: {e}")))?;
-    let map =
-        HeightMap::new(heights, dx, dy).map_err(|e| ParseError::malformed(format!("AL3D: {e}")))?;
-    let mut metadata = BTreeMap::new();
-    metadata.insert("vendor".into(), "Alicona".into());
-    for key in [
-        "Version",
-        "CreatingApplication",
-        "NumberOfPlanes",
-        "DepthResShiftVal",
-    ] {
-        if let Some(v) = tags.get(key) {
-            metadata.insert(key.into(), v.clone());
+    Ok(tags)
+}
+
+/// Where the depth image lies and how its points are stored.
+struct DepthImage {
+    nx: usize,
+    ny: usize,
+    /// `DepthImageOffset`, bytes.
+    offset: usize,
+    /// `TextureImageOffset` (0: no texture).
+    texture_offset: usize,
+    /// `InvalidPixelValue`, as the float32 the points hold.
+    invalid: Option<f32>,
+}
+
+impl DepthImage {
+    /// The heights (metres, `NaN` for invalid points), row by row without the row padding.
+    fn heights(&self, bytes: &[u8]) -> Result<Vec<f64>, ParseError> {
+        let (nx, ny, offset) = (self.nx, self.ny, self.offset);
+        if nx == 0 || ny == 0 || offset == 0 {
+            return Err(ParseError::unsupported("AL3D file without a depth image"));
         }
+        let available = bytes.len().saturating_sub(offset) / 4;
+        if nx.checked_mul(ny).is_none_or(|n| n > available) {
+            return Err(ParseError::truncated(format!(
+                "AL3D depth image of {nx} × {ny} float32 at byte {offset}"
+            )));
+        }
+        let stride = self.row_stride(available)?;
+        let n_values = stride * ny;
+        if n_values > available {
+            return Err(ParseError::truncated(format!(
+                "AL3D depth image of {ny} rows × {stride} float32 at byte {offset}"
+            )));
+        }
+        let data = &bytes[offset..offset + 4 * n_values];
+        check_points(nx, ny, "AL3D header (Cols × Rows)")?;
+        let mut values = Vec::with_capacity(nx * ny);
+        for row in data.chunks_exact(4 * stride) {
+            values.extend(row[..4 * nx].chunks_exact(4).map(|c| {
+                let v = f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
+                if !v.is_finite() || Some(v) == self.invalid {
+                    f64::NAN
+                } else {
+                    f64::from(v)
+                }
+            }));
+        }
+        Ok(values)
     }
-    Ok(Topography {
-        spacing: ScaleSource::File,
-        height_unit: ScaleSource::File,
-        data: TopographyData::Areal(map),
-        channel: Some("depth".into()),
-        channels: Vec::new(),
-        metadata,
-    })
+
+    /// Values per stored row: from the gap to the texture, else `Cols` padded to a multiple of
+    /// 8 when the file holds it, else `Cols`; never fewer than `Cols`.
+    fn row_stride(&self, available: usize) -> Result<usize, ParseError> {
+        let (nx, ny, offset, texture) = (self.nx, self.ny, self.offset, self.texture_offset);
+        let padded = nx.div_ceil(8) * 8;
+        let stride = if texture > offset && (texture - offset) % (4 * ny) == 0 {
+            (texture - offset) / (4 * ny)
+        } else if padded.checked_mul(ny).is_some_and(|n| n <= available) {
+            padded
+        } else {
+            nx
+        };
+        if stride < nx {
+            return Err(ParseError::malformed(format!(
+                "AL3D depth rows of {stride} values are shorter than Cols = {nx}"
+            )));
+        }
+        Ok(stride)
+    }
 }

@@ -120,7 +120,7 @@ fn read_header(bytes: &[u8]) -> Result<(BTreeMap<String, String>, usize), ParseE
 }
 
 /// Parses a BCR-STM or BCRF file into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let (fields, header_bytes) = read_header(bytes)?;
     let get = |key: &str| {
         fields

@@ -57,25 +57,8 @@ fn unit_factor(unit: Option<&String>, key: &str) -> Result<f64, ParseError> {
 }
 
 /// Parses a Gwyddion Simple Field file into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
-    if !bytes.starts_with(MAGIC) {
-        return Err(ParseError::malformed(
-            "missing `Gwyddion Simple Field 1.0` line",
-        ));
-    }
-    let header_end = bytes
-        .iter()
-        .position(|&b| b == 0)
-        .ok_or_else(|| ParseError::truncated("GSF header (no NUL padding before the data)"))?;
-    let data_start = (header_end / 4 + 1) * 4;
-    let header = String::from_utf8_lossy(&bytes[MAGIC.len()..header_end]);
-    let mut fields = BTreeMap::new();
-    for line in header.lines().map(str::trim).filter(|l| !l.is_empty()) {
-        let (key, value) = line.split_once('=').ok_or_else(|| {
-            ParseError::malformed(format!("GSF header line without `=`: `{line}`"))
-        })?;
-        fields.insert(key.trim().to_string(), value.trim().to_string());
-    }
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+    let (mut fields, data_start) = read_header(bytes)?;
     let res = |key: &str| -> Result<usize, ParseError> {
         let v = fields
             .get(key)
@@ -108,30 +91,7 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     } else {
         ScaleSource::Assumed
     };
-    let n_bytes = nx
-        .checked_mul(ny)
-        .and_then(|n| n.checked_mul(4))
-        .ok_or_else(|| ParseError::malformed(format!("GSF grid {nx} × {ny} overflows")))?;
-    let data = data_start
-        .checked_add(n_bytes)
-        .and_then(|end| bytes.get(data_start..end))
-        .ok_or_else(|| {
-            ParseError::truncated(format!(
-                "GSF data of {nx} × {ny} float32 at byte {data_start}"
-            ))
-        })?;
-    check_points(nx, ny, "GSF header (XRes × YRes)")?;
-    let values: Vec<f64> = data
-        .chunks_exact(4)
-        .map(|c| {
-            let v = f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
-            if v.is_finite() {
-                f64::from(v) * z_factor
-            } else {
-                f64::NAN
-            }
-        })
-        .collect();
+    let values = read_heights(bytes, data_start, nx, ny, z_factor)?;
     let heights = Array2::from_shape_vec((ny, nx), values)
         .map_err(|e| ParseError::malformed(format!("GSF array shape: {e}")))?;
     let map =
@@ -146,4 +106,62 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         channels: Vec::new(),
         metadata: fields,
     })
+}
+
+/// The `Key = Value` fields of the header and the byte where the data start (the first
+/// multiple of 4 after the header's NUL padding begins).
+fn read_header(bytes: &[u8]) -> Result<(BTreeMap<String, String>, usize), ParseError> {
+    if !bytes.starts_with(MAGIC) {
+        return Err(ParseError::malformed(
+            "missing `Gwyddion Simple Field 1.0` line",
+        ));
+    }
+    let header_end = bytes
+        .iter()
+        .position(|&b| b == 0)
+        .ok_or_else(|| ParseError::truncated("GSF header (no NUL padding before the data)"))?;
+    let data_start = (header_end / 4 + 1) * 4;
+    let header = String::from_utf8_lossy(&bytes[MAGIC.len()..header_end]);
+    let mut fields = BTreeMap::new();
+    for line in header.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        let (key, value) = line.split_once('=').ok_or_else(|| {
+            ParseError::malformed(format!("GSF header line without `=`: `{line}`"))
+        })?;
+        fields.insert(key.trim().to_string(), value.trim().to_string());
+    }
+    Ok((fields, data_start))
+}
+
+/// The `nx × ny` float32 heights at `data_start`, in metres (non-finite values are `NaN`).
+fn read_heights(
+    bytes: &[u8],
+    data_start: usize,
+    nx: usize,
+    ny: usize,
+    z_factor: f64,
+) -> Result<Vec<f64>, ParseError> {
+    let n_bytes = nx
+        .checked_mul(ny)
+        .and_then(|n| n.checked_mul(4))
+        .ok_or_else(|| ParseError::malformed(format!("GSF grid {nx} × {ny} overflows")))?;
+    let data = data_start
+        .checked_add(n_bytes)
+        .and_then(|end| bytes.get(data_start..end))
+        .ok_or_else(|| {
+            ParseError::truncated(format!(
+                "GSF data of {nx} × {ny} float32 at byte {data_start}"
+            ))
+        })?;
+    check_points(nx, ny, "GSF header (XRes × YRes)")?;
+    Ok(data
+        .chunks_exact(4)
+        .map(|c| {
+            let v = f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
+            if v.is_finite() {
+                f64::from(v) * z_factor
+            } else {
+                f64::NAN
+            }
+        })
+        .collect())
 }

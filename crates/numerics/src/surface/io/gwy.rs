@@ -232,14 +232,6 @@ fn channels<'c, 'a>(container: &'c GwyObject<'a>) -> Vec<(u64, String, &'c GwyOb
     found
 }
 
-/// Titles of the image channels, ordered by channel id.
-pub fn channel_names(bytes: &[u8]) -> Result<Vec<String>, ParseError> {
-    Ok(channels(&read_container(bytes)?)
-        .into_iter()
-        .map(|(_, title, _)| title)
-        .collect())
-}
-
 fn unit_string(field: &GwyObject<'_>, key: &str) -> String {
     match field.get(key) {
         Some(GwyValue::Object(u)) => match u.get("unitstr") {
@@ -250,13 +242,8 @@ fn unit_string(field: &GwyObject<'_>, key: &str) -> String {
     }
 }
 
-/// Parses the first channel whose heights are lengths.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
-    parse_channel(bytes, None)
-}
-
 /// Parses the channel titled `title` (or the default one for `None`), heights in metres.
-pub fn parse_channel(bytes: &[u8], title: Option<&str>) -> Result<Topography, ParseError> {
+fn parse_channel(bytes: &[u8], title: Option<&str>) -> Result<Topography, ParseError> {
     let container = read_container(bytes)?;
     let all = channels(&container);
     let names: Vec<String> = all.iter().map(|(_, n, _)| n.clone()).collect();
@@ -271,24 +258,7 @@ pub fn parse_channel(bytes: &[u8], title: Option<&str>) -> Result<Topography, Pa
                 ))
             })?,
     };
-    let int = |key: &str| -> Result<usize, ParseError> {
-        match field.get(key) {
-            Some(GwyValue::Int(v)) if *v > 0 => usize::try_from(*v)
-                .map_err(|_| ParseError::malformed(format!("GWY {key} = {v} too large"))),
-            _ => Err(ParseError::malformed(format!(
-                "GWY data field `{name}` has no positive {key}"
-            ))),
-        }
-    };
-    let real = |key: &str| -> Result<f64, ParseError> {
-        match field.get(key) {
-            Some(GwyValue::Double(v)) => Ok(*v),
-            _ => Err(ParseError::malformed(format!(
-                "GWY data field `{name}` has no {key}"
-            ))),
-        }
-    };
-    let (nx, ny) = (int("xres")?, int("yres")?);
+    let (nx, ny) = (field_int(field, name, "xres")?, field_int(field, name, "yres")?);
     let (xy_unit, z_unit) = (
         unit_string(field, "si_unit_xy"),
         unit_string(field, "si_unit_z"),
@@ -301,6 +271,63 @@ pub fn parse_channel(bytes: &[u8], title: Option<&str>) -> Result<Topography, Pa
             "GWY channel `{name}` is in `{z_unit}`, not a length"
         ))
     })?;
+    let values = field_heights(field, name, nx, ny, z_factor)?;
+    let heights = Array2::from_shape_vec((ny, nx), values)
+        .map_err(|e| ParseError::malformed(format!("GWY array shape: {e}")))?;
+    let dx = field_real(field, name, "xreal")? * xy_factor / nx as f64;
+    let dy = field_real(field, name, "yreal")? * xy_factor / ny as f64;
+    let map =
+        HeightMap::new(heights, dx, dy).map_err(|e| ParseError::malformed(format!("GWY: {e}")))?;
+    let mut metadata = BTreeMap::new();
+    metadata.insert("software".into(), "Gwyddion".into());
+    for key in ["xoff", "yoff"] {
+        if let Ok(v) = field_real(field, name, key) {
+            metadata.insert(format!("{key}_m"), (v * xy_factor).to_string());
+        }
+    }
+    if let Some(GwyValue::Str(f)) = container.get("/filename") {
+        metadata.insert("original_filename".into(), f.clone());
+    }
+    Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
+        data: TopographyData::Areal(map),
+        channel: Some(name.clone()),
+        channels: names,
+        metadata,
+    })
+}
+
+/// The positive integer `key` of the data field `name`.
+fn field_int(field: &GwyObject<'_>, name: &str, key: &str) -> Result<usize, ParseError> {
+    match field.get(key) {
+        Some(GwyValue::Int(v)) if *v > 0 => usize::try_from(*v)
+            .map_err(|_| ParseError::malformed(format!("GWY {key} = {v} too large"))),
+        _ => Err(ParseError::malformed(format!(
+            "GWY data field `{name}` has no positive {key}"
+        ))),
+    }
+}
+
+/// The real number `key` of the data field `name`.
+fn field_real(field: &GwyObject<'_>, name: &str, key: &str) -> Result<f64, ParseError> {
+    match field.get(key) {
+        Some(GwyValue::Double(v)) => Ok(*v),
+        _ => Err(ParseError::malformed(format!(
+            "GWY data field `{name}` has no {key}"
+        ))),
+    }
+}
+
+/// The `nx × ny` heights of the data field's array in metres (`z_factor` per stored unit;
+/// non-finite values are `NaN`).
+fn field_heights(
+    field: &GwyObject<'_>,
+    name: &str,
+    nx: usize,
+    ny: usize,
+    z_factor: f64,
+) -> Result<Vec<f64>, ParseError> {
     let data = match field.get("data") {
         Some(GwyValue::DoubleArray(d)) => *d,
         _ => {
@@ -316,7 +343,7 @@ pub fn parse_channel(bytes: &[u8], title: Option<&str>) -> Result<Topography, Pa
         )));
     }
     check_points(nx, ny, &format!("GWY data field `{name}`"))?;
-    let values: Vec<f64> = data
+    Ok(data
         .chunks_exact(8)
         .map(|c| {
             let v = f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]);
@@ -326,29 +353,5 @@ pub fn parse_channel(bytes: &[u8], title: Option<&str>) -> Result<Topography, Pa
                 f64::NAN
             }
         })
-        .collect();
-    let heights = Array2::from_shape_vec((ny, nx), values)
-        .map_err(|e| ParseError::malformed(format!("GWY array shape: {e}")))?;
-    let dx = real("xreal")? * xy_factor / nx as f64;
-    let dy = real("yreal")? * xy_factor / ny as f64;
-    let map =
-        HeightMap::new(heights, dx, dy).map_err(|e| ParseError::malformed(format!("GWY: {e}")))?;
-    let mut metadata = BTreeMap::new();
-    metadata.insert("software".into(), "Gwyddion".into());
-    for key in ["xoff", "yoff"] {
-        if let Ok(v) = real(key) {
-            metadata.insert(format!("{key}_m"), (v * xy_factor).to_string());
-        }
-    }
-    if let Some(GwyValue::Str(f)) = container.get("/filename") {
-        metadata.insert("original_filename".into(), f.clone());
-    }
-    Ok(Topography {
-        spacing: ScaleSource::File,
-        height_unit: ScaleSource::File,
-        data: TopographyData::Areal(map),
-        channel: Some(name.clone()),
-        channels: names,
-        metadata,
-    })
+        .collect())
 }

@@ -360,18 +360,8 @@ fn datasets(bytes: &[u8]) -> Result<Vec<Dataset<'_>>, ParseError> {
     Ok(out)
 }
 
-/// Names of the root group's 2-D datasets (the channels), in link-name order.
-pub fn channel_names(bytes: &[u8]) -> Result<Vec<String>, ParseError> {
-    Ok(datasets(bytes)?.into_iter().map(|d| d.name).collect())
-}
-
-/// Parses the first 2-D dataset.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
-    parse_channel(bytes, None)
-}
-
 /// Parses the dataset named `channel` (ASCII case ignored; the first 2-D one for `None`).
-pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, ParseError> {
+fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, ParseError> {
     let sets = datasets(bytes)?;
     let all: Vec<String> = sets.iter().map(|d| d.name.clone()).collect();
     let set = &sets[pick_channel(&all, channel, &[])?];

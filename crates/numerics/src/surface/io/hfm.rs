@@ -68,7 +68,7 @@ fn data_line(text: &str, line: usize) -> Result<(f64, f64, bool), ParseError> {
 }
 
 /// Parses an HFM profile into a line scan in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     if !bytes.starts_with(MAGIC) {
         return Err(ParseError::malformed("missing `X;Y;valid` header line"));
     }

@@ -256,16 +256,6 @@ fn channel_names_from(labels: &[u8], layers: usize) -> Vec<String> {
         .collect()
 }
 
-/// Names of the channels (layers) in file order.
-pub fn channel_names(bytes: &[u8]) -> Result<Vec<String>, ParseError> {
-    Ok(read_wave(bytes)?.channels)
-}
-
-/// Parses the default channel (`HeightTrace`, `ZSensorTrace`, …, else the first).
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
-    parse_channel(bytes, None)
-}
-
 /// Metres per unit, `None` for an empty unit (not stated); `what` names the field.
 fn unit_factor(unit: &str, what: &str) -> Result<Option<f64>, ParseError> {
     if unit.is_empty() {
@@ -278,7 +268,7 @@ fn unit_factor(unit: &str, what: &str) -> Result<Option<f64>, ParseError> {
 
 /// Parses the channel named `channel` (ASCII case ignored; the default one for `None`),
 /// heights in metres.
-pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, ParseError> {
+fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, ParseError> {
     let wave = read_wave(bytes)?;
     let [nx, ny, _, d3] = wave.dims;
     if nx < 2 || ny < 2 || d3 > 1 {

@@ -81,8 +81,87 @@ fn text_field(bytes: &[u8], offset: usize, len: usize, what: &str) -> Result<Str
     Ok(String::from_utf8_lossy(&b[..end]).trim().to_string())
 }
 
+/// The sizes of the header and of the arrays.
+struct Layout {
+    header_format: u16,
+    header_size: usize,
+    /// Bytes of the intensity array, which precedes the phase array.
+    intensity_bytes: usize,
+    nx: usize,
+    ny: usize,
+}
+
+/// The height scale of the phase values.
+struct Scale {
+    scale_factor: f64,
+    wavelength: f64,
+    obliquity: f64,
+    lateral_res: f64,
+    phase_res: f64,
+    inverted: bool,
+}
+
+impl Scale {
+    /// Metres per phase unit, `±S·O·λ/R`, finite and non-zero.
+    fn factor(&self) -> Result<f64, ParseError> {
+        let sign = if self.inverted { -1.0 } else { 1.0 };
+        let (s, o, w, r) = (
+            self.scale_factor,
+            self.obliquity,
+            self.wavelength,
+            self.phase_res,
+        );
+        let factor = sign * s * o * w / r;
+        if !(factor.is_finite() && factor != 0.0) {
+            return Err(ParseError::malformed(format!(
+                "MetroPro height factor S·O·λ/R = {s}·{o}·{w} m/{r} is not usable"
+            )));
+        }
+        Ok(factor)
+    }
+}
+
 /// Parses a MetroPro `.dat` file into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+    let layout = read_layout(bytes)?;
+    let scale = read_scale(bytes)?;
+    let factor = scale.factor()?;
+    let (nx, ny) = (layout.nx, layout.ny);
+    let phase_start = layout
+        .header_size
+        .checked_add(layout.intensity_bytes)
+        .ok_or_else(|| ParseError::malformed("MetroPro array offsets overflow"))?;
+    let phase = field(bytes, phase_start, nx * ny * 4, "connected phase array")?;
+    check_points(nx, ny, "MetroPro header (cn_width × cn_height)")?;
+    let heights: Vec<f64> = phase
+        .chunks_exact(4)
+        .map(|c| {
+            let v = i32::from_be_bytes([c[0], c[1], c[2], c[3]]);
+            if v >= PHASE_INVALID_MIN {
+                f64::NAN
+            } else {
+                f64::from(v) * factor
+            }
+        })
+        .collect();
+    let heights = Array2::from_shape_vec((ny, nx), heights)
+        .map_err(|e| ParseError::malformed(format!("MetroPro array shape: {e}")))?;
+    let lateral_res = scale.lateral_res;
+    let map = HeightMap::new(heights, lateral_res, lateral_res).map_err(|e| {
+        ParseError::malformed(format!("MetroPro: {e} (lateral_res {lateral_res} m)"))
+    })?;
+    Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
+        data: TopographyData::Areal(map),
+        channel: Some("phase".into()),
+        channels: Vec::new(),
+        metadata: metadata(bytes, &layout, &scale)?,
+    })
+}
+
+/// The magic number, the header size and the array sizes, which must agree with each other.
+fn read_layout(bytes: &[u8]) -> Result<Layout, ParseError> {
     let magic = u32_at(bytes, 0).ok_or_else(|| ParseError::truncated("MetroPro magic number"))?;
     if !MAGICS.contains(&magic) {
         return Err(ParseError::malformed(format!(
@@ -115,18 +194,28 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             "MetroPro file holds no phase (height) array",
         ));
     }
-    let expected = nx * ny * 4;
-    if usize::try_from(phase_bytes).ok() != Some(expected) {
+    if usize::try_from(phase_bytes).ok() != Some(nx * ny * 4) {
         return Err(ParseError::malformed(format!(
             "MetroPro phase array of {phase_bytes} bytes does not match {nx} × {ny} × 4"
         )));
     }
+    Ok(Layout {
+        header_format,
+        header_size,
+        intensity_bytes,
+        nx,
+        ny,
+    })
+}
+
+/// The interferometer's scale factor, wavelength, obliquity, pixel size, phase resolution and
+/// inversion flag.
+fn read_scale(bytes: &[u8]) -> Result<Scale, ParseError> {
     let scale_factor = f32_field(bytes, 164, "intf_scale_factor")?;
     let wavelength = f32_field(bytes, 168, "wavelength_in")?;
     let obliquity = f32_field(bytes, 176, "obliquity_factor")?;
     let lateral_res = f32_field(bytes, 184, "lateral_res")?;
-    let phase_res_code = u16_field(bytes, 218, "phase_res")?;
-    let phase_res = match phase_res_code {
+    let phase_res = match u16_field(bytes, 218, "phase_res")? {
         0 => 4096.0,
         1 => 32768.0,
         2 => 131072.0,
@@ -137,38 +226,25 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         }
     };
     let inverted = u16_field(bytes, 232, "data_inverted")? != 0;
-    let sign = if inverted { -1.0 } else { 1.0 };
-    let factor = sign * scale_factor * obliquity * wavelength / phase_res;
-    if !(factor.is_finite() && factor != 0.0) {
-        return Err(ParseError::malformed(format!(
-            "MetroPro height factor S·O·λ/R = {scale_factor}·{obliquity}·{wavelength} m/{phase_res} is not usable"
-        )));
-    }
-    let phase_start = header_size
-        .checked_add(intensity_bytes)
-        .ok_or_else(|| ParseError::malformed("MetroPro array offsets overflow"))?;
-    let phase = field(bytes, phase_start, expected, "connected phase array")?;
-    check_points(nx, ny, "MetroPro header (cn_width × cn_height)")?;
-    let heights: Vec<f64> = phase
-        .chunks_exact(4)
-        .map(|c| {
-            let v = i32::from_be_bytes([c[0], c[1], c[2], c[3]]);
-            if v >= PHASE_INVALID_MIN {
-                f64::NAN
-            } else {
-                f64::from(v) * factor
-            }
-        })
-        .collect();
-    let heights = Array2::from_shape_vec((ny, nx), heights)
-        .map_err(|e| ParseError::malformed(format!("MetroPro array shape: {e}")))?;
-    let map = HeightMap::new(heights, lateral_res, lateral_res).map_err(|e| {
-        ParseError::malformed(format!("MetroPro: {e} (lateral_res {lateral_res} m)"))
-    })?;
+    Ok(Scale {
+        scale_factor,
+        wavelength,
+        obliquity,
+        lateral_res,
+        phase_res,
+        inverted,
+    })
+}
 
+/// The header's descriptive fields and scale values (empty ones left out).
+fn metadata(
+    bytes: &[u8],
+    layout: &Layout,
+    scale: &Scale,
+) -> Result<BTreeMap<String, String>, ParseError> {
     let mut metadata = BTreeMap::new();
     metadata.insert("vendor".into(), "Zygo".into());
-    metadata.insert("header_format".into(), header_format.to_string());
+    metadata.insert("header_format".into(), layout.header_format.to_string());
     metadata.insert(
         "software_date".into(),
         text_field(bytes, 12, 30, "swinfo_date")?,
@@ -180,19 +256,12 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         "serial_number".into(),
         u16_field(bytes, 242, "sys_serial")?.to_string(),
     );
-    metadata.insert("wavelength_m".into(), wavelength.to_string());
-    metadata.insert("obliquity_factor".into(), obliquity.to_string());
-    metadata.insert("intf_scale_factor".into(), scale_factor.to_string());
-    metadata.insert("phase_resolution".into(), phase_res.to_string());
-    metadata.insert("lateral_resolution_m".into(), lateral_res.to_string());
-    metadata.insert("data_inverted".into(), inverted.to_string());
+    metadata.insert("wavelength_m".into(), scale.wavelength.to_string());
+    metadata.insert("obliquity_factor".into(), scale.obliquity.to_string());
+    metadata.insert("intf_scale_factor".into(), scale.scale_factor.to_string());
+    metadata.insert("phase_resolution".into(), scale.phase_res.to_string());
+    metadata.insert("lateral_resolution_m".into(), scale.lateral_res.to_string());
+    metadata.insert("data_inverted".into(), scale.inverted.to_string());
     metadata.retain(|_, v| !v.is_empty());
-    Ok(Topography {
-        spacing: ScaleSource::File,
-        height_unit: ScaleSource::File,
-        data: TopographyData::Areal(map),
-        channel: Some("phase".into()),
-        channels: Vec::new(),
-        metadata,
-    })
+    Ok(metadata)
 }

@@ -152,31 +152,7 @@ fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, Pars
         ))
     })?;
     let (nx, ny) = (count(&h.global, "xPixels")?, count(&h.global, "yPixels")?);
-    let points = check_points(nx, ny, "MI header (xPixels × yPixels)")?;
-    let block = points * h.sample_bytes;
-    let end = block
-        .checked_mul(h.buffers.len())
-        .and_then(|t| t.checked_add(h.data_start));
-    if end.is_none_or(|end| end > bytes.len()) {
-        return Err(ParseError::truncated(format!(
-            "MI data: {} channels of {nx} × {ny} samples of {} bytes after byte {}, file of {} \
-             bytes",
-            h.buffers.len(),
-            h.sample_bytes,
-            h.data_start,
-            bytes.len()
-        )));
-    }
-    let data = index
-        .checked_mul(block)
-        .and_then(|o| o.checked_add(h.data_start))
-        .and_then(|start| bytes.get(start..start.checked_add(block)?))
-        .ok_or_else(|| {
-            ParseError::truncated(format!(
-                "MI channel `{name}`: {nx} × {ny} samples of {} bytes",
-                h.sample_bytes
-            ))
-        })?;
+    let data = channel_data(bytes, &h, index, name, nx, ny)?;
     let scale = number(&buffer.fields, "bufferRange")? * z_factor
         / 2f64.powi(8 * h.sample_bytes as i32 - 1);
     let values: Vec<f64> = data
@@ -200,6 +176,55 @@ fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, Pars
     let (lx, ly) = (number(&h.global, "xLength")?, number(&h.global, "yLength")?);
     let map = HeightMap::new(heights, lx / nx as f64, ly / ny as f64)
         .map_err(|e| ParseError::malformed(format!("MI channel `{name}`: {e}")))?;
+    Ok(Topography {
+        data: TopographyData::Areal(map),
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
+        channel: Some(name.clone()),
+        channels: names,
+        metadata: metadata(&h.global, unit),
+    })
+}
+
+/// The raw samples of channel `index` (`name`): the file must hold every channel's
+/// `nx × ny` samples after the header.
+fn channel_data<'a>(
+    bytes: &'a [u8],
+    h: &Header,
+    index: usize,
+    name: &str,
+    nx: usize,
+    ny: usize,
+) -> Result<&'a [u8], ParseError> {
+    let points = check_points(nx, ny, "MI header (xPixels × yPixels)")?;
+    let block = points * h.sample_bytes;
+    let end = block
+        .checked_mul(h.buffers.len())
+        .and_then(|t| t.checked_add(h.data_start));
+    if end.is_none_or(|end| end > bytes.len()) {
+        return Err(ParseError::truncated(format!(
+            "MI data: {} channels of {nx} × {ny} samples of {} bytes after byte {}, file of {} \
+             bytes",
+            h.buffers.len(),
+            h.sample_bytes,
+            h.data_start,
+            bytes.len()
+        )));
+    }
+    index
+        .checked_mul(block)
+        .and_then(|o| o.checked_add(h.data_start))
+        .and_then(|start| bytes.get(start..start.checked_add(block)?))
+        .ok_or_else(|| {
+            ParseError::truncated(format!(
+                "MI channel `{name}`: {nx} × {ny} samples of {} bytes",
+                h.sample_bytes
+            ))
+        })
+}
+
+/// The vendor, software version, date and mode of the global keys, and the height unit.
+fn metadata(global: &BTreeMap<String, String>, unit: String) -> BTreeMap<String, String> {
     let mut metadata = BTreeMap::new();
     metadata.insert(super::METADATA_VENDOR.into(), "Molecular Imaging".into());
     for (key, meta) in [
@@ -207,17 +232,10 @@ fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, Pars
         ("dateAcquired", "date"),
         ("mode", "operating_mode"),
     ] {
-        if let Some(v) = h.global.get(key) {
+        if let Some(v) = global.get(key) {
             metadata.insert(meta.into(), v.clone());
         }
     }
     metadata.insert("original_z_unit".into(), unit);
-    Ok(Topography {
-        data: TopographyData::Areal(map),
-        spacing: ScaleSource::File,
-        height_unit: ScaleSource::File,
-        channel: Some(name.clone()),
-        channels: names,
-        metadata,
-    })
+    metadata
 }

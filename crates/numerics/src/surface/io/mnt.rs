@@ -3,20 +3,28 @@
 //! Layout (as SurfaceTopography's `MNT.py` reads it, and as `mnt/mnt-1.mnt` of the shared
 //! folder shows it): a compound file ([`super::cfb`]) whose stream `ScopedContents` is a `u64`
 //! (the stream's length − 8) followed by a tag-length-value tree ([`super::mnt_tlv`]). The
-//! main container (tag 1) holds the height-data container (tag `0x02BD`): a data-type byte
-//! (tag 1; 39: every value is a height, 12: 0 marks a missing point) and (tag 2) the document's
-//! processing steps. The step holding the measured image is the container that lists three
-//! axis descriptors and the height block:
+//! main container (tag 1) holds the document container (tag `0x02BD`): a byte (tag 1, the
+//! number of document objects) and (tag 2) the document's objects. The object holding the
+//! measured image is the container that lists three axis descriptors and the height block:
 //!
 //! * an axis descriptor is the entries `[axis (u32: 1 x, 2 y, 3 z), name, step (f64, in the
 //!   unit that follows), unit, origin unit, unit ratio, origin (f64, in the origin unit), …,
 //!   number of points (u32, x and y)]`;
-//! * the height block is a container with `[points (u32), data]`, the data a `u64` byte count
-//!   (4 per point) then blocks of `u64` first point, `u32` points and `u32` compressed bytes,
-//!   each a zlib stream of little-endian `i32` counts, rows of `nx` points one after the other.
+//! * the height block is a container with `[points (u32), data]`, the data a block array of
+//!   little-endian `i32` counts, rows of `nx` points one after the other;
+//! * the mask of non-measured points, when the image has one, is an object of class 9056
+//!   (an object is `[class (a container holding the u32 class number), body, …]`): its body
+//!   holds the width and height (u32, tags 1 and 2: the image's `nx`, `ny`), the number of mask
+//!   bytes (tag 3) and (tag 5) an array object `[class 9048, [count (u32), data]]`, a block array
+//!   of `(nx + 2) × (ny + 2)` bytes, a border of one pixel around the image, rows one after the
+//!   other: 9 marks a measured point, any other value (22 in the files seen) a missing one. An
+//!   image whose mask object has class 0 (or none) has no missing point.
+//! * A block array is a `u64` byte count then blocks of `u64` first element, `u32` elements and
+//!   `u32` compressed bytes, each a zlib stream, which must cover the elements exactly once.
 //!
 //! A height is `z = origin_z + count · step_z` (metres after each unit's factor); the grid
-//! spacing is the x and y step. The channel is named by the image's title.
+//! spacing is the x and y step. The channel is named by the image's title. The mask's layout
+//! is the one SurfaceTopography's `MNT.py` reads (2026), checked on its `mnt-2.mnt`.
 
 use std::collections::BTreeMap;
 
@@ -44,6 +52,11 @@ pub(crate) const READER: Reader = Reader {
 const MAX_DEPTH: usize = 24;
 /// Largest ratio of inflated to deflated bytes ([RFC 1951]: 258 bytes per 2-bit code, ~1032).
 const MAX_INFLATE_RATIO: usize = 1032;
+/// Class number of a mask of non-measured points, and of the byte array it holds.
+const CLASS_MASK: u32 = 9056;
+const CLASS_MASK_ARRAY: u32 = 9048;
+/// Mask value of a measured point.
+const MASK_MEASURED: u8 = 9;
 
 /// One axis of the image.
 #[derive(Debug, Clone)]
@@ -55,22 +68,35 @@ struct Axis {
     points: u32,
 }
 
-/// The measured image: title, x, y and z axes, point count and compressed data.
+/// The measured image: title, x, y and z axes, point count, compressed data and mask.
 struct Image<'a> {
     title: Option<String>,
     axes: [Axis; 3],
     points: usize,
+    data: &'a [u8],
+    mask: Option<Mask<'a>>,
+}
+
+/// The mask image of non-measured points as its object declares it.
+struct Mask<'a> {
+    /// Width and height without the border (tags 1 and 2).
+    width: u32,
+    height: u32,
+    /// The mask's byte count (tag 3), when the body states it.
+    declared: Option<u32>,
+    /// The byte array's element count and its block array.
+    count: u32,
     data: &'a [u8],
 }
 
 /// The number of points the measured image declares, without inflating the heights.
 pub(crate) fn declared_points(bytes: &[u8]) -> Option<usize> {
     let stream = read_stream(bytes, "ScopedContents").ok()?;
-    Some(locate(&stream).ok()?.1.points)
+    Some(locate(&stream).ok()?.points)
 }
 
-/// The height data type and the measured image of the `ScopedContents` stream.
-fn locate(stream: &[u8]) -> Result<(Option<u8>, Image<'_>), ParseError> {
+/// The measured image of the `ScopedContents` stream.
+fn locate(stream: &[u8]) -> Result<Image<'_>, ParseError> {
     let declared = stream
         .get(..8)
         .map(|b| u64::from_le_bytes(b.try_into().unwrap_or_default()))
@@ -84,31 +110,18 @@ fn locate(stream: &[u8]) -> Result<(Option<u8>, Image<'_>), ParseError> {
     let not_tree = || ParseError::malformed("MNT ScopedContents is not a tag-length-value tree");
     let top = entries(&stream[8..]).ok_or_else(not_tree)?;
     let main = entries(find(&top, 1, "main container")?.value).ok_or_else(not_tree)?;
-    let height =
-        entries(find(&main, 0x02BD, "height-data container")?.value).ok_or_else(not_tree)?;
-    let kind = find(&height, 1, "data type")?.value.first().copied();
-    let image = find_image(find(&height, 2, "processing steps")?.value, 0).ok_or_else(|| {
+    let document = entries(find(&main, 0x02BD, "document container")?.value).ok_or_else(not_tree)?;
+    find_image(find(&document, 2, "document objects")?.value, 0).ok_or_else(|| {
         ParseError::malformed(
-            "MNT: no image with x, y and z axes and a height block in the height data",
+            "MNT: no image with x, y and z axes and a height block in the document",
         )
-    })?;
-    Ok((kind, image))
+    })
 }
 
 /// Parses the heights of a `.mnt` document.
 fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let stream = read_stream(bytes, "ScopedContents")?;
-    let (kind, image) = locate(&stream)?;
-    let missing_zero = match kind {
-        Some(39) => false,
-        Some(12) => true,
-        other => {
-            return Err(ParseError::unsupported(format!(
-                "MNT height data type {other:?} (39, every value a height, and 12, 0 for a \
-                 missing point, are read)"
-            )))
-        }
-    };
+    let image = locate(&stream)?;
     let [x, y, z] = &image.axes;
     let (nx, ny) = (x.points as usize, y.points as usize);
     let points = check_points(nx, ny, "MNT x and y axes")?;
@@ -118,7 +131,11 @@ fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             image.points
         )));
     }
-    let counts = decode(image.data, points)?;
+    let counts = decode_counts(image.data, points)?;
+    let measured = match &image.mask {
+        Some(mask) => Some(measured_points(mask, nx, ny)?),
+        None => None,
+    };
     let metres = |value: f64, unit: &str| {
         length_unit_to_metres(unit)
             .map(|f| value * f)
@@ -128,8 +145,9 @@ fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let (origin, step) = (metres(z.origin, &z.origin_unit)?, metres(z.step, &z.unit)?);
     let values = counts
         .into_iter()
-        .map(|c| {
-            if missing_zero && c == 0 {
+        .enumerate()
+        .map(|(k, c)| {
+            if measured.as_ref().is_some_and(|m| !m[k]) {
                 f64::NAN
             } else {
                 origin + f64::from(c) * step
@@ -170,12 +188,76 @@ fn find_image(bytes: &[u8], depth: usize) -> Option<Image<'_>> {
             axes: [x, y, z],
             points,
             data,
+            mask: list.iter().find_map(|e| mask(e.value)),
         });
     }
     if depth >= MAX_DEPTH {
         return None;
     }
     list.iter().find_map(|e| find_image(e.value, depth + 1))
+}
+
+/// The class number and body of an object (`[class container, body, …]`).
+fn object(bytes: &[u8]) -> Option<(u32, &[u8])> {
+    let list = entries(bytes)?;
+    let [class, body, ..] = list.as_slice() else {
+        return None;
+    };
+    if (class.tag, body.tag) != (1, 2) {
+        return None;
+    }
+    let number = entries(class.value)?;
+    let [number] = number.as_slice() else {
+        return None;
+    };
+    Some((number.u32().filter(|_| number.tag == 1)?, body.value))
+}
+
+/// The mask object `bytes` holds, when it is one (class 9056 with a byte array); `None` for any
+/// other entry.
+fn mask(bytes: &[u8]) -> Option<Mask<'_>> {
+    let (class, body) = object(bytes)?;
+    if class != CLASS_MASK {
+        return None;
+    }
+    let fields = entries(body)?;
+    let field = |tag: u16| fields.iter().find(|e| e.tag == tag);
+    let (array_class, array) = object(field(5)?.value)?;
+    let array = entries(array).filter(|_| array_class == CLASS_MASK_ARRAY)?;
+    let [count, data] = array.as_slice() else {
+        return None;
+    };
+    Some(Mask {
+        width: field(1)?.u32()?,
+        height: field(2)?.u32()?,
+        declared: field(3).and_then(Entry::u32),
+        count: count.u32().filter(|_| count.tag == 1 && data.tag == 2)?,
+        data: data.value,
+    })
+}
+
+/// Which of the `nx × ny` points the mask marks measured (row by row), after checking the
+/// mask's sizes against the image's.
+fn measured_points(mask: &Mask<'_>, nx: usize, ny: usize) -> Result<Vec<bool>, ParseError> {
+    let bordered = (nx + 2) * (ny + 2);
+    let sizes_agree = (mask.width as usize, mask.height as usize) == (nx, ny)
+        && mask.count as usize == bordered
+        && mask.declared.is_none_or(|d| d as usize == bordered);
+    if !sizes_agree {
+        let stated = mask.declared.map_or(String::new(), |d| format!(", {d} stated"));
+        return Err(ParseError::malformed(format!(
+            "MNT mask of non-measured points: {} × {} points in {} bytes{stated}; the image \
+             {nx} × {ny} needs ({nx} + 2) × ({ny} + 2) = {bordered}",
+            mask.width, mask.height, mask.count
+        )));
+    }
+    let bytes = decode_blocks(mask.data, bordered, 1, "MNT mask")?;
+    Ok(bytes
+        .chunks_exact(nx + 2)
+        .skip(1)
+        .take(ny)
+        .flat_map(|row| row[1..=nx].iter().map(|&b| b == MASK_MEASURED))
+        .collect())
 }
 
 /// The point count and data of a height block container, whose byte count is 4 per point.
@@ -208,29 +290,87 @@ fn axis(bytes: &[u8], index: u32) -> Option<Axis> {
     })
 }
 
-/// The `i32` counts of the height data (`points` of them), from its zlib blocks, which must
-/// cover the points exactly once.
-fn decode(data: &[u8], points: usize) -> Result<Vec<i32>, ParseError> {
-    check_count(points, "MNT height block")?;
-    if points.saturating_mul(4) > data.len().saturating_mul(MAX_INFLATE_RATIO) {
+/// The `i32` counts of the height data (`points` of them).
+fn decode_counts(data: &[u8], points: usize) -> Result<Vec<i32>, ParseError> {
+    let raw = decode_blocks(data, points, 4, "MNT height block")?;
+    Ok(raw
+        .chunks_exact(4)
+        .map(|c| i32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect())
+}
+
+/// The bytes of a block array of `count` elements of `size` bytes, from its zlib blocks, which
+/// must cover the elements exactly once; `what` names the array.
+fn decode_blocks(
+    data: &[u8],
+    count: usize,
+    size: usize,
+    what: &str,
+) -> Result<Vec<u8>, ParseError> {
+    check_count(count, what)?;
+    if count.saturating_mul(size) > data.len().saturating_mul(MAX_INFLATE_RATIO) {
         return Err(ParseError::truncated(format!(
-            "MNT height block declares {points} points, more than its {} compressed bytes can \
-             hold",
+            "{what} declares {count} points, more than its {} compressed bytes can hold",
             data.len()
         )));
     }
+    let declared = data.get(..8).map(|b| u64::from_le_bytes(b.try_into().unwrap_or_default()));
+    if declared != Some((count * size) as u64) {
+        return Err(ParseError::malformed(format!(
+            "{what} declares {} bytes, {count} points of {size} bytes are {}",
+            declared.map_or("no".to_string(), |d| d.to_string()),
+            count * size
+        )));
+    }
+    let mut raw = vec![0u8; count * size];
+    let mut next = 0usize;
+    for (first, n, stream) in blocks(data, what)? {
+        if first != next as u64 || n > count - next {
+            return Err(ParseError::malformed(format!(
+                "{what}: a block of {n} points starts at point {first}, point {next} expected \
+                 (of {count})"
+            )));
+        }
+        let out = &mut raw[next * size..(next + n) * size];
+        let written = miniz_oxide::inflate::decompress_slice_iter_to_slice(
+            out,
+            std::iter::once(stream),
+            true,
+            false,
+        );
+        if written != Ok(n * size) {
+            return Err(ParseError::malformed(format!(
+                "{what} at point {first}: the zlib stream does not inflate to {n} points \
+                 ({written:?})"
+            )));
+        }
+        next += n;
+    }
+    if next != count {
+        return Err(ParseError::truncated(format!(
+            "{what}s cover {next} of {count} points"
+        )));
+    }
+    Ok(raw)
+}
+
+/// One block of a block array: its first element, its elements and its zlib stream.
+type Block<'a> = (u64, usize, &'a [u8]);
+
+/// The blocks of a block array, sorted by first element.
+fn blocks<'a>(data: &'a [u8], what: &str) -> Result<Vec<Block<'a>>, ParseError> {
     let mut blocks = Vec::new();
     let mut pos = 8usize;
     while pos < data.len() {
-        let head = data.get(pos..pos + 16).ok_or_else(|| {
-            ParseError::truncated(format!("MNT height block header at byte {pos}"))
-        })?;
+        let head = data
+            .get(pos..pos + 16)
+            .ok_or_else(|| ParseError::truncated(format!("{what} header at byte {pos}")))?;
         let first = u64::from_le_bytes(head[..8].try_into().unwrap_or_default());
         let n = u32::from_le_bytes(head[8..12].try_into().unwrap_or_default()) as usize;
         let size = u32::from_le_bytes(head[12..].try_into().unwrap_or_default()) as usize;
         let stream = data.get(pos + 16..pos + 16 + size).ok_or_else(|| {
             ParseError::truncated(format!(
-                "MNT height block at byte {pos}: {size} compressed bytes, {} left",
+                "{what} at byte {pos}: {size} compressed bytes, {} left",
                 data.len() - pos - 16
             ))
         })?;
@@ -238,44 +378,12 @@ fn decode(data: &[u8], points: usize) -> Result<Vec<i32>, ParseError> {
         pos += 16 + size;
     }
     blocks.sort_by_key(|b| b.0);
-    let mut raw = vec![0u8; points * 4];
-    let mut next = 0usize;
-    for (first, n, stream) in blocks {
-        if first != next as u64 || n > points - next {
-            return Err(ParseError::malformed(format!(
-                "MNT height blocks: a block of {n} points starts at point {first}, point {next} \
-                 expected (of {points})"
-            )));
-        }
-        let out = &mut raw[next * 4..(next + n) * 4];
-        let written = miniz_oxide::inflate::decompress_slice_iter_to_slice(
-            out,
-            std::iter::once(stream),
-            true,
-            false,
-        );
-        if written != Ok(n * 4) {
-            return Err(ParseError::malformed(format!(
-                "MNT height block at point {first}: the zlib stream does not inflate to {n} \
-                 points ({written:?})"
-            )));
-        }
-        next += n;
-    }
-    if next != points {
-        return Err(ParseError::truncated(format!(
-            "MNT height blocks cover {next} of {points} points"
-        )));
-    }
-    Ok(raw
-        .chunks_exact(4)
-        .map(|c| i32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect())
+    Ok(blocks)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::decode;
+    use super::decode_counts as decode;
 
     /// A height block of `blocks` (first point, points, zlib stream) declaring `points`.
     fn block(points: usize, blocks: &[(u64, u32, &[u8])]) -> Vec<u8> {

@@ -5,46 +5,20 @@
 //! file extension, and wraps every failure in a [`ReadError`] that names the file. The formats
 //! are an open set: each reader file exports a [`Reader`] and [`READERS`] lists them.
 
-pub mod al3d;
-pub mod bcrf;
 mod byte_cursor;
 mod cfb;
 mod error;
-mod frt;
-pub mod gsf;
-pub mod gwy;
-pub mod hdf5;
-pub mod hfm;
-pub mod ibw;
 mod limits;
-pub mod metropro;
-mod mi;
-mod mnt;
 mod mnt_tlv;
-pub mod nanoscope;
-pub mod netcdf;
-mod nid;
-mod nms;
-mod npy;
-pub mod opd;
-mod opdx;
 mod opdx_items;
-mod plu;
-pub mod ps_tiff;
+mod plausible;
 mod reader;
-mod sdf;
-mod sur;
-mod text;
 mod text_header;
 mod text_units;
-pub mod tmd;
 mod topography;
-pub mod wsxm;
-mod x3p;
 mod x3p_checksum;
 mod x3p_xml;
 mod xyz;
-pub mod zon;
 
 pub use error::{ParseError, ReadError};
 pub use limits::MAX_POINTS;
@@ -55,38 +29,22 @@ pub use topography::{
 
 use std::path::Path;
 
-/// Every reader, in detection order: the first whose magic bytes match a file reads it, else
-/// the first whose extensions hold the file's. Text and PLU come last: they have no magic.
-/// Adding a format is its own file, exporting a [`Reader`] as `READER`, a `mod` line and one
-/// line here.
-pub const READERS: &[Reader] = &[
-    metropro::READER,
-    opd::READER,
-    nanoscope::READER,
-    gsf::READER,
-    gwy::READER,
-    al3d::READER,
-    zon::READER,
-    x3p::READER,
-    sdf::READER,
-    sur::READER,
-    npy::READER,
-    tmd::READER,
-    bcrf::READER,
-    ibw::READER,
-    ps_tiff::READER,
-    wsxm::READER,
-    hfm::READER,
-    netcdf::READER,
-    hdf5::READER,
-    nid::READER,
-    mi::READER,
-    frt::READER,
-    opdx::READER,
-    plu::READER,
-    nms::READER,
-    mnt::READER,
-    text::READER,
+/// Declares each reader's (private) module and lists its `READER` in [`READERS`], in the order
+/// given: adding a format is its file and one name here.
+macro_rules! readers {
+    ($($format:ident),* $(,)?) => {
+        $(mod $format;)*
+
+        /// Every reader, in detection order: the first whose magic bytes match a file reads it,
+        /// else the first whose extensions hold the file's. Text and PLU come last: they have
+        /// no magic. Each is its own file, exporting a [`Reader`] as `READER`.
+        pub const READERS: &[Reader] = &[$($format::READER),*];
+    };
+}
+
+readers![
+    metropro, opd, nanoscope, gsf, gwy, al3d, zon, x3p, sdf, sur, npy, tmd, bcrf, ibw, ps_tiff,
+    wsxm, hfm, netcdf, hdf5, nid, mi, frt, opdx, plu, nms, mnt, text,
 ];
 
 /// The reader named `name` (as [`Reader::name`] spells it).

@@ -117,22 +117,8 @@ fn usize_field(section: &Section, key: &str, channel: &str) -> Result<usize, Par
         .map_err(|_| ParseError::malformed(format!("Nanoscope `\\{key}: {v}` is not an integer")))
 }
 
-/// Names of the image channels in file order.
-pub fn channel_names(bytes: &[u8]) -> Result<Vec<String>, ParseError> {
-    Ok(parse_header(bytes)?
-        .iter()
-        .filter(|s| s.name == "Ciao image list")
-        .filter_map(channel_name)
-        .collect())
-}
-
-/// Parses the default channel (`ZSensor`, else `Height`, else the first image).
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
-    parse_channel(bytes, None)
-}
-
 /// Parses the image channel named `channel` (or the default one for `None`), heights in metres.
-pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, ParseError> {
+fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, ParseError> {
     let sections = parse_header(bytes)?;
     let images: Vec<(&Section, String)> = sections
         .iter()
@@ -141,7 +127,53 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
         .collect();
     let names: Vec<String> = images.iter().map(|(_, n)| n.clone()).collect();
     let (image, name) = &images[pick_channel(&names, channel, &DEFAULT_CHANNELS)?];
+    let grid = image_grid(bytes, image, name)?;
+    let (lsb, unit) = height_per_lsb(image, &sections, name, grid.bpp)?;
+    let scan = scan_size_text(image, &sections)?;
+    let (lx, ly) = scan_size(scan, image)?;
+    let values: Vec<f64> = grid
+        .data
+        .chunks_exact(grid.bpp)
+        .map(|c| {
+            let raw = if grid.bpp == 2 {
+                f64::from(i16::from_le_bytes([c[0], c[1]]))
+            } else {
+                f64::from(i32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            };
+            raw * lsb
+        })
+        .collect();
+    let (nx, ny) = (grid.nx, grid.ny);
+    let heights = Array2::from_shape_vec((ny, nx), values)
+        .map_err(|e| ParseError::malformed(format!("Nanoscope array shape: {e}")))?;
+    let map = HeightMap::new(heights, lx / nx as f64, ly / ny as f64)
+        .map_err(|e| ParseError::malformed(format!("Nanoscope: {e} (Scan Size `{scan}`)")))?;
+    Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
+        data: TopographyData::Areal(map),
+        channel: Some(name.clone()),
+        channels: names,
+        metadata: metadata(&sections, unit),
+    })
+}
 
+/// The grid of one image and its raw data.
+struct ImageGrid<'a> {
+    nx: usize,
+    ny: usize,
+    /// Bytes per sample, 2 or 4.
+    bpp: usize,
+    data: &'a [u8],
+}
+
+/// The size, sample width and data of the image `image` (channel `name`): `\Data length` must
+/// hold the grid, and the file the data.
+fn image_grid<'a>(
+    bytes: &'a [u8],
+    image: &Section,
+    name: &str,
+) -> Result<ImageGrid<'a>, ParseError> {
     let offset = usize_field(image, "Data offset", name)?;
     let bpp = usize_field(image, "Bytes/pixel", name)?;
     let nx = usize_field(image, "Samps/line", name)?;
@@ -170,8 +202,17 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
             ))
         })?;
     check_points(nx, ny, &format!("Nanoscope channel `{name}`"))?;
+    Ok(ImageGrid { nx, ny, bpp, data })
+}
 
-    // Height per LSB from the Z scale and its sensitivity.
+/// Height per LSB (metres) from the image's Z scale and the sensitivity it names, with the
+/// unit the scale was stated in.
+fn height_per_lsb(
+    image: &Section,
+    sections: &[Section],
+    name: &str,
+    bpp: usize,
+) -> Result<(f64, String), ParseError> {
     let (z_key, z_scale) = image
         .fields
         .iter()
@@ -184,17 +225,7 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
     })?;
     let (per_full_scale, unit) = match bracketed(z_scale) {
         Some(sens_name) => {
-            let sens_key = format!("@{sens_name}");
-            let sens = sections
-                .iter()
-                .find_map(|s| s.fields.get(&sens_key))
-                .ok_or_else(|| {
-                    ParseError::malformed(format!("Nanoscope sensitivity `\\{sens_key}` missing"))
-                })?;
-            let (value, sens_unit) = trailing_quantity(sens).ok_or_else(|| {
-                ParseError::malformed(format!("Nanoscope `\\{sens_key}: {sens}` has no value"))
-            })?;
-            let numerator = sens_unit.split('/').next().unwrap_or("").to_string();
+            let (value, numerator) = sensitivity(sections, sens_name)?;
             (full_scale * value, numerator)
         }
         None => (full_scale, z_unit),
@@ -210,9 +241,28 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
             "Nanoscope height per LSB {lsb} m is not usable"
         )));
     }
+    Ok((lsb, unit))
+}
 
-    // The image's own `\Scan Size`, else the scan list's; older headers write `\Scan size`.
-    let scan = std::iter::once(*image)
+/// The value of the sensitivity `\@<sens_name>` and the numerator of its unit (`nm` of `nm/V`).
+fn sensitivity(sections: &[Section], sens_name: &str) -> Result<(f64, String), ParseError> {
+    let sens_key = format!("@{sens_name}");
+    let sens = sections
+        .iter()
+        .find_map(|s| s.fields.get(&sens_key))
+        .ok_or_else(|| {
+            ParseError::malformed(format!("Nanoscope sensitivity `\\{sens_key}` missing"))
+        })?;
+    let (value, sens_unit) = trailing_quantity(sens).ok_or_else(|| {
+        ParseError::malformed(format!("Nanoscope `\\{sens_key}: {sens}` has no value"))
+    })?;
+    let numerator = sens_unit.split('/').next().unwrap_or("").to_string();
+    Ok((value, numerator))
+}
+
+/// The image's own `\Scan Size`, else the scan list's; older headers write `\Scan size`.
+fn scan_size_text<'a>(image: &'a Section, sections: &'a [Section]) -> Result<&'a str, ParseError> {
+    std::iter::once(image)
         .chain(sections.iter())
         .find_map(|s| {
             s.fields
@@ -220,24 +270,11 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
                 .find(|(k, _)| k.eq_ignore_ascii_case("Scan Size"))
                 .map(|(_, v)| v.as_str())
         })
-        .ok_or_else(|| ParseError::malformed("Nanoscope header has no `\\Scan Size`"))?;
-    let (lx, ly) = scan_size(scan, image)?;
-    let values: Vec<f64> = data
-        .chunks_exact(bpp)
-        .map(|c| {
-            let raw = if bpp == 2 {
-                f64::from(i16::from_le_bytes([c[0], c[1]]))
-            } else {
-                f64::from(i32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-            };
-            raw * lsb
-        })
-        .collect();
-    let heights = Array2::from_shape_vec((ny, nx), values)
-        .map_err(|e| ParseError::malformed(format!("Nanoscope array shape: {e}")))?;
-    let map = HeightMap::new(heights, lx / nx as f64, ly / ny as f64)
-        .map_err(|e| ParseError::malformed(format!("Nanoscope: {e} (Scan Size `{scan}`)")))?;
+        .ok_or_else(|| ParseError::malformed("Nanoscope header has no `\\Scan Size`"))
+}
 
+/// The instrument, date, version and operating mode of the header, and the height unit.
+fn metadata(sections: &[Section], unit: String) -> BTreeMap<String, String> {
     let mut metadata = BTreeMap::new();
     metadata.insert("vendor".into(), "Bruker".into());
     for (section, key, meta) in [
@@ -255,14 +292,7 @@ pub fn parse_channel(bytes: &[u8], channel: Option<&str>) -> Result<Topography, 
         }
     }
     metadata.insert("original_z_unit".into(), unit);
-    Ok(Topography {
-        spacing: ScaleSource::File,
-        height_unit: ScaleSource::File,
-        data: TopographyData::Areal(map),
-        channel: Some(name.clone()),
-        channels: names,
-        metadata,
-    })
+    metadata
 }
 
 /// Physical size `(Lx, Ly)` in metres from `\Scan Size: Lx Ly unit` (or `L unit` with the

@@ -222,7 +222,7 @@ fn spacing(file: &File, axis: &str, n: usize) -> Result<(f64, bool), ParseError>
 }
 
 /// Parses the `heights` variable into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let file = read_file(bytes)?;
     let heights = file
         .variables

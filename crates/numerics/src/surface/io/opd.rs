@@ -120,34 +120,13 @@ fn scalar(blocks: &[Block<'_>], name: &str) -> Result<Option<f64>, ParseError> {
 }
 
 /// Parses a Wyko `.opd` file into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let blocks = read_directory(bytes)?;
     let array = blocks
         .iter()
         .find(|b| b.kind == 3 && HEIGHT_BLOCKS.contains(&b.name.as_str()))
         .ok_or_else(|| ParseError::malformed("OPD file has no RAW_DATA/OPD/Raw height array"))?;
-    let head = array
-        .data
-        .get(0..6)
-        .ok_or_else(|| ParseError::truncated(format!("OPD array `{}` header", array.name)))?;
-    let nx = usize::from(u16::from_le_bytes([head[0], head[1]]));
-    let ny = usize::from(u16::from_le_bytes([head[2], head[3]]));
-    let elem = u16::from_le_bytes([head[4], head[5]]);
-    if elem != 4 {
-        return Err(ParseError::unsupported(format!(
-            "OPD height array with {elem}-byte elements (only float32 is supported)"
-        )));
-    }
-    // The block is at least 6 bytes long (its header was read above).
-    let values = &array.data[6..];
-    if values.len() != nx * ny * 4 {
-        return Err(ParseError::malformed(format!(
-            "OPD array `{}` block holds {} bytes, not {nx} × {ny} float32",
-            array.name,
-            values.len()
-        )));
-    }
-
+    let (nx, ny, values) = height_array(array)?;
     let wavelength_nm = scalar(&blocks, "Wavelength")?
         .ok_or_else(|| ParseError::malformed("OPD file has no Wavelength block"))?;
     let mult = scalar(&blocks, "Mult")?.unwrap_or(1.0);
@@ -179,7 +158,50 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             "OPD: {e} (Pixel_size {pixel_mm} mm, Aspect {aspect})"
         ))
     })?;
+    Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
+        data: TopographyData::Areal(map),
+        channel: Some(array.name.clone()),
+        channels: Vec::new(),
+        metadata: metadata(&blocks, wavelength_nm, mult, aspect),
+    })
+}
 
+/// The size and the float32 values of the height array block (a 6-byte head: nx, ny and the
+/// element size as u16, then the values).
+fn height_array<'a>(array: &Block<'a>) -> Result<(usize, usize, &'a [u8]), ParseError> {
+    let head = array
+        .data
+        .get(0..6)
+        .ok_or_else(|| ParseError::truncated(format!("OPD array `{}` header", array.name)))?;
+    let nx = usize::from(u16::from_le_bytes([head[0], head[1]]));
+    let ny = usize::from(u16::from_le_bytes([head[2], head[3]]));
+    let elem = u16::from_le_bytes([head[4], head[5]]);
+    if elem != 4 {
+        return Err(ParseError::unsupported(format!(
+            "OPD height array with {elem}-byte elements (only float32 is supported)"
+        )));
+    }
+    // The block is at least 6 bytes long (its header was read above).
+    let values = &array.data[6..];
+    if values.len() != nx * ny * 4 {
+        return Err(ParseError::malformed(format!(
+            "OPD array `{}` block holds {} bytes, not {nx} × {ny} float32",
+            array.name,
+            values.len()
+        )));
+    }
+    Ok((nx, ny, values))
+}
+
+/// The vendor, the height scale, the text blocks and the magnification.
+fn metadata(
+    blocks: &[Block<'_>],
+    wavelength_nm: f64,
+    mult: f64,
+    aspect: f64,
+) -> BTreeMap<String, String> {
     let mut metadata = BTreeMap::new();
     metadata.insert("vendor".into(), "Wyko/Veeco (Bruker)".into());
     metadata.insert("wavelength_m".into(), (wavelength_nm * 1e-9).to_string());
@@ -192,15 +214,8 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             metadata.insert(b.name.clone(), text.to_string());
         }
     }
-    if let Some(m) = scalar(&blocks, "Magnification").ok().flatten() {
+    if let Some(m) = scalar(blocks, "Magnification").ok().flatten() {
         metadata.insert("magnification".into(), m.to_string());
     }
-    Ok(Topography {
-        spacing: ScaleSource::File,
-        height_unit: ScaleSource::File,
-        data: TopographyData::Areal(map),
-        channel: Some(array.name.clone()),
-        channels: Vec::new(),
-        metadata,
-    })
+    metadata
 }

@@ -88,48 +88,59 @@ fn read_item(
     out: &mut BTreeMap<String, Item>,
     depth: usize,
 ) -> Result<bool, ParseError> {
-    let le = Endian::Little;
     let path = format!("{prefix}/{}", name(c, "OPDx item name")?);
     let kind = c.u8(&format!("OPDx type of {path}"))?;
-    let what = path.as_str();
-    let item = match kind {
-        0x7f => return Ok(false),
+    match kind {
+        0x7f => Ok(false),
         0x7d | 0x46 | 0x47 => {
-            if depth >= MAX_DEPTH {
-                return Err(ParseError::malformed(format!(
-                    "OPDx containers nested deeper than {MAX_DEPTH} at {path}"
-                )));
-            }
-            let len = varlen(c, what)?;
-            let start = c.position();
-            c.take(len, what)?;
-            c.seek(start, what)?;
-            let end = start + len;
-            while c.position() < end && read_item(c, &path, out, depth + 1)? {}
-            if c.position() > end {
-                return Err(ParseError::malformed(format!(
-                    "OPDx container {path}: its items run past its {len} bytes"
-                )));
-            }
-            c.seek(end, what)?;
-            return Ok(true);
+            read_container(c, &path, out, depth)?;
+            Ok(true)
         }
+        _ => {
+            let item = read_value(c, kind, &path)?;
+            out.insert(path, item);
+            Ok(true)
+        }
+    }
+}
+
+/// The items of the container `path` (varlen length, then items up to a terminator), which
+/// must stay inside its length.
+fn read_container(
+    c: &mut ByteCursor<'_>,
+    path: &str,
+    out: &mut BTreeMap<String, Item>,
+    depth: usize,
+) -> Result<(), ParseError> {
+    if depth >= MAX_DEPTH {
+        return Err(ParseError::malformed(format!(
+            "OPDx containers nested deeper than {MAX_DEPTH} at {path}"
+        )));
+    }
+    let len = varlen(c, path)?;
+    let start = c.position();
+    c.take(len, path)?;
+    c.seek(start, path)?;
+    let end = start + len;
+    while c.position() < end && read_item(c, path, out, depth + 1)? {}
+    if c.position() > end {
+        return Err(ParseError::malformed(format!(
+            "OPDx container {path}: its items run past its {len} bytes"
+        )));
+    }
+    c.seek(end, path)
+}
+
+/// The value of an item of type `kind` that is not a container.
+fn read_value(c: &mut ByteCursor<'_>, kind: u8, path: &str) -> Result<Item, ParseError> {
+    let what = path;
+    Ok(match kind {
         0x01 | 0x04..=0x07 | 0x0a..=0x0d => scalar(c, kind, what)?,
         0x12 => {
             let len = varlen(c, what)?;
             Item::Text(String::from_utf8_lossy(c.take(len, what)?).into_owned())
         }
-        0x13 => {
-            let len = varlen(c, what)?;
-            let mut q = ByteCursor::new(c.take(len, what)?);
-            let value = q.f64(le, what)?;
-            let name = name(&mut q, what)?;
-            Item::Quantity {
-                value,
-                name,
-                symbol: name_or_empty(&mut q),
-            }
-        }
+        0x13 => quantity(c, what)?,
         0x15 => {
             c.take(9, what)?;
             Item::Skipped
@@ -142,19 +153,7 @@ fn read_item(
             c.take(len, what)?;
             Item::Skipped
         }
-        0x40 => {
-            name(c, what)?;
-            let len = varlen(c, what)?;
-            let start = c.position();
-            c.take(len, what)?;
-            let len = len.checked_sub(DOUBLE_ARRAY_PREFIX).ok_or_else(|| {
-                ParseError::malformed(format!("OPDx array {path} of {len} bytes"))
-            })?;
-            Item::Doubles {
-                start: start + DOUBLE_ARRAY_PREFIX,
-                len,
-            }
-        }
+        0x40 => doubles(c, what)?,
         0x42 => {
             name(c, what)?;
             let len = varlen(c, what)?;
@@ -171,9 +170,35 @@ fn read_item(
                 "OPDx item {path} of type {other:#04x}"
             )))
         }
-    };
-    out.insert(path, item);
-    Ok(true)
+    })
+}
+
+/// A quantity: varlen length, then an f64 value, the unit's name and symbol.
+fn quantity(c: &mut ByteCursor<'_>, what: &str) -> Result<Item, ParseError> {
+    let len = varlen(c, what)?;
+    let mut q = ByteCursor::new(c.take(len, what)?);
+    let value = q.f64(Endian::Little, what)?;
+    let name = name(&mut q, what)?;
+    Ok(Item::Quantity {
+        value,
+        name,
+        symbol: name_or_empty(&mut q),
+    })
+}
+
+/// A double array: type name, varlen length, a 5-byte prefix, then the f64 values.
+fn doubles(c: &mut ByteCursor<'_>, what: &str) -> Result<Item, ParseError> {
+    name(c, what)?;
+    let len = varlen(c, what)?;
+    let start = c.position();
+    c.take(len, what)?;
+    let len = len
+        .checked_sub(DOUBLE_ARRAY_PREFIX)
+        .ok_or_else(|| ParseError::malformed(format!("OPDx array {what} of {len} bytes")))?;
+    Ok(Item::Doubles {
+        start: start + DOUBLE_ARRAY_PREFIX,
+        len,
+    })
 }
 
 /// A boolean, integer or floating-point item of type `kind`.

@@ -180,7 +180,7 @@ fn park_tags(bytes: &[u8]) -> Result<(&[u8], u32, &[u8]), ParseError> {
 }
 
 /// Parses a Park Systems TIFF into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let (header, version, data) = park_tags(bytes)?;
     let le = Endian::Little;
     let at = |offset: usize| {

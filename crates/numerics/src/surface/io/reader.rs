@@ -57,8 +57,15 @@ impl Reader {
 
     /// Parses the whole file content with this reader, whatever its magic bytes say, reading
     /// the channel named `channel` (`None`: the height channel). The result names the channel
-    /// read and lists every channel of the file.
+    /// read and lists every channel of the file; the scales the file states are plausible
+    /// ([`super::plausible`]).
     pub fn parse(&self, bytes: &[u8], channel: Option<&str>) -> Result<Topography, ParseError> {
+        let topography = self.parse_channel(bytes, channel)?;
+        super::plausible::check(&topography)?;
+        Ok(topography)
+    }
+
+    fn parse_channel(&self, bytes: &[u8], channel: Option<&str>) -> Result<Topography, ParseError> {
         match self.parser {
             Parser::Channels(parse) => parse(bytes, channel),
             Parser::Single(parse) => {

@@ -145,63 +145,8 @@ fn parse_ascii(bytes: &[u8]) -> Result<Topography, ParseError> {
     let text = String::from_utf8_lossy(bytes);
     let mut lines = text.lines();
     let version = lines.next().unwrap_or_default().trim().to_string();
-    let mut fields: BTreeMap<String, String> = BTreeMap::new();
-    let mut header_closed = false;
-    for line in lines.by_ref() {
-        let line = line.trim();
-        if line == "*" {
-            header_closed = true;
-            break;
-        }
-        if line.is_empty() {
-            continue;
-        }
-        let (key, value) = line.split_once('=').ok_or_else(|| {
-            ParseError::malformed(format!("sdf: header line {line:?} is not `Key = Value`"))
-        })?;
-        fields.insert(key.trim().to_string(), value.trim().to_string());
-    }
-    if !header_closed {
-        return Err(ParseError::truncated(
-            "sdf: header not terminated by a `*` line",
-        ));
-    }
-    let int = |key: &str| -> Result<usize, ParseError> {
-        let v = fields
-            .get(key)
-            .ok_or_else(|| ParseError::malformed(format!("sdf: header lacks {key}")))?;
-        v.parse()
-            .map_err(|_| ParseError::malformed(format!("sdf: {key} = {v:?} is not a count")))
-    };
-    let float = |key: &str| -> Result<f64, ParseError> {
-        let v = fields
-            .get(key)
-            .ok_or_else(|| ParseError::malformed(format!("sdf: header lacks {key}")))?;
-        v.parse()
-            .map_err(|_| ParseError::malformed(format!("sdf: {key} = {v:?} is not a number")))
-    };
-    let compression = fields.get("Compression").map_or("0", String::as_str);
-    if compression != "0" {
-        return Err(ParseError::unsupported(format!(
-            "sdf: Compression = {compression}"
-        )));
-    }
-    let header = SdfHeader {
-        version,
-        num_points: int("NumPoints")?,
-        num_profiles: int("NumProfiles")?,
-        x_scale: float("Xscale")?,
-        y_scale: float("Yscale")?,
-        z_scale: float("Zscale")?,
-        data_type: fields
-            .get("DataType")
-            .map_or(Ok(7), |v| v.parse::<u8>())
-            .map_err(|_| ParseError::malformed("sdf: DataType is not a small integer"))?,
-        metadata: fields
-            .iter()
-            .map(|(k, v)| (format!("sdf_{k}"), v.clone()))
-            .collect(),
-    };
+    let fields = ascii_fields(&mut lines)?;
+    let header = ascii_header(version, &fields)?;
     header.check()?;
     header.sample_type()?;
     // Each value takes at least two bytes ("0 "), so a header claiming more cannot be right.
@@ -222,6 +167,81 @@ fn parse_ascii(bytes: &[u8]) -> Result<Topography, ParseError> {
         header.num_profiles,
         "sdf header (NumPoints × NumProfiles)",
     )?;
+    let values = ascii_values(lines, n)?;
+    header.into_topography(values)
+}
+
+/// The `Key = Value` lines of an ASCII header, up to its closing `*` line.
+fn ascii_fields<'a>(
+    lines: &mut impl Iterator<Item = &'a str>,
+) -> Result<BTreeMap<String, String>, ParseError> {
+    let mut fields: BTreeMap<String, String> = BTreeMap::new();
+    for line in lines.by_ref() {
+        let line = line.trim();
+        if line == "*" {
+            return Ok(fields);
+        }
+        if line.is_empty() {
+            continue;
+        }
+        let (key, value) = line.split_once('=').ok_or_else(|| {
+            ParseError::malformed(format!("sdf: header line {line:?} is not `Key = Value`"))
+        })?;
+        fields.insert(key.trim().to_string(), value.trim().to_string());
+    }
+    Err(ParseError::truncated(
+        "sdf: header not terminated by a `*` line",
+    ))
+}
+
+/// The header values of an ASCII file's fields (uncompressed only; DataType 7 by default).
+fn ascii_header(
+    version: String,
+    fields: &BTreeMap<String, String>,
+) -> Result<SdfHeader, ParseError> {
+    let int = |key: &str| -> Result<usize, ParseError> {
+        let v = fields
+            .get(key)
+            .ok_or_else(|| ParseError::malformed(format!("sdf: header lacks {key}")))?;
+        v.parse()
+            .map_err(|_| ParseError::malformed(format!("sdf: {key} = {v:?} is not a count")))
+    };
+    let float = |key: &str| -> Result<f64, ParseError> {
+        let v = fields
+            .get(key)
+            .ok_or_else(|| ParseError::malformed(format!("sdf: header lacks {key}")))?;
+        v.parse()
+            .map_err(|_| ParseError::malformed(format!("sdf: {key} = {v:?} is not a number")))
+    };
+    let compression = fields.get("Compression").map_or("0", String::as_str);
+    if compression != "0" {
+        return Err(ParseError::unsupported(format!(
+            "sdf: Compression = {compression}"
+        )));
+    }
+    Ok(SdfHeader {
+        version,
+        num_points: int("NumPoints")?,
+        num_profiles: int("NumProfiles")?,
+        x_scale: float("Xscale")?,
+        y_scale: float("Yscale")?,
+        z_scale: float("Zscale")?,
+        data_type: fields
+            .get("DataType")
+            .map_or(Ok(7), |v| v.parse::<u8>())
+            .map_err(|_| ParseError::malformed("sdf: DataType is not a small integer"))?,
+        metadata: fields
+            .iter()
+            .map(|(k, v)| (format!("sdf_{k}"), v.clone()))
+            .collect(),
+    })
+}
+
+/// The `n` values of the data section (`BAD`: `NaN`), which a `*` line must close.
+fn ascii_values<'a>(
+    lines: impl Iterator<Item = &'a str>,
+    n: usize,
+) -> Result<Vec<f64>, ParseError> {
     let mut values = Vec::with_capacity(n);
     let mut data_closed = false;
     for line in lines {
@@ -257,7 +277,7 @@ fn parse_ascii(bytes: &[u8]) -> Result<Topography, ParseError> {
             "sdf: data section not terminated by a `*` line",
         ));
     }
-    header.into_topography(values)
+    Ok(values)
 }
 
 fn parse_binary(bytes: &[u8]) -> Result<Topography, ParseError> {

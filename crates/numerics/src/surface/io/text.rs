@@ -3,7 +3,8 @@
 //! The file is split into header lines (any line with a non-numeric token) and data lines
 //! (only numbers, separated by whitespace, `,` or `;`; empty fields are skipped). Header lines
 //! must all come before the data; a text line inside the data block is an error (it usually
-//! means corruption). Every data line must have the same number of values.
+//! means corruption), and so is a line before it of 8 or more fields all numbers but one (a
+//! damaged first data line). Every data line must have the same number of values.
 //!
 //! * **2 columns** → a line scan `x, z` (x strictly increasing, may be non-uniform), returned as
 //!   [`LineScan`]. Units come from the column-header line just above the data (e.g. the Dektak
@@ -102,6 +103,14 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
                 }
                 rows.extend_from_slice(&values);
             }
+            None if rows.is_empty() && damaged_data_line(line) => {
+                return Err(ParseError::malformed(format!(
+                    "text: line {} ({:?}) holds numbers but one field that is not a number: a \
+                     data line with a damaged value, not a header line",
+                    index + 1,
+                    truncate_for_message(line)
+                )))
+            }
             None if rows.is_empty() => header_lines.push(line),
             None => {
                 return Err(ParseError::malformed(format!(
@@ -147,6 +156,16 @@ fn numeric_row(line: &str, out: &mut Vec<f64>) -> Option<()> {
         out.push(if v.is_finite() { v } else { f64::NAN });
     }
     (!out.is_empty()).then_some(())
+}
+
+/// `true` for a line of at least 8 fields, all numbers but one: a data line whose value was
+/// damaged (a flipped byte), which would otherwise pass as a header line and drop a row.
+fn damaged_data_line(line: &str) -> bool {
+    let fields: Vec<&str> = line
+        .split(|c: char| c.is_whitespace() || c == ',' || c == ';')
+        .filter(|f| !f.is_empty())
+        .collect();
+    fields.len() >= 8 && fields.iter().filter(|f| f.parse::<f64>().is_err()).count() == 1
 }
 
 fn truncate_for_message(line: &str) -> String {

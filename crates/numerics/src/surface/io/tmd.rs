@@ -40,7 +40,7 @@ pub(super) fn matches_magic(head: &[u8]) -> bool {
 }
 
 /// Parses a TMD file into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     if !bytes.starts_with(MAGIC) {
         return Err(ParseError::malformed(
             "missing `Binary TrueMap Data File v2.0` magic",

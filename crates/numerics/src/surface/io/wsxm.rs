@@ -132,7 +132,7 @@ fn read_header(bytes: &[u8]) -> Result<(BTreeMap<String, String>, usize), ParseE
 }
 
 /// Parses a WSxM image file into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let (fields, header_size) = read_header(bytes)?;
     let get = |key: &str| {
         fields

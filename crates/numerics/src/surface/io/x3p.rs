@@ -103,77 +103,21 @@ pub(crate) fn declared_points(bytes: &[u8]) -> Option<usize> {
 /// Parses an X3P file.
 pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let max_len = bytes.len().saturating_mul(MAX_DEFLATE_RATIO);
-    let Opened {
-        mut archive,
-        folder,
-        doc,
-    } = open(bytes, max_len)?;
-
+    let mut opened = open(bytes, max_len)?;
+    let doc = &opened.doc;
     let feature = doc.get("Record1/FeatureType").unwrap_or("SUR").to_string();
     if feature != "SUR" && feature != "PRF" {
         return Err(ParseError::unsupported(format!(
             "x3p: FeatureType {feature:?} (only SUR surfaces and PRF profiles are read)"
         )));
     }
-    let (dx, x_offset) = incremental_axis(&doc, "CX")?;
-    let nx = dimension(&doc, "SizeX")?;
-    let ny = dimension(&doc, "SizeY")?;
-    let nz = doc
-        .get("Record3/MatrixDimension/SizeZ")
-        .map_or(Ok(1), |_| dimension(&doc, "SizeZ"))?;
-    if nz != 1 {
-        return Err(ParseError::unsupported(format!(
-            "x3p: {nz} layers (SizeZ); only single-layer files are read"
-        )));
-    }
-    let n = check_points(nx, ny, "x3p: Record3/MatrixDimension")?;
-    if n > max_len {
-        return Err(ParseError::malformed(format!(
-            "x3p: matrix {nx} × {ny} cannot fit in a {} byte file",
-            bytes.len()
-        )));
-    }
-    let z_axis = HeightEncoding::from_doc(&doc)?;
-
-    let mut heights: Vec<f64> = if let Some(link) = doc.get("Record3/DataLink/PointDataLink") {
-        let name = format!("{folder}{link}");
-        let expected = n * z_axis.sample.size();
-        let raw = read_entry(&mut archive, &name, EntrySize::Exactly(expected))?;
-        let recorded = doc.get("Record3/DataLink/MD5ChecksumPointData");
-        verify(&name, &raw, recorded.unwrap_or(""), "MD5ChecksumPointData")?;
-        let values = decode_samples(&raw, n, z_axis.sample, Endian::Little, "x3p point data")?;
-        values.into_iter().map(|v| z_axis.to_metres(v)).collect()
-    } else if let Some(list) = &doc.data_list {
-        if list.len() != n {
-            return Err(ParseError::malformed(format!(
-                "x3p: DataList holds {} points, MatrixDimension says {nx} × {ny} = {n}",
-                list.len()
-            )));
-        }
-        list.iter()
-            .map(|v| v.map_or(f64::NAN, |v| z_axis.to_metres(v)))
-            .collect()
-    } else {
-        return Err(ParseError::malformed(
-            "x3p: Record3 has neither DataLink/PointDataLink nor DataList",
-        ));
-    };
-
-    if let Some(link) = doc.get("Record3/DataLink/ValidPointsLink") {
-        let name = format!("{folder}{link}");
-        let mask_limit = max_len.min(MAX_POINTS.div_ceil(8));
-        let mask = read_entry(&mut archive, &name, EntrySize::AtMost(mask_limit))?;
-        let recorded = doc.get("Record3/DataLink/MD5ChecksumValidPoints");
-        verify(
-            &name,
-            &mask,
-            recorded.unwrap_or(""),
-            "MD5ChecksumValidPoints",
-        )?;
-        apply_validity_mask(&mut heights, &mask, &name)?;
-    }
-
-    let mut metadata = metadata(&doc);
+    let (dx, x_offset) = incremental_axis(doc, "CX")?;
+    let (nx, ny) = matrix_size(doc, bytes.len(), max_len)?;
+    let z_axis = HeightEncoding::from_doc(doc)?;
+    let mut heights = read_heights(&mut opened, nx * ny, &z_axis)?;
+    apply_valid_points(&mut opened, &mut heights, max_len)?;
+    let doc = &opened.doc;
+    let mut metadata = metadata(doc);
     metadata.insert("x_offset_m".into(), x_offset.to_string());
     metadata.insert("z_data_type".into(), format!("{:?}", z_axis.sample));
 
@@ -186,7 +130,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         let x = (0..nx).map(|i| i as f64 * dx).collect();
         TopographyData::Line(LineScan { x, z: heights })
     } else {
-        let (dy, y_offset) = incremental_axis(&doc, "CY")?;
+        let (dy, y_offset) = incremental_axis(doc, "CY")?;
         metadata.insert("y_offset_m".into(), y_offset.to_string());
         let grid = Array2::from_shape_vec((ny, nx), heights)
             .map_err(|e| ParseError::malformed(format!("x3p: matrix shape: {e}")))?;
@@ -202,6 +146,86 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
         channels: Vec::new(),
         metadata,
     })
+}
+
+/// SizeX and SizeY of one layer (SizeZ 1), at most [`MAX_POINTS`] and no more than a file of
+/// `len` bytes can inflate to (`max_len`).
+fn matrix_size(doc: &X3pDocument, len: usize, max_len: usize) -> Result<(usize, usize), ParseError> {
+    let nx = dimension(doc, "SizeX")?;
+    let ny = dimension(doc, "SizeY")?;
+    let nz = doc
+        .get("Record3/MatrixDimension/SizeZ")
+        .map_or(Ok(1), |_| dimension(doc, "SizeZ"))?;
+    if nz != 1 {
+        return Err(ParseError::unsupported(format!(
+            "x3p: {nz} layers (SizeZ); only single-layer files are read"
+        )));
+    }
+    let n = check_points(nx, ny, "x3p: Record3/MatrixDimension")?;
+    if n > max_len {
+        return Err(ParseError::malformed(format!(
+            "x3p: matrix {nx} × {ny} cannot fit in a {len} byte file"
+        )));
+    }
+    Ok((nx, ny))
+}
+
+/// The `n` heights in metres, from the binary member `PointDataLink` (its MD5 sum checked) or
+/// the inline `DataList` (an empty `Datum` is `NaN`).
+fn read_heights(
+    opened: &mut Opened<'_>,
+    n: usize,
+    z_axis: &HeightEncoding,
+) -> Result<Vec<f64>, ParseError> {
+    let doc = &opened.doc;
+    if let Some(link) = doc.get("Record3/DataLink/PointDataLink") {
+        let name = format!("{}{link}", opened.folder);
+        let expected = n * z_axis.sample.size();
+        let raw = read_entry(&mut opened.archive, &name, EntrySize::Exactly(expected))?;
+        let recorded = doc.get("Record3/DataLink/MD5ChecksumPointData");
+        verify(&name, &raw, recorded.unwrap_or(""), "MD5ChecksumPointData")?;
+        let values = decode_samples(&raw, n, z_axis.sample, Endian::Little, "x3p point data")?;
+        Ok(values.into_iter().map(|v| z_axis.to_metres(v)).collect())
+    } else if let Some(list) = &doc.data_list {
+        if list.len() != n {
+            let (nx, ny) = (dimension(doc, "SizeX")?, dimension(doc, "SizeY")?);
+            return Err(ParseError::malformed(format!(
+                "x3p: DataList holds {} points, MatrixDimension says {nx} × {ny} = {n}",
+                list.len()
+            )));
+        }
+        Ok(list
+            .iter()
+            .map(|v| v.map_or(f64::NAN, |v| z_axis.to_metres(v)))
+            .collect())
+    } else {
+        Err(ParseError::malformed(
+            "x3p: Record3 has neither DataLink/PointDataLink nor DataList",
+        ))
+    }
+}
+
+/// Marks the points the member `ValidPointsLink` (when the file has one; its MD5 sum checked)
+/// says are invalid as `NaN`.
+fn apply_valid_points(
+    opened: &mut Opened<'_>,
+    heights: &mut [f64],
+    max_len: usize,
+) -> Result<(), ParseError> {
+    let Some(link) = opened.doc.get("Record3/DataLink/ValidPointsLink") else {
+        return Ok(());
+    };
+    let name = format!("{}{link}", opened.folder);
+    let mask_limit = max_len.min(MAX_POINTS.div_ceil(8));
+    let mask = read_entry(&mut opened.archive, &name, EntrySize::AtMost(mask_limit))?;
+    let recorded = opened.doc.get("Record3/DataLink/MD5ChecksumValidPoints");
+    verify(
+        &name,
+        &mask,
+        recorded.unwrap_or(""),
+        "MD5ChecksumValidPoints",
+    )?;
+    apply_validity_mask(heights, &mask, &name)
 }
 
 /// Checks `main.xml` against the MD5 sum in the checksum member (`Record4/ChecksumFile`, by

@@ -155,66 +155,135 @@ fn xml_text<'a>(doc: &'a str, tag: &str) -> Option<&'a str> {
     Some(doc[start..end].trim())
 }
 
+/// The members of an opened archive and whether their contents are zstd frames.
+struct Opened<'a> {
+    members: archive::Members<'a>,
+    zstd: bool,
+}
+
+impl<'a> Opened<'a> {
+    /// The stored content of the member `uuid` (`what` names it for errors).
+    fn member(&self, uuid: &str, what: &str) -> Result<&'a [u8], ParseError> {
+        match (
+            self.members.stored.get(uuid),
+            self.members.other_method.get(uuid),
+        ) {
+            (Some(content), _) => Ok(*content),
+            (None, Some(method)) => Err(ParseError::unsupported(format!(
+                "ZON {what} member `{uuid}` uses ZIP compression method {method} (only stored \
+                 members)"
+            ))),
+            (None, None) => Err(ParseError::malformed(format!(
+                "ZON archive has no {what} member `{uuid}`"
+            ))),
+        }
+    }
+
+    /// `MeterPerPixel` and `MeterPerUnit` of the calibration member.
+    fn calibration(&self) -> Result<(f64, f64), ParseError> {
+        let calibration = read_member(
+            self.member(CALIBRATION_UUID, "calibration")?,
+            self.zstd,
+            CALIBRATION_UUID,
+            1 << 20,
+        )?;
+        let calibration = String::from_utf8_lossy(&calibration);
+        let number = |tag: &str| -> Result<f64, ParseError> {
+            let text = xml_text(&calibration, tag)
+                .ok_or_else(|| ParseError::malformed(format!("ZON calibration has no <{tag}>")))?;
+            text.parse::<f64>().map_err(|_| {
+                ParseError::malformed(format!("ZON <{tag}> `{text}` is not a number"))
+            })
+        };
+        Ok((number("MeterPerPixel")?, number("MeterPerUnit")?))
+    }
+
+    /// The status map, when the archive has one; it must match the height map's size.
+    fn status(&self, height: &ArrayMember) -> Result<Option<ArrayMember>, ParseError> {
+        let has_status = self.members.stored.contains_key(STATUS_UUID)
+            || self.members.other_method.contains_key(STATUS_UUID);
+        if !has_status {
+            return Ok(None);
+        }
+        let s = read_array(
+            self.member(STATUS_UUID, "status")?,
+            self.zstd,
+            STATUS_UUID,
+            1,
+        )?;
+        if (s.nx, s.ny) != (height.nx, height.ny) {
+            return Err(ParseError::malformed(format!(
+                "ZON status map {} × {} does not match the height map {} × {}",
+                s.nx, s.ny, height.nx, height.ny
+            )));
+        }
+        Ok(Some(s))
+    }
+
+    /// The vendor, the calibration, and the device and scan date when the archive has them.
+    fn metadata(&self, pixel: f64, per_count: f64) -> Result<BTreeMap<String, String>, ParseError> {
+        let mut metadata = BTreeMap::new();
+        metadata.insert("vendor".into(), "Keyence".into());
+        metadata.insert("meter_per_pixel".into(), pixel.to_string());
+        metadata.insert("meter_per_unit".into(), per_count.to_string());
+        for (uuid, tag, key) in [
+            (DEVICE_UUID, "DeviceModelName", "instrument"),
+            (DEVICE_UUID, "DeviceSerialId", "serial_number"),
+            (SCAN_UUID, "ScanDateTime", "acquisition_time"),
+        ] {
+            if let Some(content) = self.members.stored.get(uuid) {
+                let doc = read_member(content, self.zstd, uuid, 1 << 20)?;
+                if let Some(v) = xml_text(&String::from_utf8_lossy(&doc), tag) {
+                    metadata.insert(key.into(), v.to_string());
+                }
+            }
+        }
+        Ok(metadata)
+    }
+}
+
 /// Parses a Keyence `.zon` file into heights in metres.
-pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
+fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
     let zstd = match bytes.get(0..4) {
         Some(b"KPK0") => false,
         Some(b"KPK1") => true,
         _ => return Err(ParseError::malformed("missing `KPK0`/`KPK1` magic")),
     };
-    let archive::Members {
-        stored: members,
-        other_method: compressed,
-    } = archive::members(bytes)?;
-    let member = |uuid: &str, what: &str| match (members.get(uuid), compressed.get(uuid)) {
-        (Some(content), _) => Ok(*content),
-        (None, Some(method)) => Err(ParseError::unsupported(format!(
-            "ZON {what} member `{uuid}` uses ZIP compression method {method} (only stored members)"
-        ))),
-        (None, None) => Err(ParseError::malformed(format!(
-            "ZON archive has no {what} member `{uuid}`"
-        ))),
-    };
-    let calibration = read_member(
-        member(CALIBRATION_UUID, "calibration")?,
+    let opened = Opened {
+        members: archive::members(bytes)?,
         zstd,
-        CALIBRATION_UUID,
-        1 << 20,
+    };
+    let (pixel, per_count) = opened.calibration()?;
+    let height = read_array(
+        opened.member(HEIGHT_UUID, "height")?,
+        zstd,
+        HEIGHT_UUID,
+        4,
     )?;
-    let calibration = String::from_utf8_lossy(&calibration);
-    let number = |tag: &str| -> Result<f64, ParseError> {
-        let text = xml_text(&calibration, tag)
-            .ok_or_else(|| ParseError::malformed(format!("ZON calibration has no <{tag}>")))?;
-        text.parse::<f64>()
-            .map_err(|_| ParseError::malformed(format!("ZON <{tag}> `{text}` is not a number")))
-    };
-    let (pixel, per_count) = (number("MeterPerPixel")?, number("MeterPerUnit")?);
+    let status = opened.status(&height)?;
+    let values = heights(&height, status.as_ref(), per_count);
+    let heights = Array2::from_shape_vec((height.ny, height.nx), values)
+        .map_err(|e| ParseError::malformed(format!("ZON array shape: {e}")))?;
+    let map = HeightMap::new(heights, pixel, pixel)
+        .map_err(|e| ParseError::malformed(format!("ZON: {e}")))?;
+    Ok(Topography {
+        spacing: ScaleSource::File,
+        height_unit: ScaleSource::File,
+        data: TopographyData::Areal(map),
+        channel: Some("height".into()),
+        channels: Vec::new(),
+        metadata: opened.metadata(pixel, per_count)?,
+    })
+}
 
-    let height = read_array(member(HEIGHT_UUID, "height")?, zstd, HEIGHT_UUID, 4)?;
-    let has_status = members.contains_key(STATUS_UUID) || compressed.contains_key(STATUS_UUID);
-    let status = match has_status
-        .then(|| member(STATUS_UUID, "status"))
-        .transpose()?
-    {
-        Some(content) => {
-            let s = read_array(content, zstd, STATUS_UUID, 1)?;
-            if (s.nx, s.ny) != (height.nx, height.ny) {
-                return Err(ParseError::malformed(format!(
-                    "ZON status map {} × {} does not match the height map {} × {}",
-                    s.nx, s.ny, height.nx, height.ny
-                )));
-            }
-            Some(s)
-        }
-        None => None,
-    };
+/// The heights in metres, row by row: `count · per_count`, `NaN` where the status marks the
+/// pixel invalid.
+fn heights(height: &ArrayMember, status: Option<&ArrayMember>, per_count: f64) -> Vec<f64> {
     let (nx, ny) = (height.nx, height.ny);
     let mut values = Vec::with_capacity(nx * ny);
     for iy in 0..ny {
         let row = &height.data[iy * height.row_bytes..iy * height.row_bytes + nx * height.element];
-        let status_row = status
-            .as_ref()
-            .map(|s| &s.data[iy * s.row_bytes..iy * s.row_bytes + nx]);
+        let status_row = status.map(|s| &s.data[iy * s.row_bytes..iy * s.row_bytes + nx]);
         for (ix, c) in row.chunks_exact(4).enumerate() {
             let invalid = status_row.is_some_and(|s| s[ix] & INVALID_STATUS_BITS != 0);
             values.push(if invalid {
@@ -224,33 +293,5 @@ pub fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             });
         }
     }
-    let heights = Array2::from_shape_vec((ny, nx), values)
-        .map_err(|e| ParseError::malformed(format!("ZON array shape: {e}")))?;
-    let map = HeightMap::new(heights, pixel, pixel)
-        .map_err(|e| ParseError::malformed(format!("ZON: {e}")))?;
-
-    let mut metadata = BTreeMap::new();
-    metadata.insert("vendor".into(), "Keyence".into());
-    metadata.insert("meter_per_pixel".into(), pixel.to_string());
-    metadata.insert("meter_per_unit".into(), per_count.to_string());
-    for (uuid, tag, key) in [
-        (DEVICE_UUID, "DeviceModelName", "instrument"),
-        (DEVICE_UUID, "DeviceSerialId", "serial_number"),
-        (SCAN_UUID, "ScanDateTime", "acquisition_time"),
-    ] {
-        if let Some(content) = members.get(uuid) {
-            let doc = read_member(content, zstd, uuid, 1 << 20)?;
-            if let Some(v) = xml_text(&String::from_utf8_lossy(&doc), tag) {
-                metadata.insert(key.into(), v.to_string());
-            }
-        }
-    }
-    Ok(Topography {
-        spacing: ScaleSource::File,
-        height_unit: ScaleSource::File,
-        data: TopographyData::Areal(map),
-        channel: Some("height".into()),
-        channels: Vec::new(),
-        metadata,
-    })
+    values
 }

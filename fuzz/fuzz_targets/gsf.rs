@@ -1,4 +1,0 @@
-//! Fuzzes the Gwyddion Simple Field (GSF) reader on arbitrary bytes (see `asperity_fuzz::read_as`).
-#![no_main]
-
-libfuzzer_sys::fuzz_target!(|data: &[u8]| asperity_fuzz::read_as("gsf", data));
