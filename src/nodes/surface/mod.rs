@@ -9,7 +9,10 @@ use crate::engine::study::{ResolveContext, SpecError};
 use crate::engine::value::Field;
 use crate::nodes::surface_view::HEIGHTS;
 use crate::nodes::validity;
-use crate::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
+use crate::surface::spectral::Periodogram;
+use crate::surface::synthetic::{
+    generate_synthetic_surface_with_periodogram, SyntheticSurfaceSpec,
+};
 use crate::surface::{Boundary, HeightMap};
 
 mod height_unit;
@@ -41,8 +44,10 @@ pub(crate) const HEIGHT_UNIT_SOURCE: &str = "height_unit_source";
 /// fail impossible values and flag heights beyond the field of view; 9: the ISO 25178-2
 /// functional and volume parameters and the material ratio table, `height_unit_source` instead
 /// of `height_unit_from_file`, a flag when a file's height unit is assumed; a twin without
-/// `hurst_band` finds its band per file and reports it).
-pub const SURFACE_KIND_VERSION: u32 = 9;
+/// `hurst_band` finds its band per file and reports it; 10: a synthetic surface's spectra come
+/// from its synthesized modes, not a transform of its heights, and the Hurst fit leaves out
+/// PSD points at round-off level).
+pub const SURFACE_KIND_VERSION: u32 = 10;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
 /// cache but regenerated when a dependant needs their heights.
@@ -83,27 +88,51 @@ pub(crate) enum SurfaceSource {
     Twin(TwinSource),
 }
 
+/// The heights of a surface node and what their source says of them.
+struct SourceHeights {
+    map: HeightMap,
+    boundary: Boundary,
+    /// Metrics of the source itself (a twin's fitted statistics, where a file's height unit came
+    /// from).
+    metrics: Vec<Field>,
+    /// Sentences that flag the row (a height unit assumed).
+    flags: Vec<String>,
+    /// The unwindowed periodogram, where the source has it without a transform (a synthetic
+    /// surface's modes).
+    periodogram: Option<Periodogram>,
+}
+
 impl SurfaceTask {
     /// Generates or reads the heights; says whether the map is periodic and adds any metrics of
-    /// the source itself (a twin's fitted statistics, where a file's height unit came from) and
-    /// the sentences that flag its row (a height unit assumed).
-    fn heights(&self) -> Result<(HeightMap, Boundary, Vec<Field>, Vec<String>), NodeError> {
+    /// the source itself and the sentences that flag its row.
+    fn heights(&self) -> Result<SourceHeights, NodeError> {
         match &self.source {
-            SurfaceSource::Synthetic(spec) => generate_synthetic_surface(spec)
-                .map(|m| (m, Boundary::Periodic, Vec::new(), Vec::new()))
+            SurfaceSource::Synthetic(spec) => generate_synthetic_surface_with_periodogram(spec)
+                .map(|(map, p)| SourceHeights {
+                    map,
+                    boundary: Boundary::Periodic,
+                    metrics: Vec::new(),
+                    flags: Vec::new(),
+                    periodogram: Some(p),
+                })
                 .map_err(|e| NodeError::new(e.to_string())),
             SurfaceSource::Measured(m) => m.load().map(|p| {
                 let source = Field::text(HEIGHT_UNIT_SOURCE, p.height_unit_source.name());
-                (
-                    p.map,
-                    Boundary::Open,
-                    vec![source],
-                    p.flag.into_iter().collect(),
-                )
+                SourceHeights {
+                    map: p.map,
+                    boundary: Boundary::Open,
+                    metrics: vec![source],
+                    flags: p.flag.into_iter().collect(),
+                    periodogram: None,
+                }
             }),
-            SurfaceSource::Twin(t) => t
-                .generate()
-                .map(|(map, extra, flags)| (map, Boundary::Periodic, extra, flags)),
+            SurfaceSource::Twin(t) => t.generate().map(|(map, metrics, flags)| SourceHeights {
+                map,
+                boundary: Boundary::Periodic,
+                metrics,
+                flags,
+                periodogram: None,
+            }),
         }
     }
 }
@@ -113,7 +142,7 @@ impl SurfaceTask {
 /// share. `boundary` is [`Boundary::Periodic`] for a synthetic map, [`Boundary::Open`] for a
 /// measured one.
 pub fn surface_statistics(map: &HeightMap, boundary: Boundary) -> Result<Vec<Field>, NodeError> {
-    metrics::surface_report(map, boundary).map(|report| report.metrics)
+    metrics::surface_report(map, boundary, None).map(|report| report.metrics)
 }
 
 impl NodeTask for SurfaceTask {
@@ -166,9 +195,15 @@ impl NodeTask for SurfaceTask {
     /// The heights' statistics, checked by [`validity`]: the spacing before any statistic is
     /// computed, every value after.
     fn compute(&self, _inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
-        let (map, boundary, source_metrics, source_flags) = self.heights()?;
+        let SourceHeights {
+            map,
+            boundary,
+            metrics: source_metrics,
+            flags: source_flags,
+            periodogram,
+        } = self.heights()?;
         validity::check_fields(KIND, &metrics::spacing_fields(&map))?;
-        let mut report = metrics::surface_report(&map, boundary)?;
+        let mut report = metrics::surface_report(&map, boundary, periodogram)?;
         report.metrics.extend(source_metrics);
         if let SurfaceSource::Measured(_) = self.source {
             let warning = lateral_scale_warning(report.sdq, map.dx(), map.dy());
