@@ -72,7 +72,7 @@ fn surface_report<'py>(
     };
     let (artifact, lateral_scale_warning) = compute(py, || {
         let (mut artifact, warning) =
-            surface_artifact(&map, boundary).map_err(|e| value_error("heights", e.message))?;
+            surface_artifact(&map, boundary, None).map_err(|e| value_error("heights", e.message))?;
         check_artifact(SURFACE, &mut artifact).map_err(|e| value_error("heights", e.message))?;
         Ok((artifact, warning))
     })?;

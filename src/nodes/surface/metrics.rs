@@ -26,7 +26,7 @@ use crate::nodes::validity;
 use crate::surface::spectral::{
     autocorrelation, hurst_exponent_of, periodic_autocorrelation_of, periodogram, radial_psd_of,
     spectral_moments, spectral_moments_of, texture_direction_of, AcfBoundary, HurstFitOptions,
-    MomentMethod, Window, ISO_ACF_THRESHOLD,
+    MomentMethod, Periodogram, Window, ISO_ACF_THRESHOLD,
 };
 use crate::surface::{
     amplitude_statistics, find_summits, functional_parameters_of, Boundary, FunctionalOptions,
@@ -63,10 +63,13 @@ fn num(name: impl Into<Cow<'static, str>>, v: f64) -> Field {
     Field::float(name, v, Dimension::Dimensionless)
 }
 
-/// Computes every metric and table of `map`.
+/// Computes every metric and table of `map`; `periodogram`, where the source has it (a
+/// synthetic surface's modes), is the unwindowed periodogram of `map` (else the spectra
+/// transform the heights).
 pub(super) fn surface_report(
     map: &HeightMap,
     boundary: Boundary,
+    periodogram: Option<Periodogram>,
 ) -> Result<SurfaceReport, NodeError> {
     let a = amplitude_statistics(map, boundary)
         .map_err(|e| NodeError::new(format!("statistics: {e}")))?;
@@ -99,7 +102,7 @@ pub(super) fn surface_report(
     let mut tables = BTreeMap::new();
     functional_metrics(map, &mut metrics, &mut tables)?;
     if a.missing_count == 0 && a.sq > 0.0 {
-        spectral_metrics(map, boundary, &mut metrics, &mut tables)?;
+        spectral_metrics(map, boundary, periodogram, &mut metrics, &mut tables)?;
     }
     summit_metrics(map, boundary, &mut metrics, &mut tables)?;
     Ok(SurfaceReport {
@@ -113,6 +116,7 @@ pub(super) fn surface_report(
 fn spectral_metrics(
     map: &HeightMap,
     boundary: Boundary,
+    source_periodogram: Option<Periodogram>,
     metrics: &mut Vec<Field>,
     tables: &mut BTreeMap<String, Table>,
 ) -> Result<(), NodeError> {
@@ -120,8 +124,11 @@ fn spectral_metrics(
     let window = if periodic { Window::None } else { Window::Hann };
     let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
     // One periodogram serves the moments and the ACF (periodic maps: unwindowed), the texture
-    // direction, the Hurst fit and the PSD table.
-    let p = periodogram(map, window).map_err(|e| fail("PSD", &e))?;
+    // direction, the Hurst fit and the PSD table: the source's where it has one.
+    let p = match source_periodogram.filter(|p| p.window == window) {
+        Some(p) => p,
+        None => periodogram(map, window).map_err(|e| fail("PSD", &e))?,
+    };
     let psd = radial_psd_of(&p, map);
     let m = if periodic {
         spectral_moments_of(&p, map)

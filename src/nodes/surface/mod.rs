@@ -9,7 +9,10 @@ use crate::engine::study::{ResolveContext, SpecError};
 use crate::engine::value::Field;
 use crate::nodes::surface_view::HEIGHTS;
 use crate::nodes::validity;
-use crate::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
+use crate::surface::spectral::Periodogram;
+use crate::surface::synthetic::{
+    generate_synthetic_surface_with_periodogram, SyntheticSurfaceSpec,
+};
 use crate::surface::{amplitude_statistics, Boundary, HeightMap};
 
 mod height_unit;
@@ -43,8 +46,10 @@ pub(crate) const HEIGHT_UNIT_SOURCE: &str = "height_unit_source";
 /// functional and volume parameters and the material ratio table, `height_unit_source` instead
 /// of `height_unit_from_file`, a flag when a file's height unit is assumed; a twin without
 /// `hurst_band` finds its band per file and reports it; 10: an MNT file's mask image, not a
-/// count of 0, marks its missing points).
-pub const SURFACE_KIND_VERSION: u32 = 10;
+/// count of 0, marks its missing points; 11: a synthetic surface's spectra come from its
+/// synthesized modes, not a transform of its heights, and the Hurst fit leaves out PSD points at
+/// round-off level).
+pub const SURFACE_KIND_VERSION: u32 = 11;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
 /// cache but regenerated when a dependant needs their heights.
@@ -85,27 +90,51 @@ pub(crate) enum SurfaceSource {
     Twin(TwinSource),
 }
 
+/// The heights of a surface node and what their source says of them.
+struct SourceHeights {
+    map: HeightMap,
+    boundary: Boundary,
+    /// Metrics of the source itself (a twin's fitted statistics, where a file's height unit came
+    /// from).
+    metrics: Vec<Field>,
+    /// Sentences that flag the row (a height unit assumed).
+    flags: Vec<String>,
+    /// The unwindowed periodogram, where the source has it without a transform (a synthetic
+    /// surface's modes).
+    periodogram: Option<Periodogram>,
+}
+
 impl SurfaceTask {
     /// Generates or reads the heights; says whether the map is periodic and adds any metrics of
-    /// the source itself (a twin's fitted statistics, where a file's height unit came from) and
-    /// the sentences that flag its row (a height unit assumed).
-    fn heights(&self) -> Result<(HeightMap, Boundary, Vec<Field>, Vec<String>), NodeError> {
+    /// the source itself and the sentences that flag its row.
+    fn heights(&self) -> Result<SourceHeights, NodeError> {
         match &self.source {
-            SurfaceSource::Synthetic(spec) => generate_synthetic_surface(spec)
-                .map(|m| (m, Boundary::Periodic, Vec::new(), Vec::new()))
+            SurfaceSource::Synthetic(spec) => generate_synthetic_surface_with_periodogram(spec)
+                .map(|(map, p)| SourceHeights {
+                    map,
+                    boundary: Boundary::Periodic,
+                    metrics: Vec::new(),
+                    flags: Vec::new(),
+                    periodogram: Some(p),
+                })
                 .map_err(|e| NodeError::new(e.to_string())),
             SurfaceSource::Measured(m) => m.load().map(|p| {
                 let source = Field::text(HEIGHT_UNIT_SOURCE, p.height_unit_source.name());
-                (
-                    p.map,
-                    Boundary::Open,
-                    vec![source],
-                    p.flag.into_iter().collect(),
-                )
+                SourceHeights {
+                    map: p.map,
+                    boundary: Boundary::Open,
+                    metrics: vec![source],
+                    flags: p.flag.into_iter().collect(),
+                    periodogram: None,
+                }
             }),
-            SurfaceSource::Twin(t) => t
-                .generate()
-                .map(|(map, extra, flags)| (map, Boundary::Periodic, extra, flags)),
+            SurfaceSource::Twin(t) => t.generate().map(|(map, metrics, flags)| SourceHeights {
+                map,
+                boundary: Boundary::Periodic,
+                metrics,
+                flags,
+                periodogram: None,
+            }),
         }
     }
 }
@@ -116,14 +145,16 @@ impl SurfaceTask {
 /// curve) and the flag of heights beyond the field of view, after the spacing is checked; and
 /// the lateral-scale warning (empty when the rms slope is plausible), which the node writes to
 /// the row of a measured map. `boundary` is [`Boundary::Periodic`] for a synthetic map,
-/// [`Boundary::Open`] for a measured one. The caller adds its own metrics and then checks the
+/// [`Boundary::Open`] for a measured one; `periodogram`, where the source has it without a
+/// transform (a synthetic surface's modes), is `map`'s unwindowed periodogram. The caller adds its own metrics and then checks the
 /// artifact with [`validity::check_artifact`].
 pub fn surface_artifact(
     map: &HeightMap,
     boundary: Boundary,
+    periodogram: Option<Periodogram>,
 ) -> Result<(Artifact, String), NodeError> {
     validity::check_fields(KIND, &metrics::spacing_fields(map))?;
-    let report = metrics::surface_report(map, boundary)?;
+    let report = metrics::surface_report(map, boundary, periodogram)?;
     let warning = lateral_scale_warning(report.sdq, map.dx(), map.dy());
     let flags = validity::cross::surface_size(
         report.sq,
@@ -209,8 +240,14 @@ impl NodeTask for SurfaceTask {
     /// The heights' statistics, checked by [`validity`]: the spacing before any statistic is
     /// computed, every value after.
     fn compute(&self, _inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
-        let (map, boundary, source_metrics, source_flags) = self.heights()?;
-        let (mut artifact, warning) = surface_artifact(&map, boundary)?;
+        let SourceHeights {
+            map,
+            boundary,
+            metrics: source_metrics,
+            flags: source_flags,
+            periodogram,
+        } = self.heights()?;
+        let (mut artifact, warning) = surface_artifact(&map, boundary, periodogram)?;
         artifact.metrics.extend(source_metrics);
         if let SurfaceSource::Measured(_) = self.source {
             artifact

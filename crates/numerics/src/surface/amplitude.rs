@@ -59,23 +59,48 @@ pub enum AmplitudeError {
     NoValidPoints,
 }
 
-/// Count, mean, minimum and maximum of the valid heights (`None` if there is none).
+/// Count, mean, minimum and maximum of the valid heights (`None` if there is none). Rows are
+/// summed on their own, in parallel, and their sums added in row order.
 pub(crate) fn valid_mean_min_max(map: &HeightMap) -> Option<(usize, f64, f64, f64)> {
-    let mut count = 0usize;
-    let mut sum = 0.0;
-    let mut min = f64::INFINITY;
-    let mut max = f64::NEG_INFINITY;
-    for row in map.heights().rows() {
-        let mut row_sum = 0.0;
-        for &h in row.iter().filter(|h| !h.is_nan()) {
-            row_sum += h;
+    let nx = map.nx();
+    let rows = map.map_rows(|iy, z| {
+        let (mut count, mut sum) = (0usize, 0.0);
+        let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &h in z[iy * nx..(iy + 1) * nx].iter().filter(|h| !h.is_nan()) {
+            sum += h;
             count += 1;
             min = min.min(h);
             max = max.max(h);
         }
-        sum += row_sum;
-    }
+        (count, sum, min, max)
+    });
+    let (count, sum, min, max) = rows.into_iter().fold(
+        (0usize, 0.0, f64::INFINITY, f64::NEG_INFINITY),
+        |(count, sum, min, max), row| (count + row.0, sum + row.1, min.min(row.2), max.max(row.3)),
+    );
     (count > 0).then(|| (count, sum / count as f64, min, max))
+}
+
+/// `Σ |d|, Σ d², Σ d³, Σ d⁴` of the valid heights' deviations `d = z − mean`, per row in
+/// parallel, the rows added in row order.
+fn central_sums(map: &HeightMap, mean: f64) -> [f64; 4] {
+    let nx = map.nx();
+    let rows = map.map_rows(|iy, z| {
+        let mut r = [0.0; 4];
+        for &h in z[iy * nx..(iy + 1) * nx].iter().filter(|h| !h.is_nan()) {
+            let d = h - mean;
+            let d2 = d * d;
+            r[0] += d.abs();
+            r[1] += d2;
+            r[2] += d2 * d;
+            r[3] += d2 * d2;
+        }
+        r
+    });
+    rows.into_iter().fold([0.0; 4], |mut s, r| {
+        s.iter_mut().zip(r).for_each(|(s, r)| *s += r);
+        s
+    })
 }
 
 /// Amplitude and hybrid statistics of `map`; `boundary` applies to the gradient terms only.
@@ -84,22 +109,7 @@ pub fn amplitude_statistics(
     boundary: Boundary,
 ) -> Result<AmplitudeStatistics, AmplitudeError> {
     let (count, mean, min, max) = valid_mean_min_max(map).ok_or(AmplitudeError::NoValidPoints)?;
-    let (mut s1, mut s2, mut s3, mut s4) = (0.0, 0.0, 0.0, 0.0);
-    for row in map.heights().rows() {
-        let (mut r1, mut r2, mut r3, mut r4) = (0.0, 0.0, 0.0, 0.0);
-        for &h in row.iter().filter(|h| !h.is_nan()) {
-            let d = h - mean;
-            let d2 = d * d;
-            r1 += d.abs();
-            r2 += d2;
-            r3 += d2 * d;
-            r4 += d2 * d2;
-        }
-        s1 += r1;
-        s2 += r2;
-        s3 += r3;
-        s4 += r4;
-    }
+    let [s1, s2, s3, s4] = central_sums(map, mean);
     let n = count as f64;
     let sq = (s2 / n).sqrt();
     let (ssk, sku) = if sq > 0.0 {

@@ -24,6 +24,7 @@
 //!   `∫ₚ¹ (Smc(p) − Smc(mr)) dmr` on the step curve. `Vmp = Vm(p)`, `Vmc = Vm(q) − Vm(p)`,
 //!   `Vvc = Vv(p) − Vv(q)`, `Vvv = Vv(q)` with the defaults `p = 10 %`, `q = 80 %`.
 
+use super::order::sort_descending;
 use super::HeightMap;
 
 /// Material ratio span of the equivalent straight line (ISO 13565-2: 40 %).
@@ -115,7 +116,7 @@ impl MaterialRatioCurve {
         }
         let mean = z.iter().sum::<f64>() / z.len() as f64;
         z.iter_mut().for_each(|v| *v -= mean);
-        z.sort_unstable_by(|a, b| b.total_cmp(a));
+        sort_descending(&mut z);
         Ok(Self { heights: z })
     }
 
@@ -153,18 +154,31 @@ impl MaterialRatioCurve {
 
     /// `Vm(p)`: material volume per unit area above `Smc(p)` (m³/m²).
     pub fn material_volume(&self, p: f64) -> f64 {
-        let c = self.height_at(p);
-        self.mean_of(|z| (z - c).max(0.0))
+        self.mean_excess_above(self.height_at(p))
     }
 
     /// `Vv(p)`: void volume per unit area below `Smc(p)` (m³/m²).
     pub fn void_volume(&self, p: f64) -> f64 {
-        let c = self.height_at(p);
-        self.mean_of(|z| (c - z).max(0.0))
+        self.mean_deficit_below(self.height_at(p))
     }
 
-    fn mean_of(&self, f: impl Fn(f64) -> f64) -> f64 {
-        self.heights.iter().map(|&z| f(z)).sum::<f64>() / self.heights.len() as f64
+    /// `(1/N) Σ (z − c)⁺`: the points above `c` are a prefix of the descending heights, the
+    /// only terms that are not zero (summed in the curve's order, from `+0`).
+    fn mean_excess_above(&self, c: f64) -> f64 {
+        let above = self.heights.partition_point(|&z| z > c);
+        let sum = self.heights[..above]
+            .iter()
+            .fold(0.0, |sum, &z| sum + (z - c));
+        sum / self.heights.len() as f64
+    }
+
+    /// `(1/N) Σ (c − z)⁺`: the points below `c` are a suffix of the descending heights.
+    fn mean_deficit_below(&self, c: f64) -> f64 {
+        let below = self.heights.partition_point(|&z| z >= c);
+        let sum = self.heights[below..]
+            .iter()
+            .fold(0.0, |sum, &z| sum + (c - z));
+        sum / self.heights.len() as f64
     }
 
     /// `(c_top, c_bottom)`: the equivalent straight line at `mr = 0` and `mr = 1` (module docs).
@@ -234,8 +248,8 @@ pub fn functional_parameters_of(
     let (core_top, core_bottom) = curve.equivalent_line();
     let smr1 = curve.ratio_above(core_top);
     let smr2 = curve.ratio_at_or_above(core_bottom);
-    let peaks = curve.mean_of(|z| (z - core_top).max(0.0));
-    let dales = curve.mean_of(|z| (core_bottom - z).max(0.0));
+    let peaks = curve.mean_excess_above(core_top);
+    let dales = curve.mean_deficit_below(core_bottom);
     let triangle = |area: f64, base: f64| if base > 0.0 { 2.0 * area / base } else { 0.0 };
     let FunctionalOptions {
         sxp_p,

@@ -98,7 +98,8 @@ pub(crate) fn neighbour_index(
 
 /// `Sdq` and `Sdr` (percent) of `map` with the given scheme and boundary treatment.
 ///
-/// Sums are accumulated per row and then over rows (two-level summation, deterministic).
+/// Sums are accumulated per row (rows in parallel) and then over rows in row order (two-level
+/// summation, the same bits for any thread count).
 /// `sqrt(1 + g²) − 1` is evaluated as `g² / (sqrt(1 + g²) + 1)` to avoid cancellation at small slopes.
 pub fn gradient_statistics(
     map: &HeightMap,
@@ -106,10 +107,6 @@ pub fn gradient_statistics(
     boundary: Boundary,
 ) -> Result<GradientStatistics, GradientError> {
     let (nx, ny) = (map.nx(), map.ny());
-    let z = map.heights().as_standard_layout();
-    let flat = z
-        .as_slice()
-        .expect("an array in standard layout is contiguous");
     // Offsets (back, ahead) of the two points each difference uses, and its denominator factor.
     let (back, ahead, factor) = match scheme {
         DifferenceScheme::Central => (-1, 1, 2.0),
@@ -124,20 +121,19 @@ pub fn gradient_statistics(
             ))
         })
         .collect();
-    let row = |iy: usize| &flat[iy * nx..(iy + 1) * nx];
-    let mut count = 0usize;
-    let mut sum_g2 = 0.0;
-    let mut sum_area = 0.0;
-    for iy in 0..ny {
+    // Per row `(Σ g², Σ area excess, points)`, in parallel; the rows are added in row order.
+    let rows = map.map_rows(|iy, flat| {
         let (Some(ya), Some(yb)) = (
             neighbour_index(iy, back, ny, boundary),
             neighbour_index(iy, ahead, ny, boundary),
         ) else {
-            continue;
+            return (0.0, 0.0, 0);
         };
+        let row = |iy: usize| &flat[iy * nx..(iy + 1) * nx];
         let (centre, row_a, row_b) = (row(iy), row(ya), row(yb));
         let mut row_g2 = 0.0;
         let mut row_area = 0.0;
+        let mut row_count = 0usize;
         for (ix, cols) in columns.iter().enumerate() {
             let Some((xa, xb)) = *cols else {
                 continue;
@@ -151,11 +147,15 @@ pub fn gradient_statistics(
             }
             row_g2 += g2;
             row_area += g2 / ((1.0 + g2).sqrt() + 1.0);
-            count += 1;
+            row_count += 1;
         }
-        sum_g2 += row_g2;
-        sum_area += row_area;
-    }
+        (row_g2, row_area, row_count)
+    });
+    let (sum_g2, sum_area, count) = rows
+        .into_iter()
+        .fold((0.0, 0.0, 0usize), |(g2, area, count), row| {
+            (g2 + row.0, area + row.1, count + row.2)
+        });
     if count == 0 {
         return Err(GradientError::NoGradientPoints { scheme });
     }

@@ -1,6 +1,7 @@
 //! The areal height map every stage works on.
 
 use ndarray::Array2;
+use rayon::prelude::*;
 
 /// An areal topography on a regular grid, in SI units.
 ///
@@ -76,6 +77,21 @@ impl HeightMap {
     /// Physical size `(Lx, Ly) = (nx·dx, ny·dy)` in metres (periodic convention).
     pub fn size(&self) -> (f64, f64) {
         (self.nx() as f64 * self.dx, self.ny() as f64 * self.dy)
+    }
+
+    /// `f(iy, heights)` for every row `iy`, in parallel, in row order; `heights` is the whole grid
+    /// row-major (row `iy` is `heights[iy·nx .. (iy + 1)·nx]`), so `f` may read neighbouring rows.
+    /// A caller that folds the results in row order gets the bits of a serial loop over the rows,
+    /// whatever the thread count.
+    pub(crate) fn map_rows<T: Send>(&self, f: impl Fn(usize, &[f64]) -> T + Sync) -> Vec<T> {
+        let z = self.heights.as_standard_layout();
+        let flat = z
+            .as_slice()
+            .expect("an array in standard layout is contiguous");
+        (0..self.ny())
+            .into_par_iter()
+            .map(|iy| f(iy, flat))
+            .collect()
     }
 
     /// Number of missing (`NaN`) points.

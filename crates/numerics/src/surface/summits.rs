@@ -29,6 +29,7 @@
 
 use super::amplitude::valid_mean_min_max;
 use super::gradient::neighbour_index;
+use super::order::descending_key;
 use super::{Boundary, HeightMap};
 use rayon::slice::ParallelSliceMut;
 
@@ -125,49 +126,80 @@ pub fn find_summits(map: &HeightMap, options: SummitOptions) -> Result<Summits, 
             return Err(SummitError::BadThreshold { name, value: v });
         }
     }
-    let (_, mean, _, _) = valid_mean_min_max(map).ok_or(SummitError::NoValidPoints)?;
+    let (valid, mean, _, _) = valid_mean_min_max(map).ok_or(SummitError::NoValidPoints)?;
     let (nx, ny, dx, dy) = (map.nx(), map.ny(), map.dx(), map.dy());
-    let z = map.heights().as_standard_layout();
-    let flat = z
-        .as_slice()
-        .expect("an array in standard layout is contiguous");
     let boundary = options.boundary;
-    let prominences = options
-        .min_prominence
-        .map(|_| topographic_prominences(flat, nx, ny, boundary));
+    let prominences = options.min_prominence.map(|_| {
+        let z = map.heights().as_standard_layout();
+        let flat = z
+            .as_slice()
+            .expect("an array in standard layout is contiguous");
+        topographic_prominences(flat, nx, ny, boundary)
+    });
     let (columns, rows) = (neighbour_pairs(nx, boundary), neighbour_pairs(ny, boundary));
+    let scan = RowScan {
+        nx,
+        complete: valid == nx * ny,
+        spacing: (dx, dy),
+        mean,
+        columns: &columns,
+        options,
+        prominences: prominences.as_deref(),
+    };
+    // Rows in parallel, concatenated in row order: the raster order of a serial scan.
+    let per_row = map.map_rows(|iy, flat| match rows[iy] {
+        Some((ym, yp)) => scan.row(flat, [ym, iy, yp]),
+        None => (Vec::new(), 0),
+    });
+    let candidate_count = per_row.iter().map(|(_, c)| c).sum();
+    let summits: Vec<Summit> = per_row.into_iter().flat_map(|(s, _)| s).collect();
+    let statistics = summarise(&summits, candidate_count, dx * dy, mean);
+    Ok(Summits {
+        summits,
+        statistics,
+    })
+}
 
-    let mut summits = Vec::new();
-    let mut candidate_count = 0;
-    for (iy, row_pair) in rows.iter().enumerate() {
-        let Some((ym, yp)) = *row_pair else {
-            continue;
-        };
-        for (ix, column_pair) in columns.iter().enumerate() {
+/// What every row of [`find_summits`]' scan shares.
+struct RowScan<'a> {
+    nx: usize,
+    /// No point is missing: every point within the border rule is a candidate.
+    complete: bool,
+    spacing: (f64, f64),
+    mean: f64,
+    columns: &'a [Option<(usize, usize)>],
+    options: SummitOptions,
+    prominences: Option<&'a [f64]>,
+}
+
+impl RowScan<'_> {
+    /// The summits of row `iy` (rows `[ym, iy, yp]` of the row-major grid `flat`) in raster
+    /// order, and its candidate count.
+    fn row(&self, flat: &[f64], [ym, iy, yp]: [usize; 3]) -> (Vec<Summit>, usize) {
+        let (nx, options) = (self.nx, self.options);
+        let mut summits = Vec::new();
+        let mut candidate_count = 0;
+        for (ix, column_pair) in self.columns.iter().enumerate() {
             let Some((xm, xp)) = *column_pair else {
                 continue;
             };
             let p = iy * nx + ix;
             let centre = flat[p];
             let q = neighbour_raster([xm, ix, xp], [ym, iy, yp], nx);
-            let around = q.map(|j| flat[j]);
-            if centre.is_nan() || around.iter().any(|h| h.is_nan()) {
+            if !self.complete && (centre.is_nan() || q.iter().any(|&j| flat[j].is_nan())) {
                 continue;
             }
             candidate_count += 1;
-            if !q
-                .iter()
-                .zip(&around)
-                .all(|(&j, &h)| ranks_above(centre, p, h, j))
-            {
+            if !q.iter().all(|&j| ranks_above(centre, p, flat[j], j)) {
                 continue;
             }
-            let height = centre - mean;
+            let around = q.map(|j| flat[j]);
+            let height = centre - self.mean;
             if options.min_height.is_some_and(|t| height < t) {
                 continue;
             }
-            let prominence = prominences
-                .as_ref()
+            let prominence = self
+                .prominences
                 .and_then(|m| m.get(p).copied())
                 .filter(|v| !v.is_nan());
             if options
@@ -179,19 +211,15 @@ pub fn find_summits(map: &HeightMap, options: SummitOptions) -> Result<Summits, 
             summits.push(summit_at(
                 ix,
                 iy,
-                (dx, dy),
+                self.spacing,
                 centre,
                 &around,
                 height,
                 prominence,
             ));
         }
+        (summits, candidate_count)
     }
-    let statistics = summarise(&summits, candidate_count, dx * dy, mean);
-    Ok(Summits {
-        summits,
-        statistics,
-    })
 }
 
 /// Raster indices of the 8 neighbours in the order of `NEIGHBOURS`, from the columns
@@ -372,17 +400,8 @@ fn topographic_prominences(z: &[f64], nx: usize, ny: usize, boundary: Boundary) 
 /// The valid points of `z` from highest to lowest, ties by ascending raster index (the order
 /// of `ranks_above`), each with its sort key.
 fn descending_order(z: &[f64]) -> Vec<(u64, usize)> {
-    // Sort keys: descending height (order-preserving integer image of the float, inverted), then
-    // ascending raster index — the same total order as `ranks_above`.
-    let descending_key = |h: f64| {
-        let bits = h.to_bits();
-        let ascending = if bits >> 63 == 1 {
-            !bits
-        } else {
-            bits | 1 << 63
-        };
-        u64::MAX - ascending
-    };
+    // Sort keys: descending height, then ascending raster index — the same total order as
+    // `ranks_above`.
     let mut order: Vec<(u64, usize)> = (0..z.len())
         .filter(|&p| !z[p].is_nan())
         .map(|p| (descending_key(z[p]), p))

@@ -64,6 +64,7 @@ use rand_core::{Rng, SeedableRng};
 use rayon::prelude::*;
 use realfft::num_complex::Complex64;
 
+use super::spectral::{Periodogram, Window};
 use super::{HeightMap, HeightMapError};
 use crate::fft2::{inverse_real_2d, FftFailure};
 
@@ -318,6 +319,40 @@ impl SyntheticSurfaceSpec {
 pub fn generate_synthetic_surface(
     spec: &SyntheticSurfaceSpec,
 ) -> Result<HeightMap, SyntheticError> {
+    Ok(synthesize(spec)?.0)
+}
+
+/// [`generate_synthetic_surface`] with the unwindowed periodogram of the surface
+/// ([`Periodogram`], `C(q) = A |Z(q)|² / N²`), taken from the synthesized modes instead of a
+/// forward transform of the heights: the heights are `s·(F⁻¹Ẑ − mean)` for modes `Ẑ` and the
+/// Sq normalisation `s`, and `Ẑ(0) = 0`, so `Z(q) = s N Ẑ(q)` and `C(q) = A s² |Ẑ(q)|²`.
+/// A forward FFT of the heights gives the same up to its round-off (relative ~1e-16 of the
+/// largest mode); the modes the model gives no power (`q = 0`, beyond the short-wavelength
+/// cutoff) are exactly 0 here, where a transform of the heights leaves round-off.
+pub fn generate_synthetic_surface_with_periodogram(
+    spec: &SyntheticSurfaceSpec,
+) -> Result<(HeightMap, Periodogram), SyntheticError> {
+    let (map, half, scale) = synthesize(spec)?;
+    let area = spec.lx * spec.ly;
+    let factor = area * scale * scale;
+    let periodogram = Periodogram {
+        c: half.mapv(|mode| factor * mode.norm_sqr()),
+        dqx: 2.0 * PI / spec.lx,
+        dqy: 2.0 * PI / spec.ly,
+        nx: spec.nx,
+        window: Window::None,
+    };
+    Ok((map, periodogram))
+}
+
+/// ChaCha words (`u32`) each mode draws: two `u64`, one pair of normal deviates.
+const WORDS_PER_MODE: u128 = 4;
+
+/// The surface, its half spectrum of modes `Ẑ` (before normalisation) and the normalisation
+/// factor `s` (heights = `s·(F⁻¹Ẑ − mean)`).
+fn synthesize(
+    spec: &SyntheticSurfaceSpec,
+) -> Result<(HeightMap, Array2<Complex64>, f64), SyntheticError> {
     spec.validate()?;
     let (nx, ny) = (spec.nx, spec.ny);
     let nxh = nx / 2 + 1;
@@ -329,9 +364,20 @@ pub fn generate_synthetic_surface(
     modes.par_chunks_mut(nxh).enumerate().for_each(|(j, row)| {
         let mut rng = base.clone();
         rng.set_stream(mode_stream(j, ny));
+        // Modes without power stay zero and draw nothing; the stream is moved to the position
+        // of the next mode that has power, so every mode's deviates are those of its position.
+        let mut next_drawn = 0;
         for (i, mode) in row.iter_mut().enumerate() {
+            let shape = spec.mode_shape(i, j);
+            if shape == 0.0 {
+                continue;
+            }
+            if next_drawn != i {
+                rng.set_word_pos(WORDS_PER_MODE * i as u128);
+            }
             let (g1, g2) = standard_normal_pair(&mut rng);
-            let amplitude = spec.mode_shape(i, j).sqrt();
+            next_drawn = i + 1;
+            let amplitude = shape.sqrt();
             *mode = if self_conjugate(i, j, nx, ny) {
                 Complex64::new(amplitude * g1, 0.0)
             } else {
@@ -346,19 +392,23 @@ pub fn generate_synthetic_surface(
     let mut z = inverse_real_2d(&half, nx)?;
     let n = (nx * ny) as f64;
     let mean = z.sum() / n;
-    z.mapv_inplace(|v| v - mean);
-    let rms = (z.iter().map(|v| v * v).sum::<f64>() / n).sqrt();
+    let rms = (z.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt();
     if !(rms > 0.0 && rms.is_finite()) {
         return Err(SyntheticError::NoSpectralContent);
     }
     let scale = spec.sq / rms;
-    z.mapv_inplace(|v| v * scale);
+    let mut sum_of_squares = 0.0;
+    z.mapv_inplace(|v| {
+        let h = (v - mean) * scale;
+        sum_of_squares += h * h;
+        h
+    });
     // The heights and their mean square must be finite, or every statistic of the map is not.
-    if !z.iter().map(|v| v * v).sum::<f64>().is_finite() {
+    if !sum_of_squares.is_finite() {
         return Err(SyntheticError::HeightsOverflow { sq: spec.sq });
     }
     let (dx, dy) = spec.spacing();
-    Ok(HeightMap::new(z, dx, dy)?)
+    Ok((HeightMap::new(z, dx, dy)?, half, scale))
 }
 
 /// Ensemble autocorrelation of the model, `R(τ)/R(0)` on the periodic lag grid `[[jy, ix]]`

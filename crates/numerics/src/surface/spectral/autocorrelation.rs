@@ -21,7 +21,7 @@
 //! not decay within the lag range. The correlation lengths along x and y use the same threshold on
 //! the lag axes (grid points, linear interpolation), so `Sal ≤ min(ξx, ξy)` up to interpolation.
 
-use ndarray::Array2;
+use ndarray::{s, Array2};
 use realfft::num_complex::Complex64;
 
 use super::error::{require_complete, SpectralError};
@@ -132,7 +132,8 @@ pub fn periodic_autocorrelation_of(
 }
 
 /// The normalised ACF on the centred lag grid from the circular correlation `circular` of the
-/// (padded) grid, each lag averaged over its overlap for [`AcfBoundary::ZeroPadded`].
+/// (padded) grid, each lag averaged over its overlap for [`AcfBoundary::ZeroPadded`]; each row
+/// of lags is two slices of a row of `circular`.
 fn centred_lags(
     circular: &Array2<f64>,
     boundary: AcfBoundary,
@@ -142,17 +143,19 @@ fn centred_lags(
     let (py, px) = circular.dim();
     let (hx, hy) = (nx / 2, ny / 2);
     let mut values = Array2::<f64>::zeros((2 * hy + 1, 2 * hx + 1));
-    for ((row, col), value) in values.indexed_iter_mut() {
-        let (iy, ix) = (row as isize - hy as isize, col as isize - hx as isize);
-        let overlap = match boundary {
-            AcfBoundary::Periodic => 1.0,
-            AcfBoundary::ZeroPadded => ((nx - ix.unsigned_abs()) * (ny - iy.unsigned_abs())) as f64,
-        };
-        let (wy, wx) = (
-            iy.rem_euclid(py as isize) as usize,
-            ix.rem_euclid(px as isize) as usize,
-        );
-        *value = circular[[wy, wx]] / overlap;
+    for (row, mut lags) in values.rows_mut().into_iter().enumerate() {
+        let iy = row as isize - hy as isize;
+        let source = circular.row(iy.rem_euclid(py as isize) as usize);
+        // Lags −hx … −1 wrap around to the end of the row; 0 … hx start it (px ≥ nx > hx).
+        lags.slice_mut(s![..hx])
+            .assign(&source.slice(s![px - hx..]));
+        lags.slice_mut(s![hx..]).assign(&source.slice(s![..=hx]));
+        if boundary == AcfBoundary::ZeroPadded {
+            for (col, value) in lags.iter_mut().enumerate() {
+                let ix = col as isize - hx as isize;
+                *value /= ((nx - ix.unsigned_abs()) * (ny - iy.unsigned_abs())) as f64;
+            }
+        }
     }
     let zero = values[[hy, hx]];
     if !(zero > 0.0 && zero.is_finite()) {

@@ -53,7 +53,8 @@ pub fn texture_direction_of(
 ) -> Result<TextureDirection, SpectralError> {
     let q_max = (PI / map.dx()).min(PI / map.dy());
     let mut aps = vec![0.0; 180];
-    for ((j, i), c) in p.c.indexed_iter() {
+    // Modes without power add nothing (a synthetic surface's beyond its cutoff): no angle needed.
+    for ((j, i), c) in p.c.indexed_iter().filter(|(_, c)| **c != 0.0) {
         let (qx, qy) = p.wavevector(j, i);
         let q = qx.hypot(qy);
         if q == 0.0 || q > q_max {

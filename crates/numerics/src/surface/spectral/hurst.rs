@@ -6,6 +6,12 @@
 //! above the roll-off (or the largest measured wavelengths) and below the instrument's
 //! resolution limit or S-filter; the default is the two octaves `[q_N/8, q_N/2]` with
 //! `q_N = min(π/dx, π/dy)`, i.e. wavelengths from 4 to 16 pixels. The band used is returned.
+//!
+//! Only PSD points with power are fitted: `C > ROUND_OFF_FLOOR · max C` (the largest value of
+//! the table). A double-precision FFT leaves round-off of relative power ~1e-32 in modes the
+//! surface has none in (beyond a synthetic surface's short-wavelength cutoff), and a log–log
+//! fit through them would report that round-off's slope; a surface without such modes (the
+//! exact spectrum of a synthetic surface, or any measured one) has none so far below its peak.
 
 use super::error::SpectralError;
 use super::psd::{radial_psd, PsdTable, Window};
@@ -13,6 +19,12 @@ use crate::surface::HeightMap;
 
 /// Least-squares fits need at least this many PSD points in the band.
 pub const MIN_FIT_POINTS: usize = 3;
+
+/// PSD points at or below this share of the table's largest value are round-off, not power
+/// (module docs): 10 orders of magnitude above the round-off of a double-precision FFT, 20
+/// below the peak — a self-affine spectrum spans fewer decades on any grid up to the largest
+/// synthetic one (`C ∝ q⁻⁴` over 8192 wavenumbers: 16 decades).
+pub const ROUND_OFF_FLOOR: f64 = 1e-20;
 
 /// Band and window of a Hurst fit.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -66,7 +78,8 @@ pub fn hurst_exponent_of(
     fit_power_law(psd, q_min, q_max)
 }
 
-/// Fits `log C = a + s log q` to the rows of `psd` with `q_min ≤ q ≤ q_max` (rad/m).
+/// Fits `log C = a + s log q` to the rows of `psd` with `q_min ≤ q ≤ q_max` (rad/m) that have
+/// power (`C > ROUND_OFF_FLOOR · max C`, module docs).
 pub fn fit_power_law(psd: &PsdTable, q_min: f64, q_max: f64) -> Result<HurstFit, SpectralError> {
     if !(q_min.is_finite() && q_min > 0.0) {
         return Err(SpectralError::InvalidOption {
@@ -82,11 +95,12 @@ pub fn fit_power_law(psd: &PsdTable, q_min: f64, q_max: f64) -> Result<HurstFit,
             expected: format!("a finite wavenumber > q_min = {q_min} rad/m"),
         });
     }
+    let floor = ROUND_OFF_FLOOR * psd.c.iter().copied().fold(0.0, f64::max);
     let points: Vec<(f64, f64)> = psd
         .q
         .iter()
         .zip(&psd.c)
-        .filter(|(q, c)| **q >= q_min && **q <= q_max && **c > 0.0)
+        .filter(|(q, c)| **q >= q_min && **q <= q_max && **c > floor)
         .map(|(q, c)| (q.ln(), c.ln()))
         .collect();
     let n = points.len();
