@@ -20,6 +20,8 @@ mod preprocess;
 mod synthetic;
 mod twin;
 mod twin_band;
+mod twin_self_affine;
+mod twin_spectrum;
 
 pub use measured::FileSpec;
 pub use synthetic::{AnisotropySpec, SyntheticSpec};
