@@ -341,26 +341,55 @@ def synthetic_surface(
 def synthetic_twin(
     measured: Sequence[Tuple[np.ndarray, float, float]],
     *,
-    sq: float,
-    grid: Union[int, Tuple[int, int]],
-    size: Union[float, Tuple[float, float]],
+    sq: Union[float, str],
+    grid: Union[None, int, Tuple[int, int]] = None,
+    size: Union[None, float, Tuple[float, float]] = None,
     seed: int = 1,
     short_wavelength_cutoff: Optional[float] = None,
     threshold: float = 0.2,
+    spectrum: str = "self_affine",
+    extrapolation: str = "zero",
 ) -> Tuple[np.ndarray, float, float, Dict[str, Any]]:
-    """A synthetic twin of measured surfaces (complete maps ``(heights, dx, dy)``, m): their
-    texture (correlation lengths at ACF ``threshold``, Hurst exponent) fitted against Sq and
-    predicted at ``sq`` (m), generated on ``grid`` over ``size`` (m). Returns
-    ``(heights, dx, dy, prediction)``."""
+    """A synthetic twin of measured surfaces (complete maps ``(heights, dx, dy)``, m) on ``grid``
+    over ``size`` (m), at Sq ``sq`` (m, or ``"measured"``). Returns ``(heights, dx, dy, info)``.
+
+    ``spectrum="self_affine"`` (default): their texture (correlation lengths at ACF ``threshold``,
+    Hurst exponent) fitted against Sq and predicted at ``sq`` (``"measured"``: the maps'
+    geometric mean Sq); ``grid`` and ``size`` are required.
+
+    ``spectrum="measured"``: their measured 2-D power spectrum itself (Hann-window periodogram,
+    averaged over the maps and interpolated onto the twin's wavevectors) with random phases
+    from ``seed``, scaled to ``sq`` (``"measured"``: the maps' quadratic mean Sq); ``grid`` and
+    ``size`` default to the first map's. ``extrapolation`` fills the wavelengths shorter than
+    the maps' sampling: ``"zero"`` or ``"power_law"`` (each map's power law over the widest band
+    where its radial PSD is one, between 2 pixels and half its shorter side). The same numerics
+    as a study's ``twin: {spectrum: measured}``."""
     maps = [(_heights(f"measured[{i}]", h), *_spacing(dx, dy)) for i, (h, dx, dy) in enumerate(measured)]
-    nx, ny = (grid, grid) if isinstance(grid, (int, np.integer)) else grid
+    nx_ny = None if grid is None else ((grid, grid) if isinstance(grid, (int, np.integer)) else grid)
+    checked_grid = None if nx_ny is None else (_integer("grid[0]", nx_ny[0], 2), _integer("grid[1]", nx_ny[1], 2))
+    checked_size = None if size is None else _pair("size", size, "m")
+    cutoff = None if short_wavelength_cutoff is None else _number("short_wavelength_cutoff", short_wavelength_cutoff, "m")
+    target = None if isinstance(sq, str) and sq == "measured" else _number("sq", sq, "m")
+    if spectrum == "measured":
+        if not isinstance(extrapolation, str):
+            raise TypeError(f"extrapolation: expected 'zero' or 'power_law', got {type(extrapolation).__name__}")
+        return _native.spectrum_twin(maps, target, checked_grid, checked_size, _integer("seed", seed, 0), cutoff, extrapolation)
+    if spectrum != "self_affine":
+        raise ValueError(f"spectrum: expected 'self_affine' or 'measured', got {spectrum!r}")
+    if extrapolation != "zero":
+        raise ValueError("extrapolation: applies to spectrum='measured' only")
+    if checked_grid is None or checked_size is None:
+        raise ValueError("grid, size: required for a self-affine twin (spectrum='measured' defaults to the first map's)")
+    if target is None:
+        sqs = [float(np.sqrt(np.mean((h - h.mean()) ** 2))) for h, _, _ in maps]
+        target = float(np.exp(np.mean(np.log(sqs)))) if sqs else 1.0
     return _native.synthetic_twin(
         maps,
-        _number("sq", sq, "m"),
-        (_integer("grid[0]", nx, 2), _integer("grid[1]", ny, 2)),
-        _pair("size", size, "m"),
+        target,
+        checked_grid,
+        checked_size,
         _integer("seed", seed, 0),
-        None if short_wavelength_cutoff is None else _number("short_wavelength_cutoff", short_wavelength_cutoff, "m"),
+        cutoff,
         _number("threshold", threshold, "1"),
     )
 

@@ -10,6 +10,7 @@
 mod contact;
 mod friction;
 mod guard;
+mod spectrum_twin;
 mod study;
 mod surface;
 mod topography;
@@ -23,6 +24,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     study::register(m)?;
     topography::register(m)?;
     surface::register(m)?;
+    spectrum_twin::register(m)?;
     contact::register(m)?;
     friction::register(m)?;
     Ok(())
