@@ -288,10 +288,10 @@ impl TwinSpec {
                     location: self.sq.location(),
                     field: format!("twin.{missing}"),
                     message: if required {
-                        format!(
+                        String::from(
                             "is required: a self-affine twin needs `grid: [nx, ny]` and `size: \
                              [Lx, Ly]` (a spectrum twin, `spectrum: measured`, defaults to the \
-                             first file's)"
+                             first file's)",
                         )
                     } else {
                         String::from(
