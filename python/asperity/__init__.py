@@ -27,7 +27,9 @@ study would flag, raises a :class:`PlausibilityWarning`. Every computation relea
 
 from __future__ import annotations
 
-from typing import Any, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
 
 from . import _args, _native
 from ._args import F64
@@ -111,16 +113,59 @@ def synthetic_twin(
     measured: Sequence[Union[Topography, Tuple[F64, float, float]]],
     *,
     sq: Union[float, str],
-    grid: Union[int, Tuple[int, int]],
-    size: Union[float, str, Tuple[Union[float, str], Union[float, str]]],
+    grid: Union[None, int, Tuple[int, int]] = None,
+    size: Union[None, float, str, Tuple[Union[float, str], Union[float, str]]] = None,
     seed: int = 1,
     short_wavelength_cutoff: Optional[Union[float, str]] = None,
     threshold: float = 0.2,
+    spectrum: str = "self_affine",
+    extrapolation: str = "zero",
 ) -> Tuple[F64, float, float, Dict[str, Any]]:
     """A synthetic twin of measured surfaces (complete maps: :class:`Topography` objects or
-    ``(heights, dx, dy)`` in m): their texture (correlation lengths at ACF ``threshold``, Hurst
-    exponent) fitted against Sq and predicted at ``sq`` (m), generated on ``grid`` over ``size``
-    (m). Returns ``(heights, dx, dy, prediction)``."""
+    ``(heights, dx, dy)`` in m) on ``grid`` over ``size`` (m), at Sq ``sq`` (m, or
+    ``"measured"``). Returns ``(heights, dx, dy, info)``.
+
+    ``spectrum="self_affine"`` (default): their texture (correlation lengths at ACF ``threshold``,
+    Hurst exponent) fitted against Sq and predicted at ``sq`` (``"measured"``: the maps'
+    geometric mean Sq); ``grid`` and ``size`` are required.
+
+    ``spectrum="measured"``: their measured 2-D power spectrum itself (Hann-window periodogram,
+    averaged over the maps and interpolated onto the twin's wavevectors) with random phases
+    from ``seed``, scaled to ``sq`` (``"measured"``: the maps' quadratic mean Sq); ``grid`` and
+    ``size`` default to the first map's. ``extrapolation`` fills the wavelengths shorter than
+    the maps' sampling: ``"zero"`` or ``"power_law"`` (each map's power law over the widest band
+    where its radial PSD is one, between 2 pixels and half its shorter side). The same numerics
+    as a study's ``twin: {spectrum: measured}``."""
+    maps = _twin_maps(measured)
+    checked_grid = None if grid is None else _args.grid("grid", grid)
+    checked_size = None if size is None else _args.pair("size", size, _args.LENGTH)
+    cutoff = _args.optional_quantity("short_wavelength_cutoff", short_wavelength_cutoff, _args.LENGTH)
+    target = None if isinstance(sq, str) and sq == "measured" else _args.quantity("sq", sq, _args.LENGTH)
+    kind = _args.choice("spectrum", spectrum, ["self_affine", "measured"])
+    tail = _args.choice("extrapolation", extrapolation, ["zero", "power_law"])
+    checked_seed = _args.integer("seed", seed, 0, "a seed")
+    if kind == "measured":
+        return _native.spectrum_twin(maps, target, checked_grid, checked_size, checked_seed, cutoff, tail)
+    if tail != "zero":
+        raise ValueError("extrapolation: applies to spectrum='measured' only")
+    if checked_grid is None or checked_size is None:
+        raise ValueError("grid, size: required for a self-affine twin (spectrum='measured' defaults to the first map's)")
+    if target is None:
+        sqs = [float(np.sqrt(np.mean((h - h.mean()) ** 2))) for h, _, _ in maps]
+        target = float(np.exp(np.mean(np.log(sqs)))) if sqs else 1.0
+    return _native.synthetic_twin(
+        maps,
+        target,
+        checked_grid,
+        checked_size,
+        checked_seed,
+        cutoff,
+        _args.quantity("threshold", threshold, _args.NUMBER, maximum=1.0),
+    )
+
+
+def _twin_maps(measured: Sequence[Union[Topography, Tuple[F64, float, float]]]) -> List[Tuple[F64, float, float]]:
+    """The measured maps of a twin as ``(heights, dx, dy)``, each checked."""
     if isinstance(measured, (str, bytes, Topography)) or not isinstance(measured, Sequence):
         raise TypeError(f"measured: expected a list of Topography objects or (heights, dx, dy) tuples, got {_args.show(measured)}")
     maps = []
@@ -132,13 +177,5 @@ def synthetic_twin(
             maps.append((t.heights, t.dx, t.dy))
         else:
             raise TypeError(f"measured[{i}]: expected a Topography or (heights, dx, dy), got {_args.show(m)}")
-    return _native.synthetic_twin(
-        maps,
-        _args.quantity("sq", sq, _args.LENGTH),
-        _args.grid("grid", grid),
-        _args.pair("size", size, _args.LENGTH),
-        _args.integer("seed", seed, 0, "a seed"),
-        _args.optional_quantity("short_wavelength_cutoff", short_wavelength_cutoff, _args.LENGTH),
-        _args.quantity("threshold", threshold, _args.NUMBER, maximum=1.0),
-    )
+    return maps
 

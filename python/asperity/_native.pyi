@@ -71,6 +71,15 @@ def synthetic_twin(
     short_wavelength_cutoff: Optional[float] = ...,
     threshold: float = ...,
 ) -> Tuple[F64, float, float, Dict[str, Any]]: ...
+def spectrum_twin(
+    measured: Sequence[Tuple[F64, float, float]],
+    sq: Optional[float],
+    grid: Optional[Tuple[int, int]],
+    size: Optional[Tuple[float, float]],
+    seed: int,
+    short_wavelength_cutoff: Optional[float] = ...,
+    extrapolation: str = ...,
+) -> Tuple[F64, float, float, Dict[str, Any]]: ...
 def material(name: str) -> Dict[str, Any]: ...
 def contact(
     lower: F64,

@@ -12,6 +12,7 @@ mod friction;
 mod guard;
 mod laws;
 mod row;
+mod spectrum_twin;
 mod study;
 mod surface;
 mod topography;
@@ -26,6 +27,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     study::register(m)?;
     topography::register(m)?;
     surface::register(m)?;
+    spectrum_twin::register(m)?;
     contact::register(m)?;
     friction::register(m)?;
     laws::register(m)?;

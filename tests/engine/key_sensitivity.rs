@@ -21,6 +21,9 @@ nodes:
   t:
     surface:
       twin: {of: [m.txt], sq: measured, grid: [32, 32], size: [0.1 mm, 0.1 mm], seed: 1}
+  u:
+    surface:
+      twin: {of: [m.txt], spectrum: measured, sq: measured, seed: 1}
   c:
     contact:
       lower: s
@@ -85,6 +88,10 @@ const CASES: &[(&str, &str, &str)] = &[
         "form_degree: 1, pixel_size: 2 um, override_file_spacing: true}",
     ),
     ("t", "of: [m.txt]", "of: [n.txt]"),
+    ("t", "of: [m.txt], sq", "of: [m.txt], spectrum: measured, sq"),
+    ("u", "spectrum: measured", "spectrum: measured, extrapolation: power_law"),
+    ("u", "spectrum: measured", "spectrum: measured, grid: [8, 8], size: [32 um, 32 um]"),
+    ("u", "sq: measured, seed: 1}", "sq: measured, seed: 2}"),
     ("t", "of: [m.txt]", "of: [m.txt, n.txt]"),
     ("t", "sq: measured", "sq: 1 um"),
     ("t", "grid: [32, 32], size: [0.1 mm, 0.1 mm], seed: 1}", "grid: [32, 64], size: [0.1 mm, 0.1 mm], seed: 1}"),

@@ -11,4 +11,5 @@ mod friction_ploughing;
 mod nodes_common;
 mod surface_functional_node;
 mod surface_node;
+mod surface_spectrum_twin;
 mod validity;

@@ -411,7 +411,7 @@ fn several_friction_nodes_share_a_mu_s_by_friction_model_figure() {
 
 /// The shipped twin comparison: the report pairs each measured surface with the twin made from
 /// it and draws one twin-against-measured figure per quantity and friction node pair, whose
-/// values table holds one row per file with the twin's mean, std and seed count.
+/// values table holds one row per file and twin kind with the twin's mean, std and seed count.
 #[test]
 fn the_twin_comparison_study_draws_measured_against_twin() {
     let (cache, results) = run_study_file("twins", "studies/twin-comparison.yaml");
@@ -425,14 +425,25 @@ fn the_twin_comparison_study_draws_measured_against_twin() {
     // stick statistical, full stick per summit and per spot, junction shear).
     assert_eq!(section.matches("<figcaption>").count(), 9, "{section}");
     assert!(section.contains("(per_spot, junction_shear): node &#39;twin_junction_shear&#39;"));
-    // One row per file: opd and al3d, each over four seeds.
-    assert_eq!(section.matches("<td>file = opd</td>").count(), 9);
+    // One row per file and twin kind: opd's self-affine and spectrum twins, al3d's spectrum
+    // twin, each over four seeds.
+    for group in [
+        "opd, spectrum = self_affine",
+        "opd, spectrum = measured",
+        "al3d, spectrum = measured",
+    ] {
+        assert_eq!(
+            section.matches(&format!("<td>file = {group}</td>")).count(),
+            9,
+            "{group}"
+        );
+    }
     assert_eq!(
         section.matches("<td>4</td>").count(),
-        18,
+        27,
         "n = 4 seeds per point"
     );
     let summary = read(&results.join("summary_per_file.parquet"));
-    assert_eq!(summary.height(), 2);
+    assert_eq!(summary.height(), 3);
     let _ = std::fs::remove_dir_all(results.parent().unwrap());
 }

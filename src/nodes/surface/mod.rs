@@ -23,6 +23,8 @@ mod preprocess;
 mod synthetic;
 mod twin;
 mod twin_band;
+mod twin_self_affine;
+mod twin_spectrum;
 
 pub use height_unit::{apply_height_unit, height_unit_rule, HeightUnitSource};
 pub use measured::FileSpec;

@@ -9,28 +9,31 @@
 //! laws of Sq and the Hurst exponent as linear in ln Sq across the files
 //! (`surface::twins::fit_twin_model`); a periodic synthetic surface is generated at the requested
 //! Sq — or at the files' (geometric mean) Sq with `sq: measured` — with the predicted statistics.
-//! Extrapolation, clamping and the fit's quality are reported as columns ([`twin_metrics`]).
+//! Extrapolation, clamping and the fit's quality are reported as columns
+//! ([`super::twin_self_affine`]).
+//!
+//! With `spectrum: measured` the twin reproduces the files' measured 2-D power spectrum instead
+//! of a fitted model ([`super::twin_spectrum`]).
+//!
+//! This file holds the spec, its resolution, the key and the dispatch to either kind.
 
 use serde::Deserialize;
 
 use crate::engine::node::NodeError;
 use crate::engine::study::{FromParamValue, Param, ResolveContext, SpecError};
 use crate::engine::value::{Field, ParamValue};
-use std::f64::consts::PI;
 
-use crate::surface::spectral::{HurstFitOptions, ISO_ACF_THRESHOLD};
 use crate::surface::synthetic::MIN_SQ;
-use crate::surface::twins::{
-    fit_twin_model, format_micrometres, measure_texture, synthetic_twin, CorrelationMethod,
-    MeasuredTexture, SyntheticTwin, TextureOptions, TwinError, TwinGrid, TwinModel, TwinWarning,
-};
+use crate::surface::twins::{format_micrometres, Extrapolation, TwinGrid};
 use crate::surface::HeightMap;
 use crate::units::{Dimension, Length, Quantity};
 
-use super::measured::{MeasuredFile, MeasuredSource};
+use super::measured::MeasuredFile;
 use super::preprocess::{PreprocessDefaults, PreprocessSpec, Preprocessing};
 use super::synthetic::{positive_length, MAX_GRID_SIDE};
-use super::twin_band::{band_fields, band_of, HurstBand};
+use super::twin_band::HurstBand;
+use super::twin_self_affine;
+use super::twin_spectrum::{self, ExtrapolationChoice, TwinSpectrum};
 use super::{SurfaceSource, SurfaceTask};
 
 /// `surface: {twin: {...}}`.
@@ -53,13 +56,26 @@ pub struct TwinSpec {
     /// given band must give 0 < H ≤ 1.5.
     #[serde(default)]
     pub hurst_band: Option<Param<HurstBand>>,
+    /// Which spectrum the twin reproduces: `self_affine` (default), the self-affine model fitted
+    /// to the files, or `measured`, the files' measured 2-D power spectrum itself (averaged over
+    /// the files, random phases from `seed`), for surfaces that are not self-affine.
+    #[serde(default)]
+    pub spectrum: Option<Param<TwinSpectrum>>,
+    /// `spectrum: measured` only: the spectrum at wavelengths shorter than the files' sampling,
+    /// `zero` (default) or `power_law` (each file's power law fitted over its Hurst band).
+    #[serde(default)]
+    pub extrapolation: Option<Param<ExtrapolationChoice>>,
     /// Target Sq of the twin (length > 0), or `measured`: the geometric mean Sq of the
-    /// preprocessed files (the twin of one file at that file's Sq).
+    /// preprocessed files (the twin of one file at that file's Sq); for `spectrum: measured`
+    /// their quadratic mean, the Sq of their averaged spectrum.
     pub sq: Param<TwinSq>,
-    /// Grid points `[nx, ny]` of the twin.
-    pub grid: [Param<usize>; 2],
-    /// Physical size `[Lx, Ly]` of the twin.
-    pub size: [Param<Quantity<Length>>; 2],
+    /// Grid points `[nx, ny]` of the twin. Required for a self-affine twin; a spectrum twin
+    /// without `grid` and `size` has the first file's grid and size after preprocessing.
+    #[serde(default)]
+    pub grid: Option<[Param<usize>; 2]>,
+    /// Physical size `[Lx, Ly]` of the twin (with `grid`).
+    #[serde(default)]
+    pub size: Option<[Param<Quantity<Length>>; 2]>,
     /// Optional short-wavelength cutoff of the twin's spectrum.
     #[serde(default)]
     pub short_wavelength_cutoff: Option<Param<Quantity<Length>>>,
@@ -107,12 +123,29 @@ impl schemars::JsonSchema for TwinSq {
 /// A resolved twin.
 #[derive(Debug, Clone)]
 pub(crate) struct TwinSource {
-    measured: Vec<MeasuredFile>,
-    preprocessing: Preprocessing,
+    pub(super) measured: Vec<MeasuredFile>,
+    pub(super) preprocessing: Preprocessing,
     /// `[λ_short, λ_long]` of the Hurst fit (m); `None`: found per file ([`band_of`]).
-    hurst_band: Option<[f64; 2]>,
-    sq: TwinSq,
-    grid: TwinGrid,
+    pub(super) hurst_band: Option<[f64; 2]>,
+    /// `None`: the self-affine twin; else the measured spectrum with this extrapolation.
+    pub(super) spectrum: Option<Extrapolation>,
+    pub(super) sq: TwinSq,
+    /// `None`: the first file's grid and size (spectrum twins only).
+    pub(super) size: Option<TwinSize>,
+    /// m
+    pub(super) short_wavelength_cutoff: Option<f64>,
+    pub(super) seed: u64,
+}
+
+/// Grid points and size of a twin.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct TwinSize {
+    pub nx: usize,
+    pub ny: usize,
+    /// m
+    pub lx: f64,
+    /// m
+    pub ly: f64,
 }
 
 impl TwinSpec {
@@ -142,10 +175,11 @@ impl TwinSpec {
                 "twin.preprocess",
                 PreprocessDefaults::TWIN,
             )?;
+        let spectrum = self.spectrum(ctx)?;
         let sq = ctx.resolve(&self.sq, "twin.sq")?;
-        let grid = self.grid(ctx)?;
-        if let TwinSq::Given(v) = sq {
-            let max_sq = grid.lx.min(grid.ly);
+        let size = self.size(ctx, spectrum.is_none())?;
+        if let (TwinSq::Given(v), Some(size)) = (sq, size) {
+            let max_sq = size.lx.min(size.ly);
             if !(MIN_SQ..=max_sq).contains(&v) {
                 return Err(SpecError {
                     location: self.sq.location(),
@@ -157,15 +191,64 @@ impl TwinSpec {
                 });
             }
         }
+        let hurst_band = self.hurst_band(ctx)?;
+        if let (Some(Extrapolation::Zero), Some(param)) = (spectrum, &self.hurst_band) {
+            if hurst_band.is_some() {
+                return Err(SpecError {
+                    location: param.location(),
+                    field: String::from("twin.hurst_band"),
+                    message: String::from(
+                        "a spectrum twin fits no Hurst exponent unless `extrapolation:                          power_law` (the band of its tail): remove it or set that",
+                    ),
+                });
+            }
+        }
         Ok(SurfaceTask {
             source: SurfaceSource::Twin(TwinSource {
                 measured,
                 preprocessing,
-                hurst_band: self.hurst_band(ctx)?,
+                hurst_band,
+                spectrum,
                 sq,
-                grid,
+                size,
+                short_wavelength_cutoff: self
+                    .short_wavelength_cutoff
+                    .as_ref()
+                    .map(|p| {
+                        Ok(ctx
+                            .resolve_checked(p, "twin.short_wavelength_cutoff", positive_length)?
+                            .si())
+                    })
+                    .transpose()?,
+                seed: ctx.resolve(&self.seed, "twin.seed")?,
             }),
         })
+    }
+
+    /// `None` for the self-affine twin, else the measured spectrum's extrapolation (`zero` by
+    /// default); `extrapolation` on a self-affine twin is an error.
+    fn spectrum(&self, ctx: &ResolveContext<'_>) -> Result<Option<Extrapolation>, SpecError> {
+        let kind = match &self.spectrum {
+            Some(p) => ctx.resolve(p, "twin.spectrum")?,
+            None => TwinSpectrum::SelfAffine,
+        };
+        let extrapolation = self
+            .extrapolation
+            .as_ref()
+            .map(|p| Ok((p.location(), ctx.resolve(p, "twin.extrapolation")?.0)))
+            .transpose()?;
+        match (kind, extrapolation) {
+            (TwinSpectrum::Measured, e) => Ok(Some(e.map_or(Extrapolation::Zero, |e| e.1))),
+            (TwinSpectrum::SelfAffine, None) => Ok(None),
+            (TwinSpectrum::SelfAffine, Some((location, _))) => Err(SpecError {
+                location,
+                field: String::from("twin.extrapolation"),
+                message: String::from(
+                    "applies to a spectrum twin only (`spectrum: measured`); a self-affine twin \
+                     extends its fitted model to every wavelength",
+                ),
+            }),
+        }
     }
 
     /// `[λ_short, λ_long]`, both > 0, ascending; `None` for `auto` or no field.
@@ -190,7 +273,35 @@ impl TwinSpec {
         Ok(Some([short, long]))
     }
 
-    fn grid(&self, ctx: &ResolveContext<'_>) -> Result<TwinGrid, SpecError> {
+    /// `grid` and `size`: both, or neither when not `required` (the first file's).
+    fn size(
+        &self,
+        ctx: &ResolveContext<'_>,
+        required: bool,
+    ) -> Result<Option<TwinSize>, SpecError> {
+        let (grid, size) = match (&self.grid, &self.size) {
+            (Some(grid), Some(size)) => (grid, size),
+            (None, None) if !required => return Ok(None),
+            (grid, _) => {
+                let missing = if grid.is_none() { "grid" } else { "size" };
+                return Err(SpecError {
+                    location: self.sq.location(),
+                    field: format!("twin.{missing}"),
+                    message: if required {
+                        String::from(
+                            "is required: a self-affine twin needs `grid: [nx, ny]` and `size: \
+                             [Lx, Ly]` (a spectrum twin, `spectrum: measured`, defaults to the \
+                             first file's)",
+                        )
+                    } else {
+                        String::from(
+                            "give both `grid` and `size`, or neither (the first file's grid and \
+                             size)",
+                        )
+                    },
+                });
+            }
+        };
         let side = |n: &usize| {
             if (2..=MAX_GRID_SIDE).contains(n) {
                 Ok(())
@@ -203,41 +314,37 @@ impl TwinSpec {
         let length = |p: &Param<Quantity<Length>>, field: &str| {
             Ok(ctx.resolve_checked(p, field, positive_length)?.si())
         };
-        Ok(TwinGrid {
-            nx: ctx.resolve_checked(&self.grid[0], "twin.grid[0]", side)?,
-            ny: ctx.resolve_checked(&self.grid[1], "twin.grid[1]", side)?,
-            lx: length(&self.size[0], "twin.size[0]")?,
-            ly: length(&self.size[1], "twin.size[1]")?,
-            short_wavelength_cutoff: self
-                .short_wavelength_cutoff
-                .as_ref()
-                .map(|p| length(p, "twin.short_wavelength_cutoff"))
-                .transpose()?,
-            seed: ctx.resolve(&self.seed, "twin.seed")?,
-        })
+        Ok(Some(TwinSize {
+            nx: ctx.resolve_checked(&grid[0], "twin.grid[0]", side)?,
+            ny: ctx.resolve_checked(&grid[1], "twin.grid[1]", side)?,
+            lx: length(&size[0], "twin.size[0]")?,
+            ly: length(&size[1], "twin.size[1]")?,
+        }))
     }
 }
 
 impl TwinSource {
     /// The key fields of a twin: the measured files by content, their preprocessing, the target
     /// Sq and the twin's grid and seed, in SI.
+    /// A self-affine twin has no `spectrum` field (its key is the one it had before spectrum
+    /// twins existed); a spectrum twin adds `spectrum` and `extrapolation`, and `twin_grid:
+    /// measured` instead of the grid and size when it takes the first file's.
     pub(super) fn key_fields(&self) -> Vec<Field> {
         let Self {
             measured,
             preprocessing,
             hurst_band,
+            spectrum,
             sq,
-            grid,
-        } = self;
-        let TwinGrid {
-            nx,
-            ny,
-            lx,
-            ly,
+            size,
             short_wavelength_cutoff,
             seed,
-        } = *grid;
+        } = self;
         let mut fields = vec![Field::text("source", "twin")];
+        if let Some(extrapolation) = spectrum {
+            fields.push(Field::text("spectrum", "measured"));
+            fields.push(Field::text("extrapolation", extrapolation.name()));
+        }
         fields.extend(preprocessing.key_fields());
         for (i, m) in measured.iter().enumerate() {
             fields.push(Field::text(format!("twin_of_{i}_blake3"), m.content_hash()));
@@ -250,263 +357,65 @@ impl TwinSource {
             TwinSq::Given(v) => Field::float("sq_target", *v, Dimension::Length),
             TwinSq::Measured => Field::text("sq_target", "measured"),
         });
-        fields.extend([
-            Field::int("nx", nx as i64),
-            Field::int("ny", ny as i64),
-            Field::float("lx", lx, Dimension::Length),
-            Field::float("ly", ly, Dimension::Length),
-            Field::int("seed", seed as i64),
-        ]);
+        match size {
+            Some(TwinSize { nx, ny, lx, ly }) => fields.extend([
+                Field::int("nx", *nx as i64),
+                Field::int("ny", *ny as i64),
+                Field::float("lx", *lx, Dimension::Length),
+                Field::float("ly", *ly, Dimension::Length),
+            ]),
+            None => fields.push(Field::text("twin_grid", "measured")),
+        }
+        fields.push(Field::int("seed", *seed as i64));
         if let Some(c) = short_wavelength_cutoff {
             fields.push(Field::float(
                 "short_wavelength_cutoff",
-                c,
+                *c,
                 Dimension::Length,
             ));
         }
         fields
     }
 
-    /// Measures, fits and generates; returns the twin, its extra metrics and the sentences that
-    /// flag its row (a file's height unit assumed).
+    /// Generates the twin; returns it, its extra metrics and the sentences that flag its row (a
+    /// file's height unit assumed, a spectrum scaled to its Sq).
     pub(super) fn generate(&self) -> Result<(HeightMap, Vec<Field>, Vec<String>), NodeError> {
-        let mut textures = Vec::with_capacity(self.measured.len());
-        let mut bands = Vec::with_capacity(self.measured.len());
-        let mut flags = Vec::new();
-        for file in &self.measured {
-            let source = MeasuredSource::new(file.clone(), self.preprocessing);
-            let loaded = source.load()?;
-            flags.extend(loaded.flag);
-            let map = loaded.map;
-            // An ACF that does not decay is the more basic fault (and names its fix): report
-            // it rather than the band search's failure.
-            let band = band_of(&map, self.hurst_band, &self.preprocessing, file.path()).map_err(
-                |band_error| match measure_texture(&map, &TextureOptions::default()) {
-                    Err(e @ TwinError::NoDecay { .. }) => texture_error(&e, file),
-                    _ => band_error,
+        match (self.spectrum, self.size) {
+            (Some(extrapolation), _) => twin_spectrum::generate(self, extrapolation),
+            (None, Some(size)) => twin_self_affine::generate(
+                self,
+                TwinGrid {
+                    nx: size.nx,
+                    ny: size.ny,
+                    lx: size.lx,
+                    ly: size.ly,
+                    short_wavelength_cutoff: self.short_wavelength_cutoff,
+                    seed: self.seed,
                 },
-            )?;
-            let [short, long] = band.band;
-            let options = TextureOptions {
-                hurst: HurstFitOptions {
-                    q_min: Some(2.0 * PI / long),
-                    q_max: Some(2.0 * PI / short),
-                    ..HurstFitOptions::default()
-                },
-                ..TextureOptions::default()
-            };
-            let texture = measure_texture(&map, &options).map_err(|e| texture_error(&e, file))?;
-            if band.found.is_none() {
-                check_hurst(&texture, band.band, file)?;
-            }
-            textures.push(texture);
-            bands.push(band);
+            ),
+            (None, None) => Err(NodeError::new(
+                "twin: a self-affine twin needs `grid` and `size`",
+            )),
         }
-        let model =
-            fit_twin_model(&textures).map_err(|e| NodeError::new(format!("twin fit: {e}")))?;
-        let sq = match self.sq {
-            TwinSq::Given(v) => v,
-            TwinSq::Measured => model.sq_reference,
-        };
-        let twin = synthetic_twin(&model, sq, &self.grid, ISO_ACF_THRESHOLD)
-            .map_err(|e| generation_error(&e))?;
-        let mut metrics = twin_metrics(&textures, &model, &twin);
-        let names: Vec<String> = self
+    }
+
+    /// Memory of the largest step: measured files are read one at a time, but a spectrum twin
+    /// keeps each file's half periodogram (4 bytes per point, a sixteenth of a file's estimate)
+    /// until the twin is made; the twin's grid is the first file's when not given.
+    pub(super) fn memory_estimate(&self) -> u64 {
+        let files: Vec<u64> = self
             .measured
             .iter()
-            .map(|f| {
-                f.path()
-                    .file_name()
-                    .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
-            })
-            .collect();
-        metrics.extend(band_fields(&bands, self.hurst_band.is_some(), &names));
-        Ok((twin.surface, metrics, flags))
-    }
-
-    /// Memory of the largest step (measured files are read one at a time).
-    pub(super) fn memory_estimate(&self) -> u64 {
-        let synthetic = (self.grid.nx as u64) * (self.grid.ny as u64) * 8 * 6;
-        self.measured
-            .iter()
             .map(MeasuredFile::memory_estimate)
-            .max()
-            .unwrap_or(0)
-            .max(synthetic)
-    }
-}
-
-/// A texture measurement failed: the message names the file and, for an ACF that does not decay,
-/// the study field that fixes it.
-fn texture_error(e: &TwinError, file: &MeasuredFile) -> NodeError {
-    let path = file.path().display();
-    match e {
-        TwinError::NoDecay {
-            axis,
-            acf_reached,
-            half_map,
-            ..
-        } => NodeError::new(format!(
-            "measuring {path}: the autocorrelation along {axis} stays above {:.2} over half the \
-             map ({}), so the map does not show the texture's correlation along {axis}; remove \
-             waviness and form with `preprocess: {{l_filter: {}}}` (a fifth of the map side) or \
-             measure a larger area",
-            acf_reached,
-            format_micrometres(*half_map),
-            format_micrometres(0.4 * half_map)
-        )),
-        other => NodeError::new(format!("measuring {path}: {other}")),
-    }
-}
-
-/// A measured Hurst exponent outside (0, 1.5] over a band the study gave means that band is not
-/// self-affine (noise flattens the spectrum, or a filter steepens it): the node fails naming the
-/// band and the fix. (A found band has passed the search's own criterion instead.)
-fn check_hurst(
-    texture: &MeasuredTexture,
-    [short, long]: [f64; 2],
-    file: &MeasuredFile,
-) -> Result<(), NodeError> {
-    if texture.hurst > 0.0 && texture.hurst <= 1.5 {
-        return Ok(());
-    }
-    Err(NodeError::new(format!(
-        "measuring {}: the PSD between the wavelengths {} and {} falls with a Hurst exponent of \
-         {:.2} (R² {:.2}), outside (0, 1.5]: the surface is not self-affine in that band; set \
-         `hurst_band: [short, long]` where its spectrum falls as a power law (above the S-filter \
-         and the instrument's noise, below the L-filter)",
-        file.path().display(),
-        format_micrometres(short),
-        format_micrometres(long),
-        texture.hurst,
-        texture.hurst_r_squared
-    )))
-}
-
-/// A twin that does not fit its grid names the `size` and `grid` that would hold it.
-fn generation_error(e: &TwinError) -> NodeError {
-    match e {
-        TwinError::GridTooSmall {
-            correlation_length_x,
-            correlation_length_y,
-            suggested_size,
-            suggested_grid,
-            ..
-        } => NodeError::new(format!(
-            "twin: the predicted correlation lengths {} (x) and {} (y) do not fit the twin's \
-             periodic grid; use `size: [{}, {}]` with `grid: [{}, {}]` ({} correlation lengths per \
-             side, at least {} points per correlation length)",
-            format_micrometres(*correlation_length_x),
-            format_micrometres(*correlation_length_y),
-            format_micrometres(suggested_size[0]),
-            format_micrometres(suggested_size[1]),
-            suggested_grid[0],
-            suggested_grid[1],
-            crate::surface::twins::SIZE_PER_CORRELATION_LENGTH,
-            crate::surface::twins::POINTS_PER_CORRELATION_LENGTH
-        )),
-        other => NodeError::new(format!("twin: {other}")),
-    }
-}
-
-/// The twin's columns: the predicted statistics, typed warnings and sentences, how the measured
-/// statistics were obtained, the fit's quality and the calibration.
-fn twin_metrics(
-    textures: &[MeasuredTexture],
-    model: &TwinModel,
-    twin: &SyntheticTwin,
-) -> Vec<Field> {
-    let p = &twin.prediction;
-    let n = |name: &'static str, v: f64| Field::float(name, v, Dimension::Dimensionless);
-    let length = |name: &'static str, v: f64| Field::float(name, v, Dimension::Length);
-    let extrapolated = p
-        .warnings
-        .iter()
-        .any(|w| matches!(w, TwinWarning::Extrapolated { .. }));
-    let clamped = p
-        .warnings
-        .iter()
-        .any(|w| matches!(w, TwinWarning::HurstClamped { .. }));
-    let sentences: Vec<String> = p.warnings.iter().map(ToString::to_string).collect();
-    let mut fields = vec![
-        length("twin_sq", p.sq),
-        length("twin_correlation_length_x", p.correlation_length_x),
-        length("twin_correlation_length_y", p.correlation_length_y),
-        n("twin_hurst", p.hurst),
-        n("twin_hurst_predicted", p.hurst_predicted),
-        Field::bool("twin_extrapolated", extrapolated),
-        Field::bool("twin_hurst_clamped", clamped),
-        Field::text("twin_warnings", sentences.join("; ")),
-        length("twin_measured_sq_min", model.sq_range.0),
-        length("twin_measured_sq_max", model.sq_range.1),
-        Field::int("twin_measured_files", model.surfaces as i64),
-        Field::text(
-            "twin_correlation_x_methods",
-            methods(textures, |t| t.method_x),
-        ),
-        Field::text(
-            "twin_correlation_y_methods",
-            methods(textures, |t| t.method_y),
-        ),
-        n(
-            "twin_min_hurst_fit_r2",
-            textures
-                .iter()
-                .map(|t| t.hurst_r_squared)
-                .fold(f64::INFINITY, f64::min),
-        ),
-    ];
-    for (name, fit) in [
-        ("correlation_length_x", model.correlation_length_x.fit),
-        ("correlation_length_y", model.correlation_length_y.fit),
-        ("hurst", model.hurst.fit),
-    ] {
-        fields.push(Field::float(
-            format!("twin_fit_rms_{name}"),
-            fit.rms_residual,
-            Dimension::Dimensionless,
-        ));
-        // R² needs three or more files: the column is empty otherwise.
-        if let Some(r2) = fit.r_squared {
-            fields.push(Field::float(
-                format!("twin_fit_r2_{name}"),
-                r2,
-                Dimension::Dimensionless,
-            ));
+            .collect();
+        let largest = files.iter().copied().max().unwrap_or(0);
+        let twin = match self.size {
+            Some(s) => (s.nx as u64) * (s.ny as u64) * 8 * 6,
+            None => files.first().map_or(0, |f| f / 64 * 8 * 6),
+        };
+        match self.spectrum {
+            None => largest.max(twin),
+            Some(_) => largest.max(twin) + files.iter().map(|f| f / 16).sum::<u64>(),
         }
     }
-    fields.push(Field::int(
-        "twin_calibration_iterations",
-        twin.iterations as i64,
-    ));
-    fields.push(n("twin_calibration_residual", twin.residual));
-    fields
-}
-
-/// How the files' correlation lengths along one axis were obtained, e.g.
-/// `acf_crossing: 2; stretched_exponential_fit: 1 (ACF down to 0.31)`.
-fn methods(
-    textures: &[MeasuredTexture],
-    axis: fn(&MeasuredTexture) -> CorrelationMethod,
-) -> String {
-    let crossing = textures
-        .iter()
-        .filter(|t| axis(t) == CorrelationMethod::AcfCrossing)
-        .count();
-    let reached: Vec<f64> = textures
-        .iter()
-        .filter_map(|t| match axis(t) {
-            CorrelationMethod::StretchedExponential { acf_reached, .. } => Some(acf_reached),
-            CorrelationMethod::AcfCrossing => None,
-        })
-        .collect();
-    let mut text = format!("acf_crossing: {crossing}");
-    if !reached.is_empty() {
-        let highest = reached.iter().copied().fold(0.0, f64::max);
-        text.push_str(&format!(
-            "; stretched_exponential_fit: {} (ACF down to {highest:.2} at most)",
-            reached.len()
-        ));
-    }
-    text
 }

@@ -8,4 +8,5 @@ mod surface_power_law_band;
 mod surface_spectral_statistics;
 mod surface_spectral_synthetic;
 mod surface_spectral_twins;
+mod surface_spectrum_twins;
 mod surface_summits;

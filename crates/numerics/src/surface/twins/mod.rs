@@ -14,13 +14,24 @@
 //!   ([`TwinWarning::HurstClamped`]).
 //! * [`synthetic_twin`] (`generate.rs`): a periodic synthetic surface whose model ACF decays to
 //!   `s` at the predicted `ξx`, `ξy`, or an error naming the size and grid that would hold them.
+//!
+//! The other kind of twin needs no model of the texture: [`spectrum_twin`]
+//! (`spectrum_twin.rs`) reproduces the measured 2-D power spectrum itself
+//! ([`MeasuredSpectrum`], `spectrum.rs`), averaged over the files and resampled onto the twin's
+//! grid, with random phases — for surfaces that are not self-affine over any useful band.
 
 mod fit;
 mod generate;
+mod spectrum;
+mod spectrum_twin;
 mod texture;
 
 pub use fit::fit_twin_model;
 pub use generate::{synthetic_twin, POINTS_PER_CORRELATION_LENGTH, SIZE_PER_CORRELATION_LENGTH};
+pub use spectrum::{
+    check_compatible, MeasuredSpectrum, SpectrumTwinError, SpectrumValue, MAX_BAND_RMS_RATIO,
+};
+pub use spectrum_twin::{spectrum_twin, Extrapolation, ModeTally, SpectrumTwin, SpectrumTwinSpec};
 pub use texture::{
     correlation_length_along, measure_texture, Axis, EXTRAPOLATION_MAX_ACF, MIN_FIT_LAGS,
 };
