@@ -10,6 +10,7 @@
 pub mod artifact;
 pub mod cache;
 pub mod cache_admin;
+mod encoding;
 pub mod execute;
 pub mod hash;
 pub mod node;
