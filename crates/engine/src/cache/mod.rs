@@ -91,7 +91,7 @@ pub struct Payload {
 
 impl Payload {
     /// The array name, if this payload is an array.
-    fn array_name(&self) -> Option<&str> {
+    pub fn array_name(&self) -> Option<&str> {
         match &self.array {
             Some(name) => Some(name),
             None => self

@@ -162,7 +162,7 @@ pub(super) fn decode(
             b'p' => table_files.push(TableFile {
                 name,
                 payload: r.payload()?,
-                rows: r.len()?,
+                rows: r.varint()?,
                 schema: r.table(false)?,
             }),
             other => return Err(format!("unknown table storage {other}")),
@@ -281,18 +281,24 @@ impl<'a> Reader<'a> {
 
     /// A count or length (a varint), at most the bytes left (every item takes at least one byte).
     fn len(&mut self) -> Result<usize, String> {
+        self.varint()?
+            .try_into()
+            .ok()
+            .filter(|&n: &usize| n <= self.0.len())
+            .ok_or_else(|| String::from("length beyond the end"))
+    }
+
+    /// A varint counting something outside the summary (a table file's rows).
+    fn varint(&mut self) -> Result<usize, String> {
         let mut n = 0u64;
         for shift in (0..64).step_by(7) {
             let byte = self.u8()?;
             n |= u64::from(byte & 0x7f) << shift;
             if byte < 0x80 {
-                return usize::try_from(n)
-                    .ok()
-                    .filter(|&n| n <= self.0.len())
-                    .ok_or_else(|| String::from("length beyond the end"));
+                return usize::try_from(n).map_err(|_| String::from("count too large"));
             }
         }
-        Err(String::from("length beyond the end"))
+        Err(String::from("varint longer than 64 bits"))
     }
 
     fn str(&mut self) -> Result<&'a str, String> {
@@ -397,6 +403,15 @@ mod tests {
         flags: Vec<String>,
     }
 
+    /// A table of `rows` rows, for a table file (whose values the summary does not hold).
+    fn long_table(rows: usize) -> Table {
+        let mut table = Table::default();
+        table.push_float("x", Dimension::Length, vec![0.5; rows]);
+        table.push_int("ix", vec![3; rows]);
+        table.push_text("note", vec![String::new(); rows]);
+        table
+    }
+
     fn sample() -> Sample {
         let mut table = Table::default();
         table.push_float("load", Dimension::Force, vec![1.0, f64::INFINITY]);
@@ -426,8 +441,8 @@ mod tests {
                 Field::text("model", "kogut_etsion".repeat(20)),
             ],
             tables: [
-                (String::from("steps"), table.clone()),
-                (String::from("summits"), table),
+                (String::from("steps"), table),
+                (String::from("summits"), long_table(100_000)),
             ]
             .into(),
             table_files: [(
@@ -478,7 +493,7 @@ mod tests {
             };
             assert_eq!(
                 (file.name.as_str(), &file.payload, file.rows),
-                ("summits", &s.table_files["summits"], 2)
+                ("summits", &s.table_files["summits"], 100_000)
             );
             assert_eq!(file.schema.columns.len(), 3);
             assert!(file.schema.columns.iter().all(|c| c.data.is_empty()));
