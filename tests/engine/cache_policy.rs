@@ -233,13 +233,14 @@ nodes:
 {friction}"#
         )
     };
-    let friction = "  f:
-    friction:
-      method: per_summit
-      contact: c
-                          lower_material: s235jr
-      upper_material: {youngs_modulus: 110 GPa,                     poisson_ratio: 0.34, hardness: 1 GPa}
-";
+    let friction = concat!(
+        "  f:\n",
+        "    friction:\n",
+        "      method: per_summit\n",
+        "      contact: c\n",
+        "      lower_material: s235jr\n",
+        "      upper_material: {youngs_modulus: 110 GPa, poisson_ratio: 0.34, hardness: 1 GPa}\n",
+    );
     let (plan, first) = run(&dir, &text(""), &cache, "out-contact");
     assert_eq!(first.computed, 3);
     let mut files: Vec<String> = payloads(&cache, "contact", &plan, 2)

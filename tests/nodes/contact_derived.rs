@@ -15,12 +15,20 @@ use crate::nodes_common::study;
 /// contact solved over three load steps, and the same contact stopped after each earlier step.
 fn text(periodic: bool) -> String {
     let contact = |name: &str, pressures: &str| {
-        format!(
-            "  {name}:\n    contact:\n      lower: a\n      upper: b\n      lower_material: \
-             s235jr\n      upper_material: {{youngs_modulus: 110 GPa, poisson_ratio: 0.34, \
-             hardness: 1 GPa}}\n      nominal_pressures: [{pressures}]\n      periodic: \
-             {periodic}\n      fields: true\n"
-        )
+        [
+            format!("  {name}:"),
+            String::from("    contact:"),
+            String::from("      lower: a"),
+            String::from("      upper: b"),
+            String::from("      lower_material: s235jr"),
+            String::from(
+                "      upper_material: {youngs_modulus: 110 GPa, poisson_ratio: 0.34, hardness: 1 GPa}",
+            ),
+            format!("      nominal_pressures: [{pressures}]"),
+            format!("      periodic: {periodic}"),
+            String::from("      fields: true\n"),
+        ]
+        .join("\n")
     };
     format!(
         r#"
