@@ -260,7 +260,7 @@ nodes:
     let (_, second) = run(&dir, &text(friction), &cache, "out-cached");
     assert_eq!((second.cached, second.computed), (3, 1), "{second:?}");
     run(&dir, &text(friction), &dir.join("fresh"), "out-fresh");
-    for name in ["friction.parquet", "friction_summits.parquet"] {
+    for name in ["friction.parquet", "contacts_load_curve.parquet"] {
         assert!(
             std::fs::read(dir.join("out-cached").join(name)).unwrap()
                 == std::fs::read(dir.join("out-fresh").join(name)).unwrap(),
