@@ -57,6 +57,9 @@ pub mod arrays {
     pub const PLASTIC_PENETRATION: &str = "plastic_penetration";
     /// The composite height z₁ + z₂ (m) the contact was solved on.
     pub const COMPOSITE_HEIGHT: &str = "composite_height";
+    /// Prefix of the contact pressure of a load step before the final one (`pressure_step_0`,
+    /// …): its contact points only, row 0 their flat indices iy·nx + ix, row 1 p (Pa).
+    pub const PRESSURE_STEP_PREFIX: &str = "pressure_step_";
 }
 
 /// Metric columns (SI; the tables append the unit: `nominal_pressure_Pa`).
@@ -85,6 +88,8 @@ pub mod metrics {
     pub const STRESS_RATIO: &str = "stress_ratio";
     /// Static friction coefficient μ_s.
     pub const MU_S: &str = "mu_s";
+    /// Rigid-body approach δ of a contact's load step (m).
+    pub const APPROACH: &str = "approach";
 
     // The friction row (`friction` table): method, model and trust.
     /// Friction method (`statistical`, `per_summit`, `per_spot`).

@@ -6,9 +6,10 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
+use asperity::engine::cache::Cache;
 use asperity::engine::cache_admin::{
-    check_structure, collect_garbage, list_entries, parse_age, remove_entry, verify_entry,
-    GcCriteria, Repair,
+    check_structure, collect_garbage, list_entries, parse_age, payload_usage, remove_entry,
+    verify_entry, GcCriteria, PayloadClass, Repair,
 };
 
 use super::CacheArg;
@@ -27,7 +28,8 @@ enum CacheAction {
         #[command(flatten)]
         cache: CacheArg,
     },
-    /// Sizes per kind and in total: array payloads (compressed), everything else, and both.
+    /// Sizes per kind and in total (arrays, long tables, summaries, manifests), then per kind and
+    /// payload (each array and table by name, the summary): what each kind holds.
     Du {
         #[command(flatten)]
         cache: CacheArg,
@@ -61,150 +63,201 @@ enum CacheAction {
 
 pub fn cache(args: CacheArgs) -> Result<ExitCode> {
     match args.action {
-        CacheAction::Ls { cache } => {
-            let cache = cache.open()?;
-            let entries = list_entries(&cache)?;
-            println!(
-                "{:<10} {:<64} {:>12} {:>12}  params",
-                "kind", "key", "bytes", "created"
-            );
-            for e in &entries {
-                let params = e.manifest.as_ref().map_or_else(
-                    || String::from("(unreadable manifest)"),
-                    |m| {
-                        m.params
-                            .iter()
-                            .map(|f| format!("{}={}", f.column_name(), f.value))
-                            .collect::<Vec<_>>()
-                            .join(" ")
-                    },
-                );
-                println!(
-                    "{:<10} {:<64} {:>12} {:>12}  {params}",
-                    e.kind, e.key, e.bytes, e.created_unix
-                );
-            }
-            println!("{} entries", entries.len());
-        }
-        CacheAction::Du { cache } => {
-            let cache = cache.open()?;
-            // Per kind: entries, bytes of array payloads, bytes of everything.
-            let mut per_kind: BTreeMap<String, (usize, u64, u64)> = BTreeMap::new();
-            for e in list_entries(&cache)? {
-                // Files once each: an array equal to another names the same file.
-                let arrays: u64 = e.manifest.as_ref().map_or(0, |m| {
-                    m.payloads
-                        .iter()
-                        .filter(|p| p.file.ends_with(".npy") || p.file.ends_with(".npy.zst"))
-                        .map(|p| (p.file.as_str(), p.bytes))
-                        .collect::<BTreeMap<_, _>>()
-                        .values()
-                        .sum()
-                });
-                let slot = per_kind.entry(e.kind).or_default();
-                slot.0 += 1;
-                slot.1 += arrays;
-                slot.2 += e.bytes;
-            }
-            println!(
-                "{:<10} {:>8} {:>12} {:>12} {:>12}",
-                "kind", "entries", "arrays", "other", "total"
-            );
-            let mut sum = (0, 0, 0);
-            for (kind, (count, arrays, total)) in &per_kind {
-                println!(
-                    "{kind:<10} {count:>8} {:>12} {:>12} {:>12}",
-                    human(*arrays),
-                    human(total - arrays),
-                    human(*total)
-                );
-                sum = (sum.0 + count, sum.1 + arrays, sum.2 + total);
-            }
-            println!(
-                "{:<10} {:>8} {:>12} {:>12} {:>12}",
-                "total",
-                sum.0,
-                human(sum.1),
-                human(sum.2 - sum.1),
-                human(sum.2)
-            );
-        }
-        CacheAction::Verify { cache, delete } => {
-            let cache = cache.open()?;
-            let damage = check_structure(&cache)?;
-            for d in &damage {
-                println!("DAMAGED {d}");
-            }
-            let entries = list_entries(&cache)?;
-            let mut corrupt = 0;
-            for e in &entries {
-                if let Err(reason) = verify_entry(&cache, e) {
-                    corrupt += 1;
-                    println!("CORRUPT {} {}: {reason}", e.kind, e.key);
-                    if delete {
-                        remove_entry(&cache, e)?;
-                        println!("  deleted");
-                    }
-                }
-            }
-            println!(
-                "{} entries verified, {corrupt} corrupt, {} structural damage(s){}",
-                entries.len(),
-                damage.len(),
-                if damage.is_empty() {
-                    ""
-                } else {
-                    " (`asperity cache gc` repairs them)"
-                }
-            );
-            if (corrupt > 0 && !delete) || !damage.is_empty() {
-                return Ok(ExitCode::from(1));
-            }
-        }
+        CacheAction::Ls { cache } => list(&cache.open()?),
+        CacheAction::Du { cache } => usage(&cache.open()?),
+        CacheAction::Verify { cache, delete } => verify(&cache.open()?, delete),
         CacheAction::Gc {
             cache,
             studies,
             older_than,
             dry_run,
-        } => {
-            let cache = cache.open()?;
-            let mut keep: Option<HashSet<String>> = None;
-            for path in &studies {
-                let (_, plan) = super::load(path, &super::SetArg::default())
-                    .with_context(|| format!("cannot plan {}", path.display()))?;
-                keep.get_or_insert_with(HashSet::new)
-                    .extend(plan.nodes.iter().map(|n| n.key.to_hex()));
-            }
-            let report = collect_garbage(&cache, &GcCriteria { keep, older_than }, dry_run)?;
-            let verb = if dry_run { "would delete" } else { "deleted" };
-            for d in &report.damage {
-                let done = match (&d.repair, dry_run) {
-                    (Repair::Manual(what), _) => what.clone(),
-                    (repair, true) => format!("would be {repair}"),
-                    (repair, false) => repair.to_string(),
-                };
-                println!("damaged: {d}: {done}");
-            }
-            for e in &report.removed {
-                println!("{verb} {} {} ({} bytes)", e.kind, e.key, e.bytes);
-            }
-            let repaired = report
-                .damage
-                .iter()
-                .filter(|d| !matches!(d.repair, Repair::Manual(_)))
-                .count();
-            println!(
-                "{verb} {} entries ({}), kept {}; {} structural damage(s), {repaired} {}",
-                report.removed.len(),
-                human(report.freed_bytes),
-                report.kept,
-                report.damage.len(),
-                if dry_run { "repairable" } else { "repaired" }
-            );
-            if studies.is_empty() && older_than.is_none() {
-                println!("(no studies or --older-than given: no entry is deleted)");
+        } => gc(&cache.open()?, &studies, older_than, dry_run),
+    }
+}
+
+/// `cache ls`: one line per entry.
+fn list(cache: &Cache) -> Result<ExitCode> {
+    let entries = list_entries(cache)?;
+    println!(
+        "{:<10} {:<64} {:>12} {:>12}  params",
+        "kind", "key", "bytes", "created"
+    );
+    for e in &entries {
+        let params = e.manifest.as_ref().map_or_else(
+            || String::from("(unreadable manifest)"),
+            |m| {
+                m.params
+                    .iter()
+                    .map(|f| format!("{}={}", f.column_name(), f.value))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            },
+        );
+        println!(
+            "{:<10} {:<64} {:>12} {:>12}  {params}",
+            e.kind, e.key, e.bytes, e.created_unix
+        );
+    }
+    println!("{} entries", entries.len());
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Bytes of one kind (or of all) in `cache du`: entries, then arrays, tables, summaries, the
+/// rest (manifests) and the total.
+#[derive(Default)]
+struct Usage {
+    entries: usize,
+    classes: BTreeMap<PayloadClass, u64>,
+    total: u64,
+}
+
+impl Usage {
+    fn add(&mut self, other: &Usage) {
+        self.entries += other.entries;
+        for (class, bytes) in &other.classes {
+            *self.classes.entry(*class).or_default() += bytes;
+        }
+        self.total += other.total;
+    }
+
+    fn row(&self, label: &str) -> String {
+        let class = |c| human(self.classes.get(&c).copied().unwrap_or(0));
+        let listed: u64 = self.classes.values().sum();
+        format!(
+            "{label:<10} {:>8} {:>12} {:>12} {:>12} {:>12} {:>12}",
+            self.entries,
+            class(PayloadClass::Array),
+            class(PayloadClass::Table),
+            class(PayloadClass::Summary),
+            human(self.total.saturating_sub(listed)),
+            human(self.total)
+        )
+    }
+}
+
+/// `cache du`: per kind, the bytes of arrays, tables, summaries and manifests; then per kind
+/// and payload (an array, a table, the summary), the files and their bytes.
+fn usage(cache: &Cache) -> Result<ExitCode> {
+    let mut per_kind: BTreeMap<String, Usage> = BTreeMap::new();
+    // Per kind and payload: files and bytes.
+    let mut per_payload: BTreeMap<(String, PayloadClass, String), (usize, u64)> = BTreeMap::new();
+    for e in list_entries(cache)? {
+        let kind = per_kind.entry(e.kind.clone()).or_default();
+        kind.entries += 1;
+        kind.total += e.bytes;
+        for (class, name, bytes) in e.manifest.as_ref().map(payload_usage).unwrap_or_default() {
+            *kind.classes.entry(class).or_default() += bytes;
+            let slot = per_payload
+                .entry((e.kind.clone(), class, name))
+                .or_default();
+            *slot = (slot.0 + 1, slot.1 + bytes);
+        }
+    }
+    println!(
+        "{:<10} {:>8} {:>12} {:>12} {:>12} {:>12} {:>12}",
+        "kind", "entries", "arrays", "tables", "summaries", "other", "total"
+    );
+    let mut sum = Usage::default();
+    for (kind, usage) in &per_kind {
+        println!("{}", usage.row(kind));
+        sum.add(usage);
+    }
+    println!("{}", sum.row("total"));
+    println!();
+    println!(
+        "{:<10} {:<8} {:<28} {:>8} {:>12}",
+        "kind", "payload", "name", "files", "bytes"
+    );
+    for ((kind, class, name), (files, bytes)) in &per_payload {
+        let class = match class {
+            PayloadClass::Array => "array",
+            PayloadClass::Table => "table",
+            PayloadClass::Summary => "summary",
+        };
+        println!(
+            "{kind:<10} {class:<8} {name:<28} {files:>8} {:>12}",
+            human(*bytes)
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `cache verify`: every entry and the folder structure; exit code 1 on corruption or damage.
+fn verify(cache: &Cache, delete: bool) -> Result<ExitCode> {
+    let damage = check_structure(cache)?;
+    for d in &damage {
+        println!("DAMAGED {d}");
+    }
+    let entries = list_entries(cache)?;
+    let mut corrupt = 0;
+    for e in &entries {
+        if let Err(reason) = verify_entry(cache, e) {
+            corrupt += 1;
+            println!("CORRUPT {} {}: {reason}", e.kind, e.key);
+            if delete {
+                remove_entry(cache, e)?;
+                println!("  deleted");
             }
         }
+    }
+    println!(
+        "{} entries verified, {corrupt} corrupt, {} structural damage(s){}",
+        entries.len(),
+        damage.len(),
+        if damage.is_empty() {
+            ""
+        } else {
+            " (`asperity cache gc` repairs them)"
+        }
+    );
+    if (corrupt > 0 && !delete) || !damage.is_empty() {
+        return Ok(ExitCode::from(1));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `cache gc`: repairs the structure and deletes the entries the criteria select.
+fn gc(
+    cache: &Cache,
+    studies: &[PathBuf],
+    older_than: Option<std::time::Duration>,
+    dry_run: bool,
+) -> Result<ExitCode> {
+    let mut keep: Option<HashSet<String>> = None;
+    for path in studies {
+        let (_, plan) = super::load(path, &super::SetArg::default())
+            .with_context(|| format!("cannot plan {}", path.display()))?;
+        keep.get_or_insert_with(HashSet::new)
+            .extend(plan.nodes.iter().map(|n| n.key.to_hex()));
+    }
+    let report = collect_garbage(cache, &GcCriteria { keep, older_than }, dry_run)?;
+    let verb = if dry_run { "would delete" } else { "deleted" };
+    for d in &report.damage {
+        let done = match (&d.repair, dry_run) {
+            (Repair::Manual(what), _) => what.clone(),
+            (repair, true) => format!("would be {repair}"),
+            (repair, false) => repair.to_string(),
+        };
+        println!("damaged: {d}: {done}");
+    }
+    for e in &report.removed {
+        println!("{verb} {} {} ({} bytes)", e.kind, e.key, e.bytes);
+    }
+    let repaired = report
+        .damage
+        .iter()
+        .filter(|d| !matches!(d.repair, Repair::Manual(_)))
+        .count();
+    println!(
+        "{verb} {} entries ({}), kept {}; {} structural damage(s), {repaired} {}",
+        report.removed.len(),
+        human(report.freed_bytes),
+        report.kept,
+        report.damage.len(),
+        if dry_run { "repairable" } else { "repaired" }
+    );
+    if studies.is_empty() && older_than.is_none() {
+        println!("(no studies or --older-than given: no entry is deleted)");
     }
     Ok(ExitCode::SUCCESS)
 }

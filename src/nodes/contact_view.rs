@@ -1,8 +1,13 @@
 //! What a contact node gives its consumers, in one place: the names under which the `contact`
-//! kind stores its maps and grid metrics (it writes them with these constants), and
-//! [`ContactView`], the typed view the per-summit and per-spot friction methods read.
+//! kind stores its maps and grid metrics (it writes them with these constants), the layout of
+//! the pressure of its earlier load steps, [`ContactView`], the typed view of the final step the
+//! per-summit and per-spot friction methods read, and [`StepMaps`], the maps of any load step.
+//!
+//! The cache keeps a contact's pressure maps only; its gap, deformations, plastic penetration
+//! and composite height are derived from them and the surfaces when a consumer needs them
+//! (`ContactTask::derive_arrays`, `ContactTask::step_maps`).
 
-use ndarray::{ArrayView2, Ix2};
+use ndarray::{Array2, ArrayD, ArrayView2, Ix2};
 
 use crate::engine::artifact::Artifact;
 use crate::engine::node::NodeError;
@@ -18,9 +23,60 @@ pub(crate) use crate::vocabulary::arrays::{
 /// of the section in contact (points with p > 0).
 pub(crate) use crate::vocabulary::metrics::{AREA_FRACTION, DX, DY, NOMINAL_PRESSURE};
 
-/// The final step's fields of a contact run with `fields: true`, and its grid.
+/// The array holding the pressure of load step `step` before the final one (whose pressure is
+/// [`PRESSURE`]).
+pub(crate) fn step_pressure_name(step: usize) -> String {
+    format!("{}{step}", crate::vocabulary::arrays::PRESSURE_STEP_PREFIX)
+}
+
+/// The contact points of a pressure map as stored for an earlier load step: a `2 × m` array, row
+/// 0 the flat indices `iy·nx + ix` of the points with `p > 0` (exact in f64 up to 2⁵³ points),
+/// row 1 their pressures. A few per cent of the section is in contact, so a step costs memory
+/// and cache in proportion to its contact area rather than to the grid.
+pub(crate) fn contact_points(pressure: ArrayView2<f64>) -> ArrayD<f64> {
+    let (index, value): (Vec<f64>, Vec<f64>) = pressure
+        .iter()
+        .enumerate()
+        .filter(|(_, &p)| p > 0.0)
+        .map(|(i, &p)| (i as f64, p))
+        .unzip();
+    let m = index.len();
+    Array2::from_shape_vec((2, m), [index, value].concat())
+        .map(Array2::into_dyn)
+        .unwrap_or_else(|_| unreachable!("2 × m values in a 2 × m array"))
+}
+
+/// The pressure map of `(ny, nx)` points whose contact points are `points` ([`contact_points`]).
+pub(crate) fn pressure_of_contact_points(
+    points: &ArrayD<f64>,
+    (ny, nx): (usize, usize),
+) -> Result<Array2<f64>, NodeError> {
+    let bad = |why: &str| NodeError::new(format!("contact pressure of a load step: {why}"));
+    let points = points
+        .view()
+        .into_dimensionality::<Ix2>()
+        .map_err(|_| bad("not a 2 × m array"))?;
+    if points.nrows() != 2 {
+        return Err(bad("not a 2 × m array"));
+    }
+    let mut pressure = Array2::zeros((ny, nx));
+    let flat = pressure
+        .as_slice_mut()
+        .unwrap_or_else(|| unreachable!("a new array is contiguous"));
+    for (&index, &p) in points.row(0).iter().zip(points.row(1)) {
+        let slot = (index >= 0.0 && index.fract() == 0.0)
+            .then(|| flat.get_mut(index as usize))
+            .flatten()
+            .ok_or_else(|| bad("a point index outside the grid"))?;
+        *slot = p;
+    }
+    Ok(pressure)
+}
+
+/// The final step's fields of a contact run with `fields: true` (or, from [`StepMaps::view`],
+/// another step's), and its grid.
 #[derive(Debug, Clone)]
-pub(crate) struct ContactView<'a> {
+pub struct ContactView<'a> {
     pub pressure: ArrayView2<'a, f64>,
     pub gap: ArrayView2<'a, f64>,
     pub deformation_lower: ArrayView2<'a, f64>,
@@ -73,6 +129,42 @@ impl<'a> ContactView<'a> {
             dy: metric(DY)?,
             nominal_pressure: metric(NOMINAL_PRESSURE)?,
             area_fraction: metric(AREA_FRACTION)?,
+        })
+    }
+}
+
+/// The maps of one load step of a contact run with `fields: true`, derived from the step's
+/// pressure (`ContactTask::step_maps`): pressure (Pa), gap, deformations and plastic penetration
+/// (m), `[[iy, ix]]`, and the step's nominal pressure and contact area share. The composite
+/// height is the contact's, the same at every step ([`StepMaps::view`] takes it from the
+/// contact).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepMaps {
+    pub pressure: Array2<f64>,
+    pub gap: Array2<f64>,
+    pub deformation_lower: Array2<f64>,
+    pub deformation_upper: Option<Array2<f64>>,
+    pub plastic_penetration: Array2<f64>,
+    /// The step's nominal pressure (Pa).
+    pub nominal_pressure: f64,
+    /// The step's share of the section in contact.
+    pub area_fraction: f64,
+}
+
+impl StepMaps {
+    /// The view the friction methods read, of this step: its maps with the contact's composite
+    /// height and grid spacings.
+    pub fn view<'a>(&'a self, contact: &'a Artifact) -> Result<ContactView<'a>, NodeError> {
+        let last = ContactView::of(contact)?;
+        Ok(ContactView {
+            pressure: self.pressure.view(),
+            gap: self.gap.view(),
+            deformation_lower: self.deformation_lower.view(),
+            deformation_upper: self.deformation_upper.as_ref().map(|d| d.view()),
+            plastic_penetration: self.plastic_penetration.view(),
+            nominal_pressure: self.nominal_pressure,
+            area_fraction: self.area_fraction,
+            ..last
         })
     }
 }

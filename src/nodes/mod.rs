@@ -22,6 +22,7 @@ use crate::engine::value::Field;
 use crate::units::format_number;
 
 pub use contact::{final_step_metrics, ContactSpec, ContactTask, CONTACT_KIND_VERSION};
+pub use contact_view::{ContactView, StepMaps};
 pub use friction::{
     coefficient_fields, friction_models_markdown, FrictionSpec, FrictionTask,
     DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE, FRICTION_KIND_VERSION,

@@ -12,6 +12,8 @@ use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::nodes::TribologyNode;
 
+use super::engine_end_to_end::as_first_format;
+
 /// A synthetic surface just above 1024² points (so its heights are regenerated, not stored) and
 /// a contact with fields at `pressure`.
 fn study(pressure: &str) -> String {
@@ -133,17 +135,12 @@ fn a_regenerated_node_must_reproduce_its_cached_metrics() {
     let cache_dir = dir.join("cache");
     let (plan, _) = run(&dir, &study("20 MPa"), &cache_dir, "out-a");
     let cache = Cache::open(&cache_dir).unwrap();
-    // Made an entry without a summary (read through its manifest), its metric sq renamed and
+    // Made an entry of the first format (read through its manifest), its metric sq renamed and
     // the manifest's checksum recomputed.
     let entry = cache.entry_dir("surface", &plan.nodes[0].key);
-    std::fs::remove_file(entry.join("summary.bin")).unwrap();
-    let path = entry.join("manifest.json");
+    let path = as_first_format(&cache, "surface", &plan.nodes[0].key);
     let mut manifest: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
-    manifest["payloads"]
-        .as_array_mut()
-        .unwrap()
-        .retain(|p| p["file"] != "summary.bin");
     let sq = manifest["metrics"]
         .as_array_mut()
         .unwrap()
@@ -166,39 +163,109 @@ fn a_regenerated_node_must_reproduce_its_cached_metrics() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Two bodies of one material deform equally: the contact's two deformation maps are one file
-/// in the entry, and both read back.
+/// Two equal arrays of one entry are one file, and both read back.
 #[test]
 fn identical_arrays_of_an_entry_are_stored_once() {
     let dir = scratch("dedup");
-    let cache_dir = dir.join("cache");
-    let surface = |seed: u32| {
+    let cache = Cache::open(&dir.join("cache")).unwrap();
+    let key = asperity::engine::hash::node_key("test", 1, &[], &[]);
+    let map = ndarray::ArrayD::from_shape_fn(ndarray::IxDyn(&[8, 8]), |i| (i[0] * i[1]) as f64);
+    let mut artifact = asperity::engine::artifact::Artifact::default();
+    artifact.arrays.insert(String::from("a"), map.clone());
+    artifact.arrays.insert(String::from("b"), map.clone());
+    artifact
+        .arrays
+        .insert(String::from("left_out"), map.clone());
+    let manifest = Manifest {
+        format: 0,
+        key: key.to_hex(),
+        kind: String::from("test"),
+        version: 1,
+        params: Vec::new(),
+        upstream: Vec::new(),
+        payloads: Vec::new(),
+        compute_seconds: 0.0,
+        tool_version: String::from("test"),
+        created_unix: 0,
+    };
+    assert!(cache
+        .store(manifest, &artifact, &|name| name != "left_out")
+        .unwrap());
+    let entry = cache.load("test", &key, true).unwrap().unwrap();
+    assert_eq!(entry.artifact.arrays.len(), 2);
+    assert!(entry.artifact.arrays.values().all(|a| a == &map));
+    let files = cache.entry_dir("test", &key);
+    assert!(files.join("a.npy.zst").exists());
+    assert!(!files.join("b.npy.zst").exists() && !files.join("left_out.npy.zst").exists());
+    assert!(cache.verify("test", &key).unwrap());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Surfaces, a contact with fields over three load steps and, in a second study on the same
+/// cache, a per-summit friction node: the contact's entry holds its pressure maps only; the
+/// friction node computed from the cached contact (whose other maps are derived from them)
+/// writes the table a fresh run writes, byte for byte.
+#[test]
+fn a_cached_contact_derives_its_maps_for_a_new_consumer() {
+    let dir = scratch("derive");
+    let cache = dir.join("cache");
+    let text = |friction: &str| {
         format!(
-            "    surface:\n      synthetic: {{grid: [64, 64], size: [0.1 mm, 0.1 mm], sq: 1 um, \
-             hurst: 0.8, correlation_length: 20 um, seed: {seed}}}\n"
+            r#"
+study: derive
+nodes:
+  a:
+    surface:
+      synthetic: {{grid: [64, 64], size: [0.2 mm, 0.2 mm], sq: 1 um, hurst: 0.8,
+                  correlation_length: 40 um, seed: 1}}
+  b:
+    surface:
+      synthetic: {{grid: [64, 64], size: [0.2 mm, 0.2 mm], sq: 0.5 um, hurst: 0.8,
+                  correlation_length: 40 um, seed: 2}}
+  c:
+    contact:
+      lower: a
+      upper: b
+      lower_material: s235jr
+      upper_material: {{youngs_modulus: 110 GPa, poisson_ratio: 0.34, hardness: 1 GPa}}
+      nominal_pressures: [5 MPa, 10 MPa, 20 MPa]
+      fields: true
+{friction}"#
         )
     };
-    let text = format!(
-        "study: dedup\nnodes:\n  a:\n{}  b:\n{}  c:\n    contact:\n      lower: a\n      \
-         upper: b\n      lower_material: s235jr\n      upper_material: s235jr\n      \
-         nominal_pressures: [20 MPa]\n      fields: true\n",
-        surface(1),
-        surface(2)
+    let friction = concat!(
+        "  f:\n",
+        "    friction:\n",
+        "      method: per_summit\n",
+        "      contact: c\n",
+        "      lower_material: s235jr\n",
+        "      upper_material: {youngs_modulus: 110 GPa, poisson_ratio: 0.34, hardness: 1 GPa}\n",
     );
-    let (plan, _) = run(&dir, &text, &cache_dir, "out");
-    let cache = Cache::open(&cache_dir).unwrap();
-    let key = &plan.nodes[2].key;
-    let entry = cache.load("contact", key, true).unwrap().unwrap();
-    let lower = &entry.artifact.arrays["deformation_lower"];
-    assert_eq!(Some(lower), entry.artifact.arrays.get("deformation_upper"));
-    let files = payloads(&cache_dir, "contact", &plan, 2);
-    let upper = files
-        .iter()
-        .find(|(f, _)| f == "deformation_lower.npy.zst")
-        .map(|(_, b)| *b);
-    assert!(upper.is_some(), "{files:?}");
-    let dir_entry = cache.entry_dir("contact", key);
-    assert!(!dir_entry.join("deformation_upper.npy.zst").exists());
-    assert!(dir_entry.join("deformation_lower.npy.zst").exists());
+    let (plan, first) = run(&dir, &text(""), &cache, "out-contact");
+    assert_eq!(first.computed, 3);
+    let mut files: Vec<String> = payloads(&cache, "contact", &plan, 2)
+        .into_iter()
+        .map(|(f, _)| f)
+        .collect();
+    files.sort();
+    assert_eq!(
+        files,
+        [
+            "pressure.npy.zst",
+            "pressure_step_0.npy.zst",
+            "pressure_step_1.npy.zst",
+            "summary.bin"
+        ]
+    );
+    let (_, second) = run(&dir, &text(friction), &cache, "out-cached");
+    assert_eq!((second.cached, second.computed), (3, 1), "{second:?}");
+    run(&dir, &text(friction), &dir.join("fresh"), "out-fresh");
+    for name in ["friction.parquet", "contacts_load_curve.parquet"] {
+        assert!(
+            std::fs::read(dir.join("out-cached").join(name)).unwrap()
+                == std::fs::read(dir.join("out-fresh").join(name)).unwrap(),
+            "{name} differs"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

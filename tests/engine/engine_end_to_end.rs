@@ -198,7 +198,8 @@ fn corrupted_payload_is_detected_discarded_and_recomputed() {
 
     // An entry written before summaries is read through its manifest, and a truncated manifest
     // is corrupt.
-    let manifest = without_summary(&entry);
+    let manifest = as_first_format(&cache, "surface", &node.key);
+    assert!(cache.verify("surface", &node.key).unwrap());
     let loaded = cache.load("surface", &node.key, true).unwrap().unwrap();
     assert!(loaded.artifact.arrays.contains_key("heights"));
     assert!(!loaded.artifact.tables.is_empty());
@@ -213,20 +214,72 @@ fn corrupted_payload_is_detected_discarded_and_recomputed() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Makes the entry in `entry` one written before summaries: no `summary.bin` and a manifest
-/// (with its checksum) that does not list it. Returns the manifest's path.
-pub(crate) fn without_summary(entry: &Path) -> PathBuf {
-    std::fs::remove_file(entry.join("summary.bin")).unwrap();
+/// Rewrites the entry of `kind` and `key` as one written before summaries (entry format 1): no
+/// `summary.bin` and no table files, its metrics and flags in the manifest, its tables in
+/// `tables.json`, and the manifest's checksum recomputed. Returns the manifest's path.
+pub(crate) fn as_first_format(
+    cache: &Cache,
+    kind: &str,
+    key: &asperity::engine::hash::NodeKey,
+) -> PathBuf {
+    let loaded = cache.load(kind, key, false).unwrap().unwrap().artifact;
+    let entry = cache.entry_dir(kind, key);
     let path = entry.join("manifest.json");
     let mut manifest: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
-    let payloads = manifest["payloads"].as_array_mut().unwrap();
-    payloads.retain(|p| p["file"] != "summary.bin");
+    let object = manifest.as_object_mut().unwrap();
+    object.remove("format");
+    object.insert(
+        String::from("metrics"),
+        serde_json::to_value(&loaded.metrics).unwrap(),
+    );
+    if !loaded.flags.is_empty() {
+        object.insert(
+            String::from("flags"),
+            serde_json::to_value(&loaded.flags).unwrap(),
+        );
+    }
+    let payloads = object["payloads"].as_array_mut().unwrap();
+    for p in payloads.iter() {
+        let file = p["file"].as_str().unwrap();
+        if file == "summary.bin" || file.ends_with(".parquet") {
+            std::fs::remove_file(entry.join(file)).unwrap();
+        }
+    }
+    payloads.retain(|p| {
+        let file = p["file"].as_str().unwrap();
+        file != "summary.bin" && !file.ends_with(".parquet")
+    });
+    if !loaded.tables.is_empty() {
+        let tables = serde_json::to_vec(&loaded.tables).unwrap();
+        std::fs::write(entry.join("tables.json"), &tables).unwrap();
+        payloads.push(serde_json::json!({
+            "file": "tables.json",
+            "bytes": tables.len(),
+            "blake3": blake3::hash(&tables).to_hex().to_string(),
+        }));
+    }
     let bytes = serde_json::to_vec_pretty(&manifest).unwrap();
     std::fs::write(&path, &bytes).unwrap();
     let checksum = blake3::hash(&bytes).to_hex().to_string();
     std::fs::write(entry.join("manifest.blake3"), checksum).unwrap();
     path
+}
+
+/// An entry of format 2 keeps its metrics only in its summary: without it, it is corrupt, not
+/// read as an entry without metrics.
+#[test]
+fn an_entry_without_its_summary_is_corrupt_unless_it_is_of_the_first_format() {
+    let dir = tempdir("format");
+    let cache_dir = dir.join("cache");
+    let first = run(&dir, &study_text("0.5 um", "[1]"), &cache_dir, "out1");
+    let cache = Cache::open(&cache_dir).unwrap();
+    let node = &first.plan.nodes[0];
+    let entry = cache.entry_dir("surface", &node.key);
+    std::fs::remove_file(entry.join("summary.bin")).unwrap();
+    assert!(cache.load("surface", &node.key, false).is_err());
+    assert!(cache.verify("surface", &node.key).is_err());
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A surface whose contact is cached is read without its heights; when the contact's entry turns

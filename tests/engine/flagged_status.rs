@@ -12,7 +12,7 @@ use asperity::engine::plan::Plan;
 use asperity::engine::study::Study;
 use asperity::nodes::TribologyNode;
 
-use super::engine_end_to_end::without_summary;
+use super::engine_end_to_end::as_first_format;
 use polars::prelude::{ParquetReader, SerReader};
 
 /// Two contacts: on a 4 × 4 grid (flagged: it resolves no contact spot) and on a 16 × 16 one
@@ -124,8 +124,7 @@ fn a_flagged_row_keeps_its_numbers_says_why_and_reads_back_from_the_cache() {
     let cache = Cache::open(&dir.join("cache")).unwrap();
     for node in &plan.nodes {
         let kind = node.task.kind();
-        let entry = cache.entry_dir(kind, &node.key);
-        let manifest = std::fs::read_to_string(without_summary(&entry)).unwrap();
+        let manifest = std::fs::read_to_string(as_first_format(&cache, kind, &node.key)).unwrap();
         let flagged = manifest.contains("\"flags\"");
         let loaded = cache.load(kind, &node.key, false).unwrap().unwrap();
         assert_eq!(flagged, !loaded.artifact.flags.is_empty());

@@ -3,6 +3,7 @@
 
 #[path = "../../crates/numerics/tests/common/mod.rs"]
 mod common;
+mod contact_derived;
 mod contact_node;
 mod friction_high_plasticity;
 mod friction_node;

@@ -67,6 +67,40 @@ pub fn list_entries(cache: &Cache) -> Result<Vec<EntryInfo>, CacheError> {
     Ok(out)
 }
 
+/// What a payload file of an entry holds, for `cache du`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum PayloadClass {
+    /// An array (`.npy.zst`, `.npy`).
+    Array,
+    /// A long table (`<table>.parquet`; `tables.json` in entries of format 1).
+    Table,
+    /// The entry's `summary.bin`.
+    Summary,
+}
+
+/// The payload files an entry's manifest lists, each file once (an array equal to another of
+/// its entry names the same file): class, name (the array's or the table's, or the file's) and
+/// bytes. The manifest and its checksum file are not payloads.
+pub fn payload_usage(manifest: &Manifest) -> Vec<(PayloadClass, String, u64)> {
+    let mut seen = HashSet::new();
+    let mut usage = Vec::new();
+    for payload in &manifest.payloads {
+        if !seen.insert(payload.file.as_str()) {
+            continue;
+        }
+        let (class, name) = match payload.array_name() {
+            Some(array) => (PayloadClass::Array, array),
+            None => match payload.file.strip_suffix(".parquet") {
+                Some(table) => (PayloadClass::Table, table),
+                None if payload.file == "tables.json" => (PayloadClass::Table, "tables.json"),
+                None => (PayloadClass::Summary, payload.file.as_str()),
+            },
+        };
+        usage.push((class, name.to_string(), payload.bytes));
+    }
+    usage
+}
+
 /// Verifies one entry fully (manifest checksum, every payload's size and checksum, arrays
 /// decoded, the summary). `Ok(())` when it is sound; the reason otherwise.
 pub fn verify_entry(cache: &Cache, entry: &EntryInfo) -> Result<(), String> {

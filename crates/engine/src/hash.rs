@@ -10,6 +10,7 @@ use std::collections::HashMap;
 use std::fmt;
 use std::hash::{BuildHasherDefault, Hash, Hasher};
 
+use crate::encoding::{self, Lengths};
 use crate::value::{Field, Value};
 
 /// Version of the key encoding itself; bump when this file's encoding changes.
@@ -118,7 +119,7 @@ fn key_encoding(
     out.extend_from_slice(&version.to_le_bytes());
     let mut sorted: Vec<&Field> = params.iter().collect();
     sorted.sort_by(|a, b| a.name.cmp(&b.name));
-    out.extend_from_slice(&(sorted.len() as u64).to_le_bytes());
+    encoding::put_len(&mut out, sorted.len(), Lengths::Fixed64);
     for field in sorted {
         put_str(&mut out, &field.name);
         put_str(&mut out, field.dimension.name());
@@ -126,7 +127,7 @@ fn key_encoding(
     }
     let mut roles: Vec<&(&str, NodeKey)> = upstream.iter().collect();
     roles.sort_by(|a, b| a.0.cmp(b.0));
-    out.extend_from_slice(&(roles.len() as u64).to_le_bytes());
+    encoding::put_len(&mut out, roles.len(), Lengths::Fixed64);
     for (role, key) in roles {
         put_str(&mut out, role);
         out.extend_from_slice(&key.0);
@@ -134,32 +135,19 @@ fn key_encoding(
     out
 }
 
+/// A parameter's value in the encoding shared with the cache ([`crate::encoding`]), lengths in 8
+/// bytes; `-0.0` is written as `0.0`: the same physical value, one key.
 fn put_value(out: &mut Vec<u8>, value: &Value) {
     match value {
-        Value::Float(x) => {
-            out.push(b'f');
-            // -0.0 and 0.0 are the same physical value: one key.
-            let x = if *x == 0.0 { 0.0f64 } else { *x };
-            out.extend_from_slice(&x.to_bits().to_le_bytes());
+        Value::Float(x) if *x == 0.0 => {
+            encoding::put_value(out, &Value::Float(0.0), Lengths::Fixed64);
         }
-        Value::Int(i) => {
-            out.push(b'i');
-            out.extend_from_slice(&i.to_le_bytes());
-        }
-        Value::Bool(b) => {
-            out.push(b'b');
-            out.push(u8::from(*b));
-        }
-        Value::Text(s) => {
-            out.push(b's');
-            put_str(out, s);
-        }
+        other => encoding::put_value(out, other, Lengths::Fixed64),
     }
 }
 
 fn put_str(out: &mut Vec<u8>, s: &str) {
-    out.extend_from_slice(&(s.len() as u64).to_le_bytes());
-    out.extend_from_slice(s.as_bytes());
+    encoding::put_str(out, s, Lengths::Fixed64);
 }
 
 #[cfg(test)]

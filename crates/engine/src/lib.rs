@@ -11,6 +11,7 @@ pub mod artifact;
 pub mod cache;
 pub mod cache_admin;
 pub mod columns;
+mod encoding;
 pub mod execute;
 pub mod hash;
 pub mod node;

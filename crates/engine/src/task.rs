@@ -1,5 +1,6 @@
 //! A resolved node instance as the engine runs it: [`NodeTask`] (kind, version, SI parameters,
-//! memory estimate, `compute`, array storage policy) and [`NodeError`]. Specs resolve into tasks
+//! memory estimate, `compute`, array storage policy and the derivation of arrays it does not
+//! store) and [`NodeError`]. Specs resolve into tasks
 //! in [`crate::node`].
 
 use crate::artifact::Artifact;
@@ -32,6 +33,22 @@ pub trait NodeTask: Send + Sync + std::fmt::Debug {
     fn array_storage(&self) -> ArrayStorage {
         ArrayStorage::Store
     }
+    /// Under [`ArrayStorage::Derive`]: adds the arrays the policy names to `artifact` (this
+    /// instance's cached metrics, tables and stored arrays), from the upstream artifacts `inputs`
+    /// (with their arrays, in the order of [`NodeTask::compute`]'s). The arrays must equal those
+    /// `compute` returns (to round-off, as the kind documents). Kinds that derive nothing keep
+    /// this default, which refuses.
+    fn derive_arrays(
+        &self,
+        inputs: &[&Artifact],
+        artifact: &mut Artifact,
+    ) -> Result<(), NodeError> {
+        let _ = (inputs, artifact);
+        Err(NodeError::new(format!(
+            "the {} kind derives no arrays",
+            self.kind()
+        )))
+    }
     /// The task as `Any`, so that the application's node kinds can read an upstream task of a
     /// kind they know as its own type (the engine never does).
     fn as_any(&self) -> &dyn std::any::Any;
@@ -49,6 +66,23 @@ pub enum ArrayStorage {
     /// by recomputing the node, which must then be deterministic: the engine checks that the
     /// recomputed metrics equal the cached ones.
     Regenerate,
+    /// The arrays named here are not stored, the others are: the named ones follow from the
+    /// stored ones and the upstream arrays at a fraction of the node's cost (e.g. a contact's gap
+    /// and deformations from its pressure field by one convolution, where the solve takes
+    /// hundreds). A dependant that needs them gets them from [`NodeTask::derive_arrays`], run on
+    /// the cached entry and the upstream artifacts (loaded, regenerated or derived in turn).
+    Derive(&'static [&'static str]),
+}
+
+impl ArrayStorage {
+    /// Whether the cache stores the array called `name` under this policy.
+    pub fn stores(&self, name: &str) -> bool {
+        match self {
+            ArrayStorage::Store => true,
+            ArrayStorage::Regenerate => false,
+            ArrayStorage::Derive(derived) => !derived.contains(&name),
+        }
+    }
 }
 
 /// A node failed to compute; only its dependants fail with it.

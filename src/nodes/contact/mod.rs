@@ -1,41 +1,69 @@
 //! The `contact` node kind: elastic–perfectly-plastic half-space contact of one or two upstream
 //! surfaces (`contact::ContactSolver`), load-stepped to the last nominal pressure (only the last
 //! one is solved when the study does not write the `contacts` table). Table `contacts` (the final
-//! step) and `contacts_load_curve` (one row per step); with
-//! `fields: true` the final step's pressure, gap, deformation and plastic-penetration maps and the
-//! composite height z₁ + z₂ the contact was solved on are stored as arrays in the cache (the
-//! per-summit `friction` method reads them).
+//! step) and `contacts_load_curve` (one row per step); with `fields: true` the final step's
+//! pressure, gap, deformation and plastic-penetration maps and the composite height z₁ + z₂ the
+//! contact was solved on are arrays for its consumers (the per-summit and per-spot `friction`
+//! methods read them), and every step's maps can be derived ([`ContactTask::step_maps`]).
+//!
+//! The cache keeps only the pressure maps (the final step's whole, the earlier steps' contact
+//! points, `contact_view::contact_points`); the other maps follow from a step's pressure, its
+//! approach and the surfaces by one convolution (`contact::fields_from_pressure`, the influence
+//! operator the solver used), which [`ContactTask::derive_arrays`] runs when a consumer reads a
+//! cached contact: equal to the solver's maps to round-off (1e-12 of each map's largest value,
+//! tested), at a few per cent of the solve's cost.
 
 use serde::Deserialize;
 
-use super::contact_view::COMPOSITE_HEIGHT;
+use super::contact_view::{
+    contact_points, step_pressure_name, COMPOSITE_HEIGHT, DEFORMATION_LOWER, DEFORMATION_UPPER,
+    GAP, PLASTIC_PENETRATION, PRESSURE,
+};
 use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
 use super::validity;
 use crate::contact::{
-    Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver, FieldRequest,
-    SolverOptions, MAX_TOLERANCE, MIN_TOLERANCE,
+    fields_from_pressure, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
+    FieldRequest, SolverOptions, MAX_TOLERANCE, MIN_TOLERANCE,
 };
 use crate::engine::artifact::Artifact;
-use crate::engine::node::{NodeError, NodeTask, UpstreamRef};
+use crate::engine::node::{ArrayStorage, NodeError, NodeTask, UpstreamRef};
 use crate::engine::study::{Param, ResolveContext, SourceLocation, SpannedName, SpecError};
 use crate::engine::value::{Field, Value};
 use crate::materials::{bounds, MaterialPair};
 use crate::surface::HeightMap;
 use crate::units::{format_number, Dimension, Pressure, Quantity};
+use crate::vocabulary::metrics::APPROACH;
 use crate::vocabulary::{roles, tables};
 
 mod results;
+mod steps;
 
 pub use results::final_step_metrics;
 use results::{load_curve_table, store_fields};
+use steps::array2;
 
 pub(crate) use crate::vocabulary::kinds::CONTACT as KIND;
 pub(crate) use crate::vocabulary::tables::CONTACTS as TABLE;
 
-/// Implementation version of the `contact` kind; bump whenever its numerics change (26: the
-/// validity rules fail impossible values and flag coarse grids and steep slopes).
-pub const CONTACT_KIND_VERSION: u32 = 26;
+/// Implementation version of the `contact` kind; bump whenever its numerics change (27: the
+/// cache keeps the pressure of every load step and derives the other maps).
+pub const CONTACT_KIND_VERSION: u32 = 27;
+
+/// The maps a contact's cache entry leaves out and [`ContactTask::derive_arrays`] derives.
+const DERIVED_ARRAYS: &[&str] = &[
+    COMPOSITE_HEIGHT,
+    GAP,
+    DEFORMATION_LOWER,
+    DEFORMATION_UPPER,
+    PLASTIC_PENETRATION,
+];
+
+/// The fields derived from a step's pressure: all but the pressure itself.
+const DERIVED_FIELDS: FieldRequest = FieldRequest {
+    pressure: false,
+    ..FieldRequest::ALL
+};
 
 /// `contact: {...}`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -310,6 +338,14 @@ impl ContactTask {
     pub(crate) fn material(&self) -> &ContactMaterial {
         &self.material
     }
+
+    fn boundary(&self) -> Boundary {
+        if self.periodic {
+            Boundary::Periodic
+        } else {
+            Boundary::NonPeriodic
+        }
+    }
 }
 
 fn height_map(input: &Artifact, role: &str) -> Result<HeightMap, NodeError> {
@@ -341,6 +377,44 @@ impl NodeTask for ContactTask {
         self.memory_estimate
     }
 
+    /// With fields, the maps other than the pressures are derived ([`Self::derive_arrays`]);
+    /// without, there are no arrays.
+    fn array_storage(&self) -> ArrayStorage {
+        if self.fields {
+            ArrayStorage::Derive(DERIVED_ARRAYS)
+        } else {
+            ArrayStorage::Store
+        }
+    }
+
+    /// The composite height from the surfaces and the final step's other maps from its pressure
+    /// and approach, by the solver's influence operator: `compute`'s maps to round-off.
+    fn derive_arrays(
+        &self,
+        inputs: &[&Artifact],
+        artifact: &mut Artifact,
+    ) -> Result<(), NodeError> {
+        let setup = self.problem(inputs)?;
+        let approach = match artifact.metric(APPROACH).map(|f| &f.value) {
+            Some(Value::Float(v)) => *v,
+            _ => return Err(NodeError::new("contact node: no approach")),
+        };
+        let fields = fields_from_pressure(
+            &setup.problem,
+            array2(artifact, PRESSURE)?,
+            approach,
+            DERIVED_FIELDS,
+        )
+        .map_err(|e| NodeError::new(format!("maps of the final load step: {e}")))?;
+        store_fields(artifact, fields);
+        if let Some(z) = setup.composite {
+            artifact
+                .arrays
+                .insert(String::from(COMPOSITE_HEIGHT), z.into_dyn());
+        }
+        Ok(())
+    }
+
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
         let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
         let setup = self.problem(inputs)?;
@@ -350,9 +424,19 @@ impl NodeTask for ContactTask {
         };
         let mut solver =
             ContactSolver::new(setup.problem, options).map_err(|e| fail("solver", &e))?;
-        let curve = solver
-            .solve_load_steps(&self.pressures)
-            .map_err(|e| fail("contact solve", &e))?;
+        let steps = self.pressures.len();
+        let mut earlier = Vec::new();
+        let curve = self.solve_steps(&mut solver, |i, solver| {
+            let request = FieldRequest {
+                pressure: true,
+                ..FieldRequest::NONE
+            };
+            if self.fields && i + 1 < steps {
+                if let Some(p) = solver.last_fields(request).and_then(|f| f.pressure) {
+                    earlier.push((step_pressure_name(i), contact_points(p.view())));
+                }
+            }
+        })?;
         let last = curve
             .steps
             .last()
@@ -374,6 +458,7 @@ impl NodeTask for ContactTask {
                 .last_fields(FieldRequest::ALL)
                 .ok_or_else(|| NodeError::new("the final load step left no fields"))?;
             store_fields(&mut artifact, fields);
+            artifact.arrays.extend(earlier);
         }
         artifact.flags = input_flags(inputs)?;
         validity::check_artifact(KIND, &mut artifact)?;
@@ -438,13 +523,8 @@ impl ContactTask {
                 self.fields.then(|| lower.heights().clone()),
             ),
         };
-        let boundary = if self.periodic {
-            Boundary::Periodic
-        } else {
-            Boundary::NonPeriodic
-        };
         Ok(ProblemSetup {
-            problem: ContactProblem::new(gap, self.material, boundary),
+            problem: ContactProblem::new(gap, self.material, self.boundary()),
             composite_modulus: self.material.composite_modulus(),
             spacing: (lower.dx(), lower.dy()),
             composite,

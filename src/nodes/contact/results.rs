@@ -9,7 +9,7 @@ use crate::contact::{LoadCurve, LoadStep};
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::value::Field;
 use crate::units::Dimension;
-use crate::vocabulary::metrics::{MEAN_CONTACT_PRESSURE, STRESS_RATIO};
+use crate::vocabulary::metrics::{APPROACH, MEAN_CONTACT_PRESSURE, STRESS_RATIO};
 
 /// The `contacts` row: the final load step, the composite modulus and the grid (also the
 /// scalars of the Python package's `contact`).
@@ -39,7 +39,7 @@ pub fn final_step_metrics(
             last.max_elastic_deformation,
             Dimension::Length,
         ),
-        Field::float("approach", last.approach, Dimension::Length),
+        Field::float(APPROACH, last.approach, Dimension::Length),
         Field::float(DX, dx, Dimension::Length),
         Field::float(DY, dy, Dimension::Length),
         Field::int("iterations", last.iterations as i64),
@@ -71,7 +71,7 @@ pub(super) fn load_curve_table(curve: &LoadCurve) -> Table {
         ("max_elastic_deformation", Dimension::Length, |s| {
             s.max_elastic_deformation
         }),
-        ("approach", Dimension::Length, |s| s.approach),
+        (APPROACH, Dimension::Length, |s| s.approach),
     ];
     let mut t = Table::default();
     t.push_int("step", (0..curve.steps.len() as i64).collect());

@@ -3,13 +3,21 @@
 //!
 //! Layout: `<root>/entries/<kind>/<key[..2]>/<key>/` holds `manifest.json`, `manifest.blake3`
 //! (the manifest's own checksum) and the payloads: `<array>.npy.zst` (a NumPy `.npy` file,
-//! zstd-compressed: lossless, and a contact's mostly-zero pressure and plastic-penetration maps
-//! shrink by orders of magnitude; `zstd -d` gives the `.npy`), `tables.json` and `summary.bin`
-//! (what a read returns, in one self-checksummed binary file: `cache/summary.rs`); an array equal to an
-//! earlier one of the entry is not written again, its manifest payload names the earlier file.
-//! Entries written before compression hold plain `<array>.npy`, entries written before summaries
-//! no `summary.bin`; both are read as well. A node kind may keep its arrays out of the cache
-//! altogether ([`crate::node::ArrayStorage::Regenerate`]).
+//! zstd-compressed: lossless, and a contact's mostly-zero pressure maps shrink by orders of
+//! magnitude; `zstd -d` gives the `.npy`), `<table>.parquet` for each large long table
+//! (`cache/table_file.rs`) and `summary.bin` (what a read returns — metrics, flags, the small
+//! tables and the list of the other payloads — in one self-checksummed binary file:
+//! `cache/summary.rs`); an array equal to an earlier one of the entry is not written again, its
+//! manifest payload names the earlier file. A node kind may keep some or all of its arrays out of
+//! the cache ([`crate::node::ArrayStorage`]): the caller says which arrays [`Cache::store`] keeps.
+//!
+//! Entry formats: the manifest's `format` is 2 for entries written so; entries written before
+//! (format 1, no `format` field) keep their metrics and flags in the manifest and their tables in
+//! `tables.json`, and are read through the manifest (entries written before compression hold
+//! plain `<array>.npy`, entries written before summaries no `summary.bin`). A format-2 manifest
+//! has no metrics, so an earlier asperity takes such an entry for damaged and recomputes it
+//! rather than read it without its tables.
+//!
 //! An entry is written in `<root>/tmp/` (same filesystem), every file fsynced, then renamed into
 //! place in one step; an entry that already exists counts as success, so concurrent runs need no
 //! lock. A read verifies everything it reads: the summary against its own checksum (or the
@@ -18,42 +26,55 @@
 //! reported, discarded and recomputed by the caller — never used.
 
 mod names;
+mod read;
 pub mod structure;
 mod summary;
+mod table_file;
 mod tmp;
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::ffi::{OsStr, OsString};
 use std::fs::{self, File};
-use std::io::{ErrorKind, Read, Write};
+use std::io::{ErrorKind, Write};
 use std::path::{Path, PathBuf};
 use std::time::{SystemTime, UNIX_EPOCH};
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::artifact::{Artifact, Table};
+use crate::artifact::Artifact;
 use crate::hash::NodeKey;
 use crate::npy;
 use crate::value::Field;
 
+use read::{
+    first_format_entry, read_file, read_payloads, read_table_files, unreadable_summary,
+    CHECKSUM_CAPACITY, READ_CAPACITY,
+};
 use summary::{Summary, SUMMARY_FILE};
 use tmp::stale_tmp;
 pub(crate) use tmp::{hostname, process_alive, remove_any, FOREIGN_TMP_MAX_AGE};
 
-/// What the cache records about one entry.
+/// The entry format this version writes (see the module documentation).
+pub const ENTRY_FORMAT: u32 = 2;
+
+/// The format of a manifest without a `format` field.
+fn first_format() -> u32 {
+    1
+}
+
+/// What the cache records about one entry (the metrics, flags and tables are in its summary).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Manifest {
+    /// [`ENTRY_FORMAT`] for entries written by this version; 1 for earlier ones.
+    #[serde(default = "first_format")]
+    pub format: u32,
     pub key: String,
     pub kind: String,
     pub version: u32,
     pub params: Vec<Field>,
     /// `(role, key)` of each upstream node.
     pub upstream: Vec<(String, String)>,
-    pub metrics: Vec<Field>,
-    /// The artifact's flags; absent (no flags) in entries written before flags existed.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub flags: Vec<String>,
     pub payloads: Vec<Payload>,
     pub compute_seconds: f64,
     pub tool_version: String,
@@ -75,7 +96,7 @@ pub struct Payload {
 
 impl Payload {
     /// The array name, if this payload is an array.
-    fn array_name(&self) -> Option<&str> {
+    pub fn array_name(&self) -> Option<&str> {
         match &self.array {
             Some(name) => Some(name),
             None => self
@@ -112,12 +133,16 @@ struct EntryRead {
     payloads: Vec<Payload>,
 }
 
-/// The fields of a manifest a read parses.
+/// The fields of a manifest a read parses; the metrics and flags are those of a format-1
+/// manifest (absent from later ones; a format-1 manifest without flags has none).
 #[derive(Deserialize)]
 struct ManifestRead {
+    #[serde(default = "first_format")]
+    format: u32,
     key: String,
     kind: String,
     upstream: Vec<(String, String)>,
+    #[serde(default)]
     metrics: Vec<Field>,
     #[serde(default)]
     flags: Vec<String>,
@@ -241,11 +266,12 @@ impl Cache {
 
     /// Loads and verifies an entry. `Ok(None)`: not cached. `Err(Corrupt)`: present but failed
     /// verification — call [`Cache::discard`] and recompute. Everything read is verified. An
-    /// entry is read from its summary (`summary.bin`, which carries its own checksum), one file;
-    /// an entry written before summaries (or with a summary of another format version) through
-    /// its manifest (checked against `manifest.blake3`) and `tables.json`. The arrays are read
-    /// only `with_arrays`, each checked against the size and checksum listed for it, so a damaged
-    /// array is found when its arrays are next loaded, or by [`Cache::verify`].
+    /// entry is read from its summary (`summary.bin`, which carries its own checksum) and its
+    /// table files, each checked against the size and checksum the summary lists; an entry
+    /// written before summaries (or with a summary of another format version) of entry format 1
+    /// through its manifest (checked against `manifest.blake3`) and `tables.json`. The arrays are
+    /// read only `with_arrays`, each checked against the size and checksum listed for it, so a
+    /// damaged array is found when its arrays are next loaded, or by [`Cache::verify`].
     pub fn load(
         &self,
         kind: &str,
@@ -264,13 +290,16 @@ impl Cache {
             Err(e) => return Err(corrupt(format!("{SUMMARY_FILE}: {e}"))),
         };
         let read = match summary {
-            Some(d) => EntryRead {
-                manifest: d.manifest,
-                artifact: d.artifact,
-                payloads: d.payloads,
-            },
+            Some(mut d) => {
+                read_table_files(&dir, &d.table_files, &mut d.artifact).map_err(corrupt)?;
+                EntryRead {
+                    manifest: d.manifest,
+                    artifact: d.artifact,
+                    payloads: d.payloads,
+                }
+            }
             None => match self.read_manifest(&dir, kind, key)? {
-                Some(read) => read,
+                Some(manifest) => first_format_entry(&dir, manifest).map_err(corrupt)?,
                 None => return Ok(None),
             },
         };
@@ -289,36 +318,44 @@ impl Cache {
 
     /// Verifies an entry fully: the manifest against its checksum, every payload it lists
     /// (arrays decoded, tables parsed) and the summary (a summary of another format version is
-    /// checked only as a payload). `Ok(false)`: not cached.
+    /// checked only as a payload, and only an entry of format 1 may have one). `Ok(false)`: not
+    /// cached.
     pub fn verify(&self, kind: &str, key: &NodeKey) -> Result<bool, CacheError> {
         let dir = self.entry_dir(kind, key);
         let corrupt = |reason: String| CacheError::Corrupt {
             path: dir.clone(),
             reason,
         };
-        let Some(read) = self.read_manifest(&dir, kind, key)? else {
+        let Some(manifest) = self.read_manifest(&dir, kind, key)? else {
             return Ok(false);
         };
-        read_payloads(&dir, &read.payloads, true, true).map_err(corrupt)?;
-        match read_file(&dir.join(SUMMARY_FILE), READ_CAPACITY) {
+        read_payloads(&dir, &manifest.payloads, true, true).map_err(corrupt)?;
+        let summary = match read_file(&dir.join(SUMMARY_FILE), READ_CAPACITY) {
             Ok(bytes) => summary::decode(&bytes, key, kind, true)
-                .map(drop)
-                .map_err(|e| corrupt(format!("{SUMMARY_FILE}: {e}"))),
-            Err(e) if e.kind() == ErrorKind::NotFound => Ok(()),
-            Err(e) => Err(corrupt(format!("{SUMMARY_FILE}: {e}"))),
-        }?;
+                .map_err(|e| corrupt(format!("{SUMMARY_FILE}: {e}")))?,
+            Err(e) if e.kind() == ErrorKind::NotFound => None,
+            Err(e) => return Err(corrupt(format!("{SUMMARY_FILE}: {e}"))),
+        };
+        match summary {
+            Some(mut d) => {
+                read_table_files(&dir, &d.table_files, &mut d.artifact).map_err(corrupt)?
+            }
+            None if manifest.format > 1 => {
+                return Err(corrupt(unreadable_summary(manifest.format)));
+            }
+            None => {}
+        }
         Ok(true)
     }
 
-    /// The entry in `dir` read through its manifest (checked against `manifest.blake3`): the
-    /// manifest part, the metrics and the tables (from `tables.json`, checked against the
-    /// manifest); `None` when there is no entry.
+    /// The manifest of the entry in `dir`, checked against `manifest.blake3` and against the key
+    /// and kind; `None` when there is no entry.
     fn read_manifest(
         &self,
         dir: &Path,
         kind: &str,
         key: &NodeKey,
-    ) -> Result<Option<EntryRead>, CacheError> {
+    ) -> Result<Option<ManifestRead>, CacheError> {
         let corrupt = |reason: String| CacheError::Corrupt {
             path: dir.to_path_buf(),
             reason,
@@ -343,27 +380,19 @@ impl Cache {
         if read.key != key.to_hex() || read.kind != kind {
             return Err(corrupt(String::from("manifest names another key or kind")));
         }
-        let tables = read_payloads(dir, &read.payloads, false, true)
-            .map_err(corrupt)?
-            .tables;
-        Ok(Some(EntryRead {
-            manifest: EntryManifest {
-                upstream: read.upstream,
-                compute_seconds: read.compute_seconds,
-            },
-            artifact: Artifact {
-                metrics: read.metrics,
-                tables,
-                flags: read.flags,
-                ..Artifact::default()
-            },
-            payloads: read.payloads,
-        }))
+        Ok(Some(read))
     }
 
-    /// Publishes an entry atomically. Returns `false` when another writer published the same
-    /// key first (which is success: entries with one key are interchangeable).
-    pub fn store(&self, mut manifest: Manifest, artifact: &Artifact) -> Result<bool, CacheError> {
+    /// Publishes an entry atomically: the manifest, the artifact's metrics, flags and tables, and
+    /// its arrays for which `keeps_array` is `true` (those the node kind stores). Returns `false`
+    /// when another writer published the same key first (which is success: entries with one key
+    /// are interchangeable).
+    pub fn store(
+        &self,
+        mut manifest: Manifest,
+        artifact: &Artifact,
+        keeps_array: &dyn Fn(&str) -> bool,
+    ) -> Result<bool, CacheError> {
         let key = NodeKey::from_hex(&manifest.key).ok_or_else(|| CacheError::Corrupt {
             path: self.root.clone(),
             reason: format!("manifest key '{}' is not a node key", manifest.key),
@@ -382,7 +411,13 @@ impl Cache {
                 .map_or(0, |d| d.as_nanos())
         ));
         fs::create_dir_all(&tmp).map_err(io_err(&tmp))?;
-        let result = self.write_and_publish(&tmp, &final_dir, &key, &mut manifest, artifact);
+        let result = self.write_and_publish(
+            &tmp,
+            &final_dir,
+            (&key, &mut manifest),
+            artifact,
+            keeps_array,
+        );
         if result.is_err() || tmp.exists() {
             let _ = fs::remove_dir_all(&tmp);
         }
@@ -393,12 +428,13 @@ impl Cache {
         &self,
         tmp: &Path,
         final_dir: &Path,
-        key: &NodeKey,
-        manifest: &mut Manifest,
+        (key, manifest): (&NodeKey, &mut Manifest),
         artifact: &Artifact,
+        keeps_array: &dyn Fn(&str) -> bool,
     ) -> Result<bool, CacheError> {
+        manifest.format = ENTRY_FORMAT;
         manifest.payloads.clear();
-        for (name, array) in &artifact.arrays {
+        for (name, array) in artifact.arrays.iter().filter(|(n, _)| keeps_array(n)) {
             let file = format!("{name}.npy.zst");
             let compressed = compress(&npy::encode(array)).map_err(io_err(&tmp.join(&file)))?;
             let checksum = blake3::hash(&compressed).to_hex().to_string();
@@ -411,14 +447,19 @@ impl Cache {
             };
             manifest.payloads.push(payload);
         }
-        if !artifact.tables.is_empty() {
-            let bytes = serde_json::to_vec(&artifact.tables).map_err(|e| CacheError::Io {
-                path: tmp.join("tables.json"),
-                source: std::io::Error::other(e),
-            })?;
-            manifest
-                .payloads
-                .push(write_synced(tmp, "tables.json", &bytes)?);
+        let mut table_files = BTreeMap::new();
+        for (name, table) in artifact
+            .tables
+            .iter()
+            .filter(|(_, t)| table_file::is_large(t))
+        {
+            let invalid = |message: String| CacheError::Io {
+                path: tmp.join(name),
+                source: std::io::Error::other(message),
+            };
+            let file = table_file::file_name(name).map_err(invalid)?;
+            let bytes = table_file::encode(table).map_err(invalid)?;
+            table_files.insert(name.clone(), write_synced(tmp, &file, &bytes)?);
         }
         let summary = summary::encode(&Summary {
             key,
@@ -426,10 +467,12 @@ impl Cache {
             upstream: &manifest.upstream,
             payloads: &manifest.payloads,
             compute_seconds: manifest.compute_seconds,
-            metrics: &manifest.metrics,
+            metrics: &artifact.metrics,
             tables: &artifact.tables,
+            table_files: &table_files,
             flags: &artifact.flags,
         });
+        manifest.payloads.extend(table_files.into_values());
         manifest
             .payloads
             .push(write_synced(tmp, SUMMARY_FILE, &summary)?);
@@ -510,65 +553,6 @@ impl Cache {
         }
         Ok(removed)
     }
-}
-
-/// The arrays (`arrays`) and the tables (`tables`) of an entry's payloads, each payload read
-/// checked against its listed size and checksum; payloads that are neither are read and checked
-/// whenever `tables` is. Errors say what is corrupt.
-fn read_payloads(
-    dir: &Path,
-    payloads: &[Payload],
-    arrays: bool,
-    tables: bool,
-) -> Result<Artifact, String> {
-    let mut artifact = Artifact::default();
-    // Arrays decoded so far by file: an array equal to an earlier one names its file.
-    let mut decoded: BTreeMap<&str, ndarray::ArrayD<f64>> = BTreeMap::new();
-    for payload in payloads {
-        let array = payload.array_name();
-        if (array.is_some() && !arrays) || (array.is_none() && !tables) {
-            continue;
-        }
-        if let (Some(name), Some(array)) = (array, decoded.get(&*payload.file)) {
-            artifact.arrays.insert(name.to_string(), array.clone());
-            continue;
-        }
-        let bytes = read_file(&dir.join(&payload.file), payload.bytes as usize)
-            .map_err(|e| format!("{}: {e}", payload.file))?;
-        if bytes.len() as u64 != payload.bytes
-            || blake3::hash(&bytes).to_hex().as_str() != payload.blake3
-        {
-            return Err(format!("{}: checksum mismatch", payload.file));
-        }
-        if let Some(name) = array {
-            let npy_bytes = if payload.file.ends_with(".zst") {
-                zstd::stream::decode_all(bytes.as_slice())
-                    .map_err(|e| format!("{}: {e}", payload.file))?
-            } else {
-                bytes
-            };
-            let array = npy::decode(&npy_bytes).map_err(|e| e.to_string())?;
-            decoded.insert(&payload.file, array.clone());
-            artifact.arrays.insert(name.to_string(), array);
-        } else if payload.file == "tables.json" {
-            artifact.tables = serde_json::from_slice::<BTreeMap<String, Table>>(&bytes)
-                .map_err(|e| format!("tables.json: {e}"))?;
-        }
-    }
-    Ok(artifact)
-}
-
-/// Room for a manifest or a summary (a few kB) and for a checksum file (64 hex digits) read whole.
-const READ_CAPACITY: usize = 16 << 10;
-const CHECKSUM_CAPACITY: usize = 80;
-
-/// Reads a whole file into a buffer made for `expected` bytes. Through [`Read::take`], which
-/// does not ask the file for its size as `fs::read` does: one system call less per file, and a
-/// cached rerun reads a few files per node.
-fn read_file(path: &Path, expected: usize) -> std::io::Result<Vec<u8>> {
-    let mut bytes = Vec::with_capacity(expected + 1);
-    File::open(path)?.take(u64::MAX).read_to_end(&mut bytes)?;
-    Ok(bytes)
 }
 
 fn write_synced(dir: &Path, file: &str, bytes: &[u8]) -> Result<Payload, CacheError> {

@@ -1,14 +1,17 @@
 //! `summary.bin`: what a read of a cache entry returns (key, kind, upstream keys, compute time,
 //! metrics, long tables, flags and the payload list) in one compact, self-verifying file, so that a rerun
-//! reads one file per entry instead of the manifest, its checksum file and `tables.json`.
+//! reads one file per entry instead of the manifest and its checksum file.
 //!
 //! Layout: the magic `asperity-summary`, the format version (u32), the XXH3-128 checksum of the
 //! body (16 bytes: a checksum against damage, fast on files of a few kilobytes; the manifest lists
 //! the file with its blake3 as it does every payload), the body. In the body every count and
-//! length is an unsigned LEB128 varint, a string is its length and its UTF-8 bytes, an integer
-//! 8 bytes, a float its IEEE 754 bits (so values read back exactly as computed, NaN and
-//! infinities included), a dimension its name (as in node keys). The payload list comes last: a
-//! read that leaves the arrays unread does not decode it (the checksum still covers it).
+//! length is an unsigned LEB128 varint and values are written as node keys write them
+//! ([`crate::encoding`]): a string is its length and its UTF-8 bytes, an integer 8 bytes, a float
+//! its IEEE 754 bits (so values read back exactly as computed, NaN and infinities included), a
+//! dimension its name. A long table is either inside the summary, column after column, or, when
+//! large, a Parquet payload of its own (`table_file.rs`) of which the summary keeps the schema,
+//! the row count and the file's size and checksum. The array payload list comes last: a read that
+//! leaves the arrays unread does not decode it (the checksum still covers it).
 
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -16,6 +19,7 @@ use std::collections::BTreeMap;
 use xxhash_rust::xxh3::xxh3_128;
 
 use crate::artifact::{Artifact, Column, ColumnData, Table};
+use crate::encoding::{self, Lengths};
 use crate::hash::NodeKey;
 use crate::units::Dimension;
 use crate::value::{Field, Value};
@@ -26,9 +30,11 @@ use super::{names, EntryManifest, Payload};
 pub(super) const SUMMARY_FILE: &str = "summary.bin";
 
 const MAGIC: &[u8; 16] = b"asperity-summary";
-/// Version 3 added the flags; a version-2 summary is read through its manifest, whose missing
-/// `flags` field reads as no flags.
-const VERSION: u32 = 3;
+/// Version 3 added the flags; version 4 keeps large tables in Parquet payloads (there is no
+/// `tables.json` any more). A summary of another version is read through its manifest: for
+/// entries written before version 4 (manifest format 1) the manifest holds the metrics and flags
+/// and `tables.json` the tables.
+pub(super) const VERSION: u32 = 4;
 const CHECKSUM: usize = 16;
 const HEADER: usize = MAGIC.len() + 4 + CHECKSUM;
 
@@ -37,18 +43,34 @@ pub(super) struct Summary<'a> {
     pub key: &'a NodeKey,
     pub kind: &'a str,
     pub upstream: &'a [(String, String)],
+    /// The array payloads.
     pub payloads: &'a [Payload],
     pub compute_seconds: f64,
     pub metrics: &'a [Field],
     pub tables: &'a BTreeMap<String, Table>,
+    /// The payload of each table stored as a file of its own, by table name; the others are
+    /// written into the summary.
+    pub table_files: &'a BTreeMap<String, Payload>,
     pub flags: &'a [String],
 }
 
-/// A decoded summary: the manifest part, an artifact with the metrics and tables, and the
-/// payload list when it was asked for (empty otherwise).
+/// A table stored as a file of its own, as the summary describes it.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct TableFile {
+    pub name: String,
+    pub payload: Payload,
+    pub rows: usize,
+    /// The columns' names, dimensions and types (their data are empty).
+    pub schema: Table,
+}
+
+/// A decoded summary: the manifest part, an artifact with the metrics and the tables kept in the
+/// summary, the tables kept in files (for the caller to read), and the array payload list when
+/// it was asked for (empty otherwise).
 pub(super) struct Decoded {
     pub manifest: EntryManifest,
     pub artifact: Artifact,
+    pub table_files: Vec<TableFile>,
     pub payloads: Vec<Payload>,
 }
 
@@ -72,7 +94,18 @@ pub(super) fn encode(summary: &Summary<'_>) -> Vec<u8> {
     put_len(&mut body, summary.tables.len());
     for (name, table) in summary.tables {
         put_str(&mut body, name);
-        put_table(&mut body, table);
+        match summary.table_files.get(name) {
+            Some(payload) => {
+                body.push(b'p');
+                put_payload(&mut body, payload);
+                put_len(&mut body, table.rows());
+                put_columns(&mut body, table, false);
+            }
+            None => {
+                body.push(b'i');
+                put_columns(&mut body, table, true);
+            }
+        }
     }
     put_len(&mut body, summary.flags.len());
     for flag in summary.flags {
@@ -118,10 +151,23 @@ pub(super) fn decode(
     let compute_seconds = r.f64()?;
     let upstream = r.list(|r| Ok((r.string()?, r.string()?)))?;
     let metrics = r.list(Reader::field)?;
-    let tables = r
-        .list(|r| Ok((r.string()?, r.table()?)))?
-        .into_iter()
-        .collect();
+    let mut tables = BTreeMap::new();
+    let mut table_files = Vec::new();
+    for _ in 0..r.len()? {
+        let name = r.string()?;
+        match r.u8()? {
+            b'i' => {
+                tables.insert(name, r.table(true)?);
+            }
+            b'p' => table_files.push(TableFile {
+                name,
+                payload: r.payload()?,
+                rows: r.varint()?,
+                schema: r.table(false)?,
+            }),
+            other => return Err(format!("unknown table storage {other}")),
+        }
+    }
     let flags = r.list(Reader::string)?;
     let payloads = if payloads {
         let list = r.list(Reader::payload)?;
@@ -143,28 +189,25 @@ pub(super) fn decode(
             flags,
             ..Artifact::default()
         },
+        table_files,
         payloads,
     }))
 }
 
-/// A count or length as an unsigned LEB128 varint: seven bits a byte, low bits first, the high
-/// bit set on every byte but the last.
 fn put_len(out: &mut Vec<u8>, n: usize) {
-    let mut n = n as u64;
-    while n >= 0x80 {
-        out.push((n & 0x7f) as u8 | 0x80);
-        n >>= 7;
-    }
-    out.push(n as u8);
+    encoding::put_len(out, n, Lengths::Varint);
 }
 
 fn put_str(out: &mut Vec<u8>, s: &str) {
-    put_len(out, s.len());
-    out.extend_from_slice(s.as_bytes());
+    encoding::put_str(out, s, Lengths::Varint);
 }
 
 fn put_f64(out: &mut Vec<u8>, x: f64) {
-    out.extend_from_slice(&x.to_bits().to_le_bytes());
+    encoding::put_f64(out, x);
+}
+
+fn put_value(out: &mut Vec<u8>, value: &Value) {
+    encoding::put_value(out, value, Lengths::Varint);
 }
 
 fn put_payload(out: &mut Vec<u8>, payload: &Payload) {
@@ -180,54 +223,31 @@ fn put_payload(out: &mut Vec<u8>, payload: &Payload) {
     }
 }
 
-fn put_value(out: &mut Vec<u8>, value: &Value) {
-    match value {
-        Value::Float(x) => {
-            out.push(b'f');
-            put_f64(out, *x);
-        }
-        Value::Int(i) => {
-            out.push(b'i');
-            out.extend_from_slice(&i.to_le_bytes());
-        }
-        Value::Bool(b) => {
-            out.push(b'b');
-            out.push(u8::from(*b));
-        }
-        Value::Text(s) => {
-            out.push(b's');
-            put_str(out, s);
-        }
-    }
-}
-
-fn put_table(out: &mut Vec<u8>, table: &Table) {
+/// A table's columns: name, dimension, type and, `with_values`, the values (else only the
+/// schema, the values being in a file of their own).
+fn put_columns(out: &mut Vec<u8>, table: &Table, with_values: bool) {
     put_len(out, table.columns.len());
     for column in &table.columns {
         put_str(out, &column.name);
         put_str(out, column.dimension.name());
+        let (tag, len) = match &column.data {
+            ColumnData::Float(v) => (b'f', v.len()),
+            ColumnData::Int(v) => (b'i', v.len()),
+            ColumnData::Bool(v) => (b'b', v.len()),
+            ColumnData::Text(v) => (b's', v.len()),
+        };
+        out.push(tag);
+        if !with_values {
+            continue;
+        }
+        put_len(out, len);
         match &column.data {
-            ColumnData::Float(v) => {
-                out.push(b'f');
-                put_len(out, v.len());
-                v.iter().for_each(|x| put_f64(out, *x));
-            }
-            ColumnData::Int(v) => {
-                out.push(b'i');
-                put_len(out, v.len());
-                v.iter()
-                    .for_each(|i| out.extend_from_slice(&i.to_le_bytes()));
-            }
-            ColumnData::Bool(v) => {
-                out.push(b'b');
-                put_len(out, v.len());
-                out.extend(v.iter().map(|b| u8::from(*b)));
-            }
-            ColumnData::Text(v) => {
-                out.push(b's');
-                put_len(out, v.len());
-                v.iter().for_each(|s| put_str(out, s));
-            }
+            ColumnData::Float(v) => v.iter().for_each(|x| put_f64(out, *x)),
+            ColumnData::Int(v) => v
+                .iter()
+                .for_each(|i| out.extend_from_slice(&i.to_le_bytes())),
+            ColumnData::Bool(v) => out.extend(v.iter().map(|b| u8::from(*b))),
+            ColumnData::Text(v) => v.iter().for_each(|s| put_str(out, s)),
         }
     }
 }
@@ -261,18 +281,24 @@ impl<'a> Reader<'a> {
 
     /// A count or length (a varint), at most the bytes left (every item takes at least one byte).
     fn len(&mut self) -> Result<usize, String> {
+        self.varint()?
+            .try_into()
+            .ok()
+            .filter(|&n: &usize| n <= self.0.len())
+            .ok_or_else(|| String::from("length beyond the end"))
+    }
+
+    /// A varint counting something outside the summary (a table file's rows).
+    fn varint(&mut self) -> Result<usize, String> {
         let mut n = 0u64;
         for shift in (0..64).step_by(7) {
             let byte = self.u8()?;
             n |= u64::from(byte & 0x7f) << shift;
             if byte < 0x80 {
-                return usize::try_from(n)
-                    .ok()
-                    .filter(|&n| n <= self.0.len())
-                    .ok_or_else(|| String::from("length beyond the end"));
+                return usize::try_from(n).map_err(|_| String::from("count too large"));
             }
         }
-        Err(String::from("length beyond the end"))
+        Err(String::from("varint longer than 64 bits"))
     }
 
     fn str(&mut self) -> Result<&'a str, String> {
@@ -336,16 +362,22 @@ impl<'a> Reader<'a> {
         })
     }
 
-    fn table(&mut self) -> Result<Table, String> {
+    /// A table's columns, with their values when `with_values` (else empty columns: a schema).
+    fn table(&mut self, with_values: bool) -> Result<Table, String> {
         let columns = self.list(|r| {
             let name = r.name()?;
             let dimension = r.dimension()?;
-            let data = match r.u8()? {
-                b'f' => ColumnData::Float(r.list(Reader::f64)?),
-                b'i' => ColumnData::Int(r.list(|r| r.u64().map(|i| i as i64))?),
-                b'b' => ColumnData::Bool(r.list(|r| r.u8().map(|b| b != 0))?),
-                b's' => ColumnData::Text(r.list(Reader::string)?),
-                other => return Err(format!("unknown column type {other}")),
+            let tag = r.u8()?;
+            let data = match (tag, with_values) {
+                (b'f', true) => ColumnData::Float(r.list(Reader::f64)?),
+                (b'i', true) => ColumnData::Int(r.list(|r| r.u64().map(|i| i as i64))?),
+                (b'b', true) => ColumnData::Bool(r.list(|r| r.u8().map(|b| b != 0))?),
+                (b's', true) => ColumnData::Text(r.list(Reader::string)?),
+                (b'f', false) => ColumnData::Float(Vec::new()),
+                (b'i', false) => ColumnData::Int(Vec::new()),
+                (b'b', false) => ColumnData::Bool(Vec::new()),
+                (b's', false) => ColumnData::Text(Vec::new()),
+                (other, _) => return Err(format!("unknown column type {other}")),
             };
             Ok(Column {
                 name,
@@ -367,7 +399,17 @@ mod tests {
         payloads: Vec<Payload>,
         metrics: Vec<Field>,
         tables: BTreeMap<String, Table>,
+        table_files: BTreeMap<String, Payload>,
         flags: Vec<String>,
+    }
+
+    /// A table of `rows` rows, for a table file (whose values the summary does not hold).
+    fn long_table(rows: usize) -> Table {
+        let mut table = Table::default();
+        table.push_float("x", Dimension::Length, vec![0.5; rows]);
+        table.push_int("ix", vec![3; rows]);
+        table.push_text("note", vec![String::new(); rows]);
+        table
     }
 
     fn sample() -> Sample {
@@ -398,7 +440,21 @@ mod tests {
                 Field::bool("ok", true),
                 Field::text("model", "kogut_etsion".repeat(20)),
             ],
-            tables: [(String::from("steps"), table)].into(),
+            tables: [
+                (String::from("steps"), table),
+                (String::from("summits"), long_table(100_000)),
+            ]
+            .into(),
+            table_files: [(
+                String::from("summits"),
+                Payload {
+                    file: String::from("summits.parquet"),
+                    bytes: 900,
+                    blake3: String::from("aa11"),
+                    array: None,
+                },
+            )]
+            .into(),
             flags: vec![String::from("area fraction 0.6 is beyond … light load")],
         }
     }
@@ -412,6 +468,7 @@ mod tests {
             compute_seconds: s.manifest.compute_seconds,
             metrics: &s.metrics,
             tables: &s.tables,
+            table_files: &s.table_files,
             flags: &s.flags,
         })
     }
@@ -429,7 +486,18 @@ mod tests {
             if payloads {
                 assert_eq!(d.payloads, s.payloads);
             }
-            assert_eq!(d.artifact.tables, s.tables);
+            assert_eq!(d.artifact.tables.len(), 1);
+            assert_eq!(d.artifact.tables["steps"], s.tables["steps"]);
+            let [file] = &d.table_files[..] else {
+                panic!("one table file: {:?}", d.table_files)
+            };
+            assert_eq!(
+                (file.name.as_str(), &file.payload, file.rows),
+                ("summits", &s.table_files["summits"], 100_000)
+            );
+            assert_eq!(file.schema.columns.len(), 3);
+            assert!(file.schema.columns.iter().all(|c| c.data.is_empty()));
+            assert_eq!(file.schema.columns[2].column_name(), "note");
             assert_eq!(d.artifact.flags, s.flags);
             assert_eq!(d.artifact.metrics.len(), s.metrics.len());
             for (a, b) in d.artifact.metrics.iter().zip(&s.metrics) {

@@ -19,6 +19,7 @@ use crate::node::{ArrayStorage, NodeError};
 use crate::plan::{Plan, PlannedNode};
 
 mod cache_access;
+mod derive;
 mod memory_budget;
 mod outcome;
 mod store;
@@ -149,6 +150,15 @@ pub fn execute_nodes(
         for (_, u) in &plan.nodes[i].upstream {
             dependants[*u] += 1;
             if !in_cache[i] {
+                wants_payload[*u] = true;
+            }
+        }
+    }
+    // A node that derives arrays needs its upstream arrays to derive them.
+    for &i in needed.iter().rev() {
+        if wants_payload[i] && matches!(plan.nodes[i].task.array_storage(), ArrayStorage::Derive(_))
+        {
+            for (_, u) in &plan.nodes[i].upstream {
                 wants_payload[*u] = true;
             }
         }
@@ -343,6 +353,11 @@ impl<'a> RunContext<'a> {
             {
                 self.regenerate(node, entry)
             }
+            Some(entry)
+                if with_payload && matches!(node.task.array_storage(), ArrayStorage::Derive(_)) =>
+            {
+                self.derive(node, entry)
+            }
             Some(CachedEntry { manifest, artifact }) => {
                 let outcome = |metrics, tables, flags| NodeOutcome {
                     status: NodeStatus::Cached,
@@ -397,44 +412,10 @@ impl<'a> RunContext<'a> {
     /// Computes a node from its upstream artifacts (loading any that are not in memory), under
     /// the memory budget, turning a panic into a failure. Returns the result and its time.
     fn run_compute(&self, node: &PlannedNode) -> (Result<Artifact, NodeOutcome>, f64) {
-        let mut inputs: Vec<Arc<Artifact>> = Vec::with_capacity(node.upstream.len());
-        for (role, u) in &node.upstream {
-            let upstream = &self.plan.nodes[*u];
-            // Present when loaded with arrays or computed in this run; otherwise (it was loaded
-            // metrics-only because its dependants were cached, then one turned out corrupt) the
-            // upstream entry is read again with its arrays, or recomputed if they are not stored
-            // or that read finds the entry gone or corrupt.
-            let in_memory = self.lock().artifacts[*u].clone();
-            let artifact = match in_memory {
-                Some(a) => a,
-                None if upstream.task.array_storage() == ArrayStorage::Regenerate => {
-                    match self.run_compute(upstream) {
-                        (Ok(artifact), _) => Arc::new(artifact),
-                        (Err(failed), _) => {
-                            let message = format!(
-                                "cannot regenerate upstream {role} node: {}",
-                                failed.status.message()
-                            );
-                            return (Err(failed_outcome(NodeStatus::Failed(message))), 0.0);
-                        }
-                    }
-                }
-                None => match self.load(upstream, true) {
-                    Some(entry) => Arc::new(entry.artifact),
-                    None => match self.compute(upstream) {
-                        (_, Some(artifact)) => artifact,
-                        (failed, None) => {
-                            let message = format!(
-                                "cannot load or recompute upstream {role} node: {}",
-                                failed.status.message()
-                            );
-                            return (Err(failed_outcome(NodeStatus::Failed(message))), 0.0);
-                        }
-                    },
-                },
-            };
-            inputs.push(artifact);
-        }
+        let inputs = match self.upstream_artifacts(node) {
+            Ok(inputs) => inputs,
+            Err(failed) => return (Err(failed), 0.0),
+        };
         let input_refs: Vec<&Artifact> = inputs.iter().map(Arc::as_ref).collect();
         let estimate = node.task.memory_estimate();
         if estimate > self.budget.total() {
@@ -446,21 +427,50 @@ impl<'a> RunContext<'a> {
         let _permit = self.budget.acquire(estimate);
         let start = Instant::now();
         let result = catch_unwind(AssertUnwindSafe(|| node.task.compute(&input_refs)))
-            .unwrap_or_else(|panic| {
-                let what = panic
-                    .downcast_ref::<&str>()
-                    .map(|s| s.to_string())
-                    .or_else(|| panic.downcast_ref::<String>().cloned())
-                    .unwrap_or_default();
-                Err(NodeError::new(format!(
-                    "internal error (panic: {what}); please report it with the study file"
-                )))
-            });
+            .unwrap_or_else(|panic| Err(internal_error(panic)));
         let seconds = start.elapsed().as_secs_f64();
         (
             result.map_err(|e| failed_outcome(NodeStatus::Failed(e.message))),
             seconds,
         )
+    }
+
+    /// The artifacts (with arrays) of `node`'s upstream instances, in its order. Present when
+    /// loaded with arrays or computed in this run; otherwise (loaded metrics-only because its
+    /// dependants were cached, then one turned out corrupt) an upstream entry is read again with
+    /// its arrays (and its derived arrays derived), or recomputed if they are not stored or that
+    /// read finds the entry gone or corrupt.
+    fn upstream_artifacts(&self, node: &PlannedNode) -> Result<Vec<Arc<Artifact>>, NodeOutcome> {
+        let mut inputs = Vec::with_capacity(node.upstream.len());
+        for (role, u) in &node.upstream {
+            let upstream = &self.plan.nodes[*u];
+            let in_memory = self.lock().artifacts[*u].clone();
+            let fail = |what: &str, failed: NodeOutcome| {
+                let message = format!("{what} upstream {role} node: {}", failed.status.message());
+                failed_outcome(NodeStatus::Failed(message))
+            };
+            let artifact = match in_memory {
+                Some(a) => a,
+                None if upstream.task.array_storage() == ArrayStorage::Regenerate => {
+                    match self.run_compute(upstream) {
+                        (Ok(artifact), _) => Arc::new(artifact),
+                        (Err(failed), _) => return Err(fail("cannot regenerate", failed)),
+                    }
+                }
+                None => match self
+                    .load(upstream, true)
+                    .map(|e| self.complete(upstream, e))
+                {
+                    Some(Ok(artifact)) => Arc::new(artifact),
+                    _ => match self.compute(upstream) {
+                        (_, Some(artifact)) => artifact,
+                        (failed, None) => return Err(fail("cannot load or recompute", failed)),
+                    },
+                },
+            };
+            inputs.push(artifact);
+        }
+        Ok(inputs)
     }
 
     fn compute(&self, node: &PlannedNode) -> (NodeOutcome, Option<Arc<Artifact>>) {
@@ -481,6 +491,18 @@ fn over_budget(estimate: u64, budget: u64) -> NodeStatus {
          coarser grid, fewer fields)",
         mib(estimate),
         mib(budget)
+    ))
+}
+
+/// The failure of a node kind's code that panicked (with the panic's text).
+fn internal_error(panic: Box<dyn std::any::Any + Send>) -> NodeError {
+    let what = panic
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| panic.downcast_ref::<String>().cloned())
+        .unwrap_or_default();
+    NodeError::new(format!(
+        "internal error (panic: {what}); please report it with the study file"
     ))
 }
 

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use std::time::{SystemTime, UNIX_EPOCH};
 
 use crate::artifact::Artifact;
-use crate::cache::{CachedEntry, Manifest};
+use crate::cache::{CachedEntry, Manifest, ENTRY_FORMAT};
 use crate::node::ArrayStorage;
 use crate::plan::PlannedNode;
 
@@ -29,7 +29,7 @@ impl RunContext<'_> {
         }
     }
 
-    /// Stores a computed artifact (without its arrays under [`ArrayStorage::Regenerate`]; not at
+    /// Stores a computed artifact (without the arrays its [`ArrayStorage`] does not keep; not at
     /// all once the run stores nothing, [`Storing`]) and makes its outcome.
     pub(super) fn store_computed(
         &self,
@@ -46,6 +46,7 @@ impl RunContext<'_> {
             }
         }
         let manifest = Manifest {
+            format: ENTRY_FORMAT,
             key: node.key.to_hex(),
             kind: node.task.kind().to_string(),
             version: node.task.version(),
@@ -55,8 +56,6 @@ impl RunContext<'_> {
                 .iter()
                 .map(|(r, u)| (r.to_string(), self.plan.nodes[*u].key.to_hex()))
                 .collect(),
-            metrics: artifact.metrics.clone(),
-            flags: artifact.flags.clone(),
             payloads: Vec::new(),
             compute_seconds: seconds,
             tool_version: self.options.tool_version.clone(),
@@ -64,17 +63,10 @@ impl RunContext<'_> {
                 .duration_since(UNIX_EPOCH)
                 .map_or(0, |d| d.as_secs()),
         };
-        let stored = self.write(|| match node.task.array_storage() {
-            ArrayStorage::Store => self.cache.store(manifest, &artifact),
-            ArrayStorage::Regenerate => {
-                let without_arrays = Artifact {
-                    metrics: artifact.metrics.clone(),
-                    tables: artifact.tables.clone(),
-                    flags: artifact.flags.clone(),
-                    ..Artifact::default()
-                };
-                self.cache.store(manifest, &without_arrays)
-            }
+        let storage = node.task.array_storage();
+        let stored = self.write(|| {
+            self.cache
+                .store(manifest, &artifact, &|name| storage.stores(name))
         });
         if let Some(Err(e)) = stored {
             let first = {

@@ -38,4 +38,11 @@ pub enum ContactError {
         iterations: usize,
         residuals: Residuals,
     },
+    #[error("a pressure field of {} × {} points is not on the contact grid of {} × {} points", got.1, got.0, expected.1, expected.0)]
+    FieldShape {
+        /// `(ny, nx)` of the problem's grid.
+        expected: (usize, usize),
+        /// `(ny, nx)` of the field given.
+        got: (usize, usize),
+    },
 }

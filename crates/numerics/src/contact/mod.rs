@@ -9,6 +9,7 @@
 
 mod approach_search;
 mod constrained_cg;
+mod derived;
 mod error;
 mod free_set;
 mod gap;
@@ -27,6 +28,7 @@ mod workspace;
 
 pub use crate::fft2::{FftFailure, RealFft2d};
 pub use crate::materials::MaterialError;
+pub use derived::fields_from_pressure;
 pub use error::ContactError;
 pub use gap::{CompositeGap, GapError, GapSource};
 pub use influence::Boundary;

@@ -1,10 +1,10 @@
 //! The load-stepped contact solver: problem definition, warm starts, step results.
 
-use ndarray::Array2;
 use rayon::prelude::*;
 
 use super::approach_search;
 use super::constrained_cg::{self, CgOutcome, CgSettings, Control};
+use super::derived;
 use super::error::ContactError;
 use super::influence::InfluenceOperator;
 use super::load_curve::{ContactFields, LoadCurve, LoadStep};
@@ -411,27 +411,11 @@ impl ContactSolver {
     fn fields_of_workspace(&self, request: FieldRequest) -> ContactFields {
         let ws = &self.workspace;
         let shape = (self.problem.gap().ny(), self.problem.gap().nx());
-        let plim = self.problem.material().flow_pressure();
-        let share = self.problem.material().first_body_share();
-        let grid = |f: &dyn Fn(usize) -> f64| {
-            Array2::from_shape_fn(shape, |(iy, ix)| f(iy * shape.1 + ix))
-        };
-        ContactFields {
-            pressure: request.pressure.then(|| grid(&|i| ws.p[i])),
-            gap: request.gap.then(|| grid(&|i| ws.g[i])),
-            deformation_first: request.deformation.then(|| grid(&|i| ws.u[i] * share)),
-            deformation_second: request
-                .deformation
-                .then(|| grid(&|i| ws.u[i] * (1.0 - share))),
-            plastic_penetration: request.plastic_penetration.then(|| {
-                grid(&|i| {
-                    if ws.p[i] >= plim {
-                        (-ws.g[i]).max(0.0)
-                    } else {
-                        0.0
-                    }
-                })
-            }),
-        }
+        derived::assemble_fields(
+            shape,
+            (&ws.p, &ws.g, &ws.u),
+            self.problem.material(),
+            request,
+        )
     }
 }
