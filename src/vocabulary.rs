@@ -60,6 +60,9 @@ pub mod arrays {
     /// Prefix of the contact pressure of a load step before the final one (`pressure_step_0`,
     /// …): its contact points only, row 0 their flat indices iy·nx + ix, row 1 p (Pa).
     pub const PRESSURE_STEP_PREFIX: &str = "pressure_step_";
+    /// The upper body's heights z₂ (m, outward towards the lower body) the contact was solved
+    /// with; only with an upper surface.
+    pub const HEIGHT_UPPER: &str = "height_upper";
 }
 
 /// Metric columns (SI; the tables append the unit: `nominal_pressure_Pa`).

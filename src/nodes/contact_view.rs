@@ -14,10 +14,12 @@ use crate::engine::node::NodeError;
 use crate::engine::value::Value;
 
 /// The final step's maps (pressure in Pa, gap, deformations, plastic penetration in m,
-/// `[[iy, ix]]`; no upper deformation against a rigid flat) and the composite height z₁ + z₂ (m)
-/// the contact was solved on (the lower heights against a flat).
+/// `[[iy, ix]]`; no upper deformation against a rigid flat), the composite height z₁ + z₂ (m)
+/// the contact was solved on (the lower heights against a flat) and the upper body's heights z₂
+/// (m; only with an upper surface).
 pub(crate) use crate::vocabulary::arrays::{
-    COMPOSITE_HEIGHT, DEFORMATION_LOWER, DEFORMATION_UPPER, GAP, PLASTIC_PENETRATION, PRESSURE,
+    COMPOSITE_HEIGHT, DEFORMATION_LOWER, DEFORMATION_UPPER, GAP, HEIGHT_UPPER, PLASTIC_PENETRATION,
+    PRESSURE,
 };
 /// Among the contact's metrics: grid spacings (m), the final nominal pressure (Pa) and the share
 /// of the section in contact (points with p > 0).
@@ -83,6 +85,9 @@ pub struct ContactView<'a> {
     pub deformation_upper: Option<ArrayView2<'a, f64>>,
     pub plastic_penetration: ArrayView2<'a, f64>,
     pub composite_height: ArrayView2<'a, f64>,
+    /// The upper body's heights z₂ (outward, towards the lower body); `None` against a flat
+    /// (the lower heights are then the composite height).
+    pub upper_height: Option<ArrayView2<'a, f64>>,
     /// Grid spacings (m).
     pub dx: f64,
     pub dy: f64,
@@ -125,6 +130,7 @@ impl<'a> ContactView<'a> {
             deformation_upper: optional(DEFORMATION_UPPER)?,
             plastic_penetration: required(PLASTIC_PENETRATION)?,
             composite_height: required(COMPOSITE_HEIGHT)?,
+            upper_height: optional(HEIGHT_UPPER)?,
             dx: metric(DX)?,
             dy: metric(DY)?,
             nominal_pressure: metric(NOMINAL_PRESSURE)?,

@@ -2,12 +2,13 @@
 //! surfaces (`contact::ContactSolver`), load-stepped to the last nominal pressure (only the last
 //! one is solved when the study does not write the `contacts` table). Table `contacts` (the final
 //! step) and `contacts_load_curve` (one row per step); with `fields: true` the final step's
-//! pressure, gap, deformation and plastic-penetration maps and the composite height z₁ + z₂ the
-//! contact was solved on are arrays for its consumers (the per-summit and per-spot `friction`
-//! methods read them), and every step's maps can be derived ([`ContactTask::step_maps`]).
+//! pressure, gap, deformation and plastic-penetration maps, the composite height z₁ + z₂ the
+//! contact was solved on and the upper body's heights z₂ (with an upper surface) are arrays for
+//! its consumers (the per-summit and per-spot `friction` methods read them), and every step's
+//! maps can be derived ([`ContactTask::step_maps`]).
 //!
 //! The cache keeps only the pressure maps (the final step's whole, the earlier steps' contact
-//! points, `contact_view::contact_points`); the other maps follow from a step's pressure, its
+//! points, `contact_view::contact_points`); the heights are the surfaces' and the other maps follow from a step's pressure, its
 //! approach and the surfaces by one convolution (`contact::fields_from_pressure`, the influence
 //! operator the solver used), which [`ContactTask::derive_arrays`] runs when a consumer reads a
 //! cached contact: equal to the solver's maps to round-off (1e-12 of each map's largest value,
@@ -17,7 +18,7 @@ use serde::Deserialize;
 
 use super::contact_view::{
     contact_points, step_pressure_name, COMPOSITE_HEIGHT, DEFORMATION_LOWER, DEFORMATION_UPPER,
-    GAP, PLASTIC_PENETRATION, PRESSURE,
+    GAP, HEIGHT_UPPER, PLASTIC_PENETRATION, PRESSURE,
 };
 use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
@@ -47,12 +48,14 @@ pub(crate) use crate::vocabulary::kinds::CONTACT as KIND;
 pub(crate) use crate::vocabulary::tables::CONTACTS as TABLE;
 
 /// Implementation version of the `contact` kind; bump whenever its numerics change (27: the
-/// cache keeps the pressure of every load step and derives the other maps).
-pub const CONTACT_KIND_VERSION: u32 = 27;
+/// cache keeps the pressure of every load step and derives the other maps; 28: the upper body's
+/// heights are an array of the fields, the values are those of 27).
+pub const CONTACT_KIND_VERSION: u32 = 28;
 
 /// The maps a contact's cache entry leaves out and [`ContactTask::derive_arrays`] derives.
 const DERIVED_ARRAYS: &[&str] = &[
     COMPOSITE_HEIGHT,
+    HEIGHT_UPPER,
     GAP,
     DEFORMATION_LOWER,
     DEFORMATION_UPPER,
@@ -412,6 +415,11 @@ impl NodeTask for ContactTask {
                 .arrays
                 .insert(String::from(COMPOSITE_HEIGHT), z.into_dyn());
         }
+        if let Some(z) = setup.upper {
+            artifact
+                .arrays
+                .insert(String::from(HEIGHT_UPPER), z.into_dyn());
+        }
         Ok(())
     }
 
@@ -452,6 +460,11 @@ impl NodeTask for ContactTask {
             artifact
                 .arrays
                 .insert(String::from(COMPOSITE_HEIGHT), z.into_dyn());
+        }
+        if let Some(z) = setup.upper {
+            artifact
+                .arrays
+                .insert(String::from(HEIGHT_UPPER), z.into_dyn());
         }
         if self.fields {
             let fields = solver
@@ -499,6 +512,8 @@ struct ProblemSetup {
     spacing: (f64, f64),
     /// z₁ + z₂ (or the lower heights against a flat), kept when the fields are.
     composite: Option<ndarray::Array2<f64>>,
+    /// z₂ of an upper surface, kept when the fields are.
+    upper: Option<ndarray::Array2<f64>>,
 }
 
 impl ContactTask {
@@ -511,16 +526,21 @@ impl ContactTask {
                 .ok_or_else(|| NodeError::new("no lower surface"))?,
             "lower",
         )?;
-        let (gap, composite) = match (self.material.pair().upper(), inputs.get(1)) {
+        let (gap, composite, upper) = match (self.material.pair().upper(), inputs.get(1)) {
             (Some(_), Some(input)) => {
                 let upper = height_map(input, "upper")?;
                 let gap =
                     CompositeGap::from_surfaces(&lower, &upper).map_err(|e| fail("gap", &e))?;
-                (gap, self.fields.then(|| lower.heights() + upper.heights()))
+                (
+                    gap,
+                    self.fields.then(|| lower.heights() + upper.heights()),
+                    self.fields.then(|| upper.heights().clone()),
+                )
             }
             _ => (
                 CompositeGap::against_flat(&lower).map_err(|e| fail("gap", &e))?,
                 self.fields.then(|| lower.heights().clone()),
+                None,
             ),
         };
         Ok(ProblemSetup {
@@ -528,6 +548,7 @@ impl ContactTask {
             composite_modulus: self.material.composite_modulus(),
             spacing: (lower.dx(), lower.dy()),
             composite,
+            upper,
         })
     }
 }
