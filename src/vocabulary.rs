@@ -185,12 +185,25 @@ pub mod metrics {
     pub const MU_ADHESION: &str = "mu_adhesion";
     /// Deformation part of μ_s.
     pub const MU_DEFORMATION: &str = "mu_deformation";
-    /// Load-weighted mean |tilt| of the spots.
-    pub const SPOT_TILT_ABS_MEAN: &str = "spot_tilt_abs_mean";
-    /// Load-weighted mean attack slope of the spots.
+    /// (2/π) × the rms slope along ψ of the ploughing body's surface: the deformation part a
+    /// topography statistic alone would give.
+    pub const MU_DEFORMATION_SLOPE_BASELINE: &str = "mu_deformation_slope_baseline";
+    /// Which body ploughs (`lower`, `upper`, `both`).
+    pub const PLOUGHING_BODY: &str = "ploughing_body";
+    /// Share of the normal load on spots beyond the ploughing regime.
+    pub const LOAD_SHARE_OUTSIDE_REGIME: &str = "load_share_outside_regime";
+    /// Load-weighted mean attack slope of the spots' loaded fronts.
     pub const SPOT_ATTACK_SLOPE_MEAN: &str = "spot_attack_slope_mean";
-    /// Load-weighted mean groove ratio of the spots.
+    /// Load-weighted mean groove ratio of the spots' loaded fronts.
     pub const SPOT_GROOVE_RATIO_MEAN: &str = "spot_groove_ratio_mean";
+    /// Load-weighted mean degree of penetration of the spots' loaded fronts.
+    pub const SPOT_PENETRATION_MEAN: &str = "spot_penetration_mean";
+    /// Number of spots with two or more summits (merged asperities).
+    pub const MERGED_SPOTS: &str = "merged_spots";
+    /// Share of the normal load on merged spots whose friction rests on one radius.
+    pub const LOAD_SHARE_MERGED: &str = "load_share_merged";
+    /// Adhesion force over the contact's normal load, F_a/F_n.
+    pub const ADHESION_SHARE: &str = "adhesion_share";
     // The friction row: its resolved parameters (key fields).
     /// Composite modulus E* (Pa).
     pub const COMPOSITE_MODULUS: &str = "composite_modulus";
@@ -246,6 +259,8 @@ pub mod spot_columns {
     pub const RADIUS: &str = "radius";
     /// `convex` or `not_convex`.
     pub const RADIUS_STATUS: &str = "radius_status";
+    /// Summits of the composite height in the spot (two or more: merged).
+    pub const SUMMITS: &str = "summits";
     /// The law's load measure (P*, x).
     pub const LOAD_MEASURE: &str = "load_measure";
     /// Tangential capacity Q_i (N).
@@ -254,22 +269,22 @@ pub mod spot_columns {
     pub const LOCAL_MU: &str = "local_mu";
     /// `inside` or `beyond` the law's fit.
     pub const FIT: &str = "fit";
-    /// Tilt of the junction plane along the sliding direction.
-    pub const TILT: &str = "tilt";
-    /// How the plane was fitted.
-    pub const PLANE: &str = "plane";
-    /// Attack slope tan α.
+    /// Attack slope tan α of the loaded front.
     pub const ATTACK_SLOPE: &str = "attack_slope";
-    /// Groove ratio 2 A_side/A.
+    /// Groove ratio A_side/A_f of the loaded front.
     pub const GROOVE_RATIO: &str = "groove_ratio";
-    /// Height of the cap (m).
+    /// Height of the ploughing asperity's cap above its front boundary (m).
     pub const CAP_HEIGHT: &str = "cap_height";
-    /// Equivalent contact radius √(A/π) (m).
-    pub const CONTACT_RADIUS: &str = "contact_radius";
+    /// Area of the loaded front A_f (m²).
+    pub const FRONT_AREA: &str = "front_area";
+    /// Radius of the loaded front a_f = √(2A_f/π) (m).
+    pub const FRONT_RADIUS: &str = "front_radius";
+    /// Degree of penetration D_p of the loaded front.
+    pub const PENETRATION: &str = "penetration";
     /// Deformation force Q_d,i (N).
     pub const DEFORMATION_FORCE: &str = "deformation_force";
-    /// Q_d,i/P_i.
-    pub const LOCAL_MU_DEFORMATION: &str = "local_mu_deformation";
+    /// `ploughing` or `beyond` the ploughing regime.
+    pub const REGIME: &str = "regime";
 }
 
 /// Columns of a friction node's `summits` table (`friction_summits`, one row per summit).

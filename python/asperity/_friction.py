@@ -195,6 +195,16 @@ def _contact_fields(result: Any, keys: Sequence[str]) -> Dict[str, F64]:
     return {key: _args.heights(f"result['{key}']", result[key]) for key in keys}
 
 
+def _friction_body(name: str, m: Material) -> Tuple[Tuple[float, float, float], Optional[float], Optional[float]]:
+    """(E (Pa), ν, H (Pa)) of a material name or mapping with a hardness, and its yield and shear
+    strengths (Pa, or None)."""
+    b = body(name, m)
+    if b["hardness"] is None:
+        raise ValueError(f"{name}: needs a hardness (Pa) for the friction laws; give 'hardness' or a built-in 'name'")
+    constants = (cast(float, b["youngs_modulus"]), cast(float, b["poisson_ratio"]), b["hardness"])
+    return constants, b["yield_strength"], b["shear_strength"]
+
+
 def per_spot_friction(
     result: Mapping[str, Any],
     composite_height: Union[Topography, F64],
@@ -206,6 +216,8 @@ def per_spot_friction(
     composite_modulus: Optional[Quantity] = None,
     hardness: Optional[Quantity] = None,
     poisson_ratio: Optional[float] = None,
+    upper_material: Optional[Material] = None,
+    upper_height: Optional[Union[Topography, F64]] = None,
     periodic: bool = True,
     connectivity: int = 4,
     adhesion_energy: Optional[Quantity] = None,
@@ -214,38 +226,60 @@ def per_spot_friction(
     yield_strength: Optional[Quantity] = None,
     shear_strength: Optional[Quantity] = None,
 ) -> PerSpotResult:
-    """Static friction of a :func:`contact` result spot by spot, as a study's ``per_spot``
-    friction node: the connected contact spots of ``result["pressure"]`` (``connectivity`` 4 or
-    8, wrapping around when ``periodic``), each with its load, area and paraboloid radius fitted
-    to ``composite_height`` (a :class:`Topography` or heights in m at ``dx``, ``dy``: the lower
-    heights against a flat, lower + upper for two surfaces), and the law ``model`` per spot, any
-    law of the registry: <<laws:per_spot>> (parameters as in :func:`static_friction`; a
-    junction's shear strength τ_s = c·k with ``shear_strength`` k in Pa); the Lennard-Jones
-    adhesion across ``result["gap"]``. μ_s = ΣQ_i / (ΣP_i − F_a). Material as in
-    :func:`static_friction`.
+    """Static friction of a :func:`contact` result spot by spot, in the one call a study's
+    ``per_spot`` friction node makes: the connected contact spots of ``result["pressure"]``
+    (``connectivity`` 4 or 8, wrapping around when ``periodic``), each with its load, area and
+    paraboloid radius fitted to ``composite_height`` (a :class:`Topography` or heights in m at
+    ``dx``, ``dy``: the lower heights against a flat, lower + upper for two surfaces), and the
+    law ``model`` per spot, any law of the registry: <<laws:per_spot>> (parameters as in
+    :func:`static_friction`; a junction's shear strength τ_s = c·k with ``shear_strength`` k in
+    Pa); the Lennard-Jones adhesion across ``result["gap"]``. μ_s = ΣQ_i / (ΣP_i − F_a).
+
+    Bodies: ``material`` is the lower body (a built-in name or a mapping with
+    ``youngs_modulus``, ``poisson_ratio``, ``hardness``); with ``upper_material`` the upper body
+    and ``upper_height`` its heights z₂ (m, measured towards the lower body, as passed to
+    :func:`contact`; omitted: a flat), its deformation read from ``result["deformation_upper"]``;
+    without it a rigid flat. Or, for one body against a rigid flat, the explicit
+    ``composite_modulus``, ``hardness`` (Pa) and ``poisson_ratio``. The law ``"ploughing"``
+    reads the harder body's deformed surface on each spot's loaded front, the upper body sliding
+    along ``parameters["sliding_direction"]`` (an angle with its unit, e.g. ``"30 deg"``).
 
     Returns ``mu_s`` (never negative; None without a compressive net force), ``mu_s_computed``,
-    ``mu_s_floored``, the totals (N, m²), the adhesion force (N), the load beyond the law's
-    validated range, and per spot ``spot_load_N``, ``spot_area_m2``, ``spot_radius_m`` (None
-    without a convex fit) and ``spot_friction_N``.
+    ``mu_s_floored``, ``mu_deformation``, the totals (N, m²), the adhesion force (N), the loads
+    beyond the law's validated range, without a radius, on merged spots and beyond the ploughing
+    regime, for ploughing ``ploughing_body`` and ``mu_deformation_slope_baseline``, and per spot
+    ``spot_load_N``, ``spot_area_m2``, ``spot_radius_m`` (None without a convex fit),
+    ``spot_summits``, ``spot_friction_N`` and ``spot_deformation_N``.
     """
-    fields = _contact_fields(result, ("pressure", "gap"))
+    fields = _contact_fields(result, ("pressure", "gap", "deformation_lower", "plastic_penetration"))
     t, _ = as_topography("composite_height", composite_height, dx, dy)
     connectivity = _args.integer("connectivity", connectivity, 4, "4 or 8 (neighbours)")
     if connectivity not in (4, 8):
         raise ValueError(f"connectivity: {connectivity!r} is out of range: expected 4 or 8 (neighbours)")
-    e, h, nu, y, k = _friction_material(material, composite_modulus, hardness, poisson_ratio)
+    if material is not None and all(v is None for v in (composite_modulus, hardness, poisson_ratio)):
+        lower, y, k = _friction_body("material", material)
+    else:
+        e, h, nu, y, k = _friction_material(material, composite_modulus, hardness, poisson_ratio)
+        lower = (e * (1.0 - nu * nu), nu, h)
+    upper = None if upper_material is None else _friction_body("upper_material", upper_material)[0]
+    if upper is None and upper_height is not None:
+        raise ValueError("upper_height: give upper_material with it (the upper body's material)")
+    z2 = None if upper_height is None else as_topography("upper_height", upper_height, t.dx, t.dy)[0].heights
+    u2 = None if upper is None or result.get("deformation_upper") is None else _args.heights("result['deformation_upper']", result["deformation_upper"])
     energy, distance = _adhesion(adhesion_energy, equilibrium_distance)
     out = _native.per_spot_friction(
         fields["pressure"],
         fields["gap"],
         t.heights,
+        fields["deformation_lower"],
+        fields["plastic_penetration"],
         t.dx,
         t.dy,
         _model(model),
-        e,
-        h,
-        nu,
+        lower,
+        upper,
+        z2,
+        u2,
         _args.boolean("periodic", periodic),
         connectivity == 8,
         energy,

@@ -253,20 +253,34 @@ class StaticFrictionRow(_Coefficient):
     load_beyond_fit_N: float
 
 
-class PerSpotResult(_Coefficient):
+class _Ploughing(TypedDict, total=False):
+    """The keys a per-spot result has under a law with a deformation part (``ploughing``)."""
+
+    ploughing_body: str
+    mu_deformation_slope_baseline: float
+
+
+class PerSpotResult(_Coefficient, _Ploughing):
     """:func:`asperity.per_spot_friction`: the totals and one list entry per contact spot."""
 
+    mu_deformation: Optional[float]
     total_normal_force_N: float
     total_friction_force_N: float
+    total_deformation_force_N: float
     total_area_m2: float
     adhesion_force_N: float
     load_beyond_fit_N: float
+    load_without_radius_N: float
+    load_merged_N: float
+    load_outside_regime_N: float
     spot_count: int
     spots_without_radius: int
     spot_load_N: List[float]
     spot_area_m2: List[float]
     spot_radius_m: List[Optional[float]]
+    spot_summits: List[int]
     spot_friction_N: List[float]
+    spot_deformation_N: List[float]
 
 
 class PerSummitResult(_Coefficient):

@@ -3,22 +3,22 @@
 //! by name from the registry (`friction::find_law`, parameters at their defaults unless given),
 //! then either the statistical static friction coefficient μ_s of a rough surface
 //! (`friction::static_friction_curve`) from its summit statistics at nominal pressures, or the
-//! per-spot model on a contact solution (`friction::per_spot_friction` over `contact_spots` and
-//! the Lennard-Jones adhesion across the gap), or the per-summit model on it
+//! per-spot model on a contact solution of two bodies (`friction::per_spot_friction`, the one
+//! call the study's node makes too), or the per-summit model on it
 //! (`friction::per_summit_friction` over the summits of the composite height, each with
 //! `friction::summit_interference`), as a study's friction node applies them.
 
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use asperity::friction::contact_spots::{adhesion_from_gap, contact_spots};
 use asperity::friction::{
     find_law, law_names, per_spot_friction as spot_friction,
     per_summit_friction as summits_friction, static_friction_curve, summit_interference,
-    AdhesionBeyondFits, AdhesionParameters, Connectivity, FrictionLaw, LawInputs, Material,
-    PerSummitResult, SolveSettings, SpotLoad, StatisticalModel, SummitContact, SummitFriction,
-    SummitStatistics,
+    AdhesionBeyondFits, AdhesionParameters, BodyHardness, BodyMaps, Connectivity, ContactBodies,
+    ContactSection, FrictionLaw, LawInputs, Material, PerSummitResult, SectionFriction,
+    SolveSettings, StatisticalModel, SummitContact, SummitFriction, SummitStatistics,
 };
+use asperity::materials::{BodyConstants, BodyMaterial, MaterialPair};
 use asperity::nodes::validity::cross::pressure_within_flow;
 use asperity::nodes::{DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE};
 use asperity::surface::{find_summits, Boundary, HeightMap, SummitOptions};
@@ -185,21 +185,62 @@ fn static_friction<'py>(
         .collect()
 }
 
-/// μ_s of a contact solution, spot by spot; see `asperity.per_spot_friction`.
+/// A body of the per-spot binding from (E (Pa), ν, H (Pa)).
+fn body(
+    name: &str,
+    (youngs_modulus, poisson_ratio, hardness): (f64, f64, f64),
+) -> PyResult<BodyMaterial> {
+    BodyMaterial::new(BodyConstants::with_hardness(
+        youngs_modulus,
+        poisson_ratio,
+        hardness,
+    ))
+    .map_err(|e| value_error(name, e))
+}
+
+/// The maps of a contact solution the per-spot binding reads, as given.
+struct SpotMaps<'py> {
+    pressure: PyReadonlyArray2<'py, f64>,
+    gap: PyReadonlyArray2<'py, f64>,
+    composite_height: PyReadonlyArray2<'py, f64>,
+    upper_height: Option<PyReadonlyArray2<'py, f64>>,
+    deformation_lower: PyReadonlyArray2<'py, f64>,
+    deformation_upper: Option<PyReadonlyArray2<'py, f64>>,
+    plastic_penetration: PyReadonlyArray2<'py, f64>,
+}
+
+impl SpotMaps<'_> {
+    fn bodies(&self, pair: &MaterialPair) -> PyResult<ContactBodies<'_>> {
+        let maps = BodyMaps {
+            composite_height: self.composite_height.as_array(),
+            upper_height: self.upper_height.as_ref().map(|z| z.as_array()),
+            deformation_lower: self.deformation_lower.as_array(),
+            deformation_upper: self.deformation_upper.as_ref().map(|u| u.as_array()),
+            plastic_penetration: self.plastic_penetration.as_array(),
+        };
+        ContactBodies::new(maps, BodyHardness::of(pair)).map_err(|e| value_error("result", e))
+    }
+}
+
+/// μ_s of a contact solution, spot by spot, by the numerics' one per-spot call (the study's
+/// node makes the same); see `asperity.per_spot_friction`.
 #[pyfunction]
-#[pyo3(signature = (pressure, gap, composite_height, dx, dy, model, composite_modulus, hardness, poisson_ratio, periodic=true, eight_connected=false, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE, parameters=HashMap::new(), yield_strength=None, shear_strength=None))]
+#[pyo3(signature = (pressure, gap, composite_height, deformation_lower, plastic_penetration, dx, dy, model, lower_body, upper_body=None, upper_height=None, deformation_upper=None, periodic=true, eight_connected=false, adhesion_energy=DEFAULT_ADHESION_ENERGY, equilibrium_distance=DEFAULT_EQUILIBRIUM_DISTANCE, parameters=HashMap::new(), yield_strength=None, shear_strength=None))]
 #[allow(clippy::too_many_arguments)]
 fn per_spot_friction<'py>(
     py: Python<'py>,
     pressure: PyReadonlyArray2<'py, f64>,
     gap: PyReadonlyArray2<'py, f64>,
     composite_height: PyReadonlyArray2<'py, f64>,
+    deformation_lower: PyReadonlyArray2<'py, f64>,
+    plastic_penetration: PyReadonlyArray2<'py, f64>,
     dx: f64,
     dy: f64,
     model: &str,
-    composite_modulus: f64,
-    hardness: f64,
-    poisson_ratio: f64,
+    lower_body: (f64, f64, f64),
+    upper_body: Option<(f64, f64, f64)>,
+    upper_height: Option<PyReadonlyArray2<'py, f64>>,
+    deformation_upper: Option<PyReadonlyArray2<'py, f64>>,
     periodic: bool,
     eight_connected: bool,
     adhesion_energy: f64,
@@ -208,57 +249,84 @@ fn per_spot_friction<'py>(
     yield_strength: Option<f64>,
     shear_strength: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let material = material(composite_modulus, hardness, poisson_ratio)?;
+    let upper = upper_body.map(|b| body("upper_material", b)).transpose()?;
+    let pair = MaterialPair::new(body("material", lower_body)?, upper);
+    let material = Material::from_pair(&pair).map_err(|e| value_error("material", e))?;
+    let (_, softer) = pair.softer();
+    let yield_strength = yield_strength.or(softer.yield_strength());
+    let shear_strength = shear_strength.or(softer.shear_strength());
     let law = build_law(model, material, yield_strength, shear_strength, parameters)?;
-    let adhesion = adhesion(adhesion_energy, equilibrium_distance)?;
-    let connectivity = if eight_connected {
-        Connectivity::Eight
-    } else {
-        Connectivity::Four
+    let maps = SpotMaps {
+        pressure,
+        gap,
+        composite_height,
+        upper_height,
+        deformation_lower,
+        deformation_upper,
+        plastic_penetration,
     };
-    let (p, g, z) = (
-        pressure.as_array(),
-        gap.as_array(),
-        composite_height.as_array(),
-    );
-    let (spots, result) = compute(py, || {
-        let spots = contact_spots(p, z, dx, dy, periodic, connectivity)
-            .map_err(|e| value_error("pressure", e))?;
-        let adhesion =
-            adhesion_from_gap(g, p, dx, dy, adhesion).map_err(|e| value_error("gap", e))?;
-        let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
-        let result =
-            spot_friction(&loads, law.as_ref(), adhesion).map_err(|e| value_error("model", e))?;
-        Ok((spots, result))
+    let section = ContactSection {
+        pressure: maps.pressure.as_array(),
+        gap: maps.gap.as_array(),
+        bodies: maps.bodies(&pair)?,
+        spacing: (dx, dy),
+        periodic,
+        connectivity: if eight_connected {
+            Connectivity::Eight
+        } else {
+            Connectivity::Four
+        },
+        adhesion: adhesion(adhesion_energy, equilibrium_distance)?,
+    };
+    let found = compute(py, || {
+        spot_friction(&section, law.as_ref()).map_err(|e| value_error("result", e))
     })?;
+    spot_dict(py, &found)
+}
+
+/// The per-spot result as Python reads it (see `asperity.per_spot_friction`).
+fn spot_dict<'py>(py: Python<'py>, found: &SectionFriction) -> PyResult<Bound<'py, PyDict>> {
+    let (spots, result) = (&found.spots, &found.result);
     let d = PyDict::new(py);
+    let net = result.total_normal_force - result.adhesion_force;
     set_coefficient(&d, result.mu_s)?;
+    d.set_item(
+        "mu_deformation",
+        result.mu_s.map(|_| result.total_deformation_force / net),
+    )?;
     d.set_item("total_normal_force_N", result.total_normal_force)?;
     d.set_item("total_friction_force_N", result.total_friction_force)?;
+    d.set_item("total_deformation_force_N", result.total_deformation_force)?;
     d.set_item("total_area_m2", result.total_area)?;
     d.set_item("adhesion_force_N", result.adhesion_force)?;
     d.set_item("load_beyond_fit_N", result.load_beyond_fit)?;
+    d.set_item("load_without_radius_N", result.load_without_radius)?;
+    d.set_item("load_merged_N", result.load_merged)?;
+    d.set_item("load_outside_regime_N", result.load_outside_regime)?;
     d.set_item("spot_count", spots.len())?;
     d.set_item("spots_without_radius", result.spots_without_radius)?;
-    d.set_item(
-        "spot_load_N",
-        spots.iter().map(|s| s.load).collect::<Vec<_>>(),
-    )?;
-    d.set_item(
-        "spot_area_m2",
-        spots.iter().map(|s| s.area).collect::<Vec<_>>(),
-    )?;
+    if let Some(geometry) = &found.geometry {
+        d.set_item("ploughing_body", geometry.ploughing.name())?;
+        d.set_item("mu_deformation_slope_baseline", geometry.slope_baseline)?;
+    }
+    let column = |f: &dyn Fn(usize) -> f64| (0..spots.len()).map(f).collect::<Vec<f64>>();
+    d.set_item("spot_load_N", column(&|i| spots[i].load))?;
+    d.set_item("spot_area_m2", column(&|i| spots[i].area))?;
     d.set_item(
         "spot_radius_m",
         spots.iter().map(|s| s.radius).collect::<Vec<_>>(),
     )?;
     d.set_item(
+        "spot_summits",
+        spots.iter().map(|s| s.summits).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
         "spot_friction_N",
-        result
-            .spots
-            .iter()
-            .map(|s| s.friction_force)
-            .collect::<Vec<_>>(),
+        column(&|i| result.spots[i].friction_force),
+    )?;
+    d.set_item(
+        "spot_deformation_N",
+        column(&|i| result.spots[i].deformation_force),
     )?;
     Ok(d)
 }

@@ -114,3 +114,71 @@ def test_per_summit_friction_equals_the_cli_per_summit_node(asperity_bin, tmp_pa
         asperity.per_summit_friction(c, heights, dx, dy, model="junction_shear", material=C["material"])
     with pytest.raises(TypeError, match="deformation_lower"):
         asperity.per_summit_friction({"pressure": c["pressure"], "gap": c["gap"]}, heights, dx, dy)
+
+
+TWO_BODY_STUDY = """\
+study: py-ploughing
+nodes:
+  lower:
+    surface:
+      synthetic: {grid: [64, 48], size: [0.32 mm, 0.24 mm], sq: 0.8 um, hurst: 0.7,
+                  correlation_length: 40 um, seed: 5}
+  upper:
+    surface:
+      synthetic: {grid: [64, 48], size: [0.32 mm, 0.24 mm], sq: 0.5 um, hurst: 0.8,
+                  correlation_length: 30 um, seed: 6}
+  pair:
+    contact:
+      lower: lower
+      upper: upper
+      lower_material: s235jr
+      upper_material: aisi52100
+      nominal_pressures: [20 MPa]
+      tolerance: 1e-8
+      fields: true
+  ploughing:
+    friction:
+      model: {ploughing: {deformation: MODE, sliding_direction: 30 deg}}
+      contact: pair
+      lower_material: s235jr
+      upper_material: aisi52100
+  stick:
+    friction: {method: per_spot, model: full_stick, contact: pair, lower_material: s235jr,
+               upper_material: aisi52100}
+  shear:
+    friction: {model: junction_shear, contact: pair, lower_material: s235jr,
+               upper_material: aisi52100}
+outputs: [friction]
+"""
+
+
+@pytest.mark.parametrize("mode", ["groove", "cone", "sphere"])
+def test_per_spot_friction_of_two_bodies_equals_the_study_row(asperity_bin, tmp_path, mode):
+    study = tmp_path / "ploughing.yaml"
+    study.write_text(TWO_BODY_STUDY.replace("MODE", mode))
+    cli = run_cli(asperity_bin, "run", str(study), "--out", "out", "--cache", "cache", "-q", cwd=tmp_path)
+    assert cli.returncode == 0, cli.stderr
+    friction = pl.read_parquet(tmp_path / "out" / "friction.parquet")
+    surface = dict(grid=(64, 48), size=(0.32e-3, 0.24e-3))
+    lower, dx, dy = asperity.synthetic_surface(surface["grid"], surface["size"], sq=0.8e-6, hurst=0.7, correlation_length=40e-6, seed=5)
+    upper, _, _ = asperity.synthetic_surface(surface["grid"], surface["size"], sq=0.5e-6, hurst=0.8, correlation_length=30e-6, seed=6)
+    c = asperity.contact(
+        lower, dx, dy, upper=upper, nominal_pressures=20e6, lower_material="s235jr", upper_material="aisi52100", tolerance=1e-8
+    )
+    bodies = dict(material="s235jr", upper_material="aisi52100", upper_height=upper)
+    plough = asperity.per_spot_friction(
+        c, lower + upper, dx, dy, model="ploughing", parameters={"deformation": mode, "sliding_direction": 0.5235987755982988}, **bodies
+    )
+    row = friction.filter(pl.col("model") == "ploughing")
+    assert len(row) == 1
+    # The one call of the numerics on the same fields: the study's row to rounding.
+    assert plough["mu_s"] == pytest.approx(row["mu_s_computed"][0], rel=1e-12)
+    assert plough["mu_deformation"] == pytest.approx(row["mu_deformation"][0], rel=1e-12)
+    assert plough["mu_deformation_slope_baseline"] == pytest.approx(row["mu_deformation_slope_baseline"][0], rel=1e-12)
+    # The harder bearing steel is the upper body: it ploughs.
+    assert plough["ploughing_body"] == row["ploughing_body"][0] == "upper"
+    assert plough["mu_deformation"] > 0
+    for model in ("full_stick", "junction_shear"):
+        spots = asperity.per_spot_friction(c, lower + upper, dx, dy, model=model, **bodies)
+        other = friction.filter(pl.col("model") == model)
+        assert spots["mu_s"] == pytest.approx(other["mu_s_computed"][0], rel=1e-12), model

@@ -13,11 +13,10 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use asperity_numerics::friction::contact_spots::{
-    adhesion_from_gap, contact_spots, label_spots, Connectivity,
-};
+use asperity_numerics::friction::contact_spots::{contact_spots, label_spots, Connectivity};
 use asperity_numerics::friction::{
-    per_spot_friction, AdhesionParameters, FullStick, FullStickOptions, Material, SpotLoad,
+    per_spot_friction, AdhesionParameters, BodyHardness, BodyMaps, ContactBodies, ContactSection,
+    FullStick, FullStickOptions, Material,
 };
 use asperity_numerics::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
 use criterion::{criterion_group, criterion_main, Bencher, Criterion, SamplingMode};
@@ -63,15 +62,33 @@ fn timed<T>(b: &mut Bencher, runs: &mut Vec<Duration>, mut f: impl FnMut() -> T)
     });
 }
 
-/// The per-spot model as the `friction` node runs it: spots, adhesion, full-stick law (S235JR).
+/// The per-spot model as the `friction` node runs it, in its one call: spots, adhesion,
+/// full-stick law (S235JR against a rigid flat; no deformation maps are needed by the law).
 fn per_spot_model(z: &Array2<f64>, p: &Array2<f64>, gap: &Array2<f64>, dx: f64) -> Option<f64> {
-    let spots = contact_spots(p.view(), z.view(), dx, dx, true, Connectivity::Eight).ok()?;
-    let adhesion = AdhesionParameters::new(0.5, 0.158e-9).ok()?;
-    let f_a = adhesion_from_gap(gap.view(), p.view(), dx, dx, adhesion).ok()?;
+    let zero = Array2::zeros(z.dim());
+    let maps = BodyMaps {
+        composite_height: z.view(),
+        upper_height: None,
+        deformation_lower: zero.view(),
+        deformation_upper: None,
+        plastic_penetration: zero.view(),
+    };
+    let hardness = BodyHardness {
+        lower: 1.96e9,
+        upper: f64::INFINITY,
+    };
+    let section = ContactSection {
+        pressure: p.view(),
+        gap: gap.view(),
+        bodies: ContactBodies::new(maps, hardness).ok()?,
+        spacing: (dx, dx),
+        periodic: true,
+        connectivity: Connectivity::Eight,
+        adhesion: AdhesionParameters::new(0.5, 0.158e-9).ok()?,
+    };
     let material = Material::new(210e9 / (2.0 * (1.0 - 0.09)), 1.96e9, 0.3).ok()?;
     let law = FullStick::new(&material, FullStickOptions::default()).ok()?;
-    let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
-    per_spot_friction(&loads, &law, f_a).ok()?.mu_s
+    per_spot_friction(&section, &law).ok()?.result.mu_s
 }
 
 fn median(runs: &mut [Duration]) -> Duration {

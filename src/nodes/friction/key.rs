@@ -5,7 +5,7 @@
 
 use crate::engine::value::Field;
 use crate::friction::laws::{ParameterValue, ReportedValue, Unit};
-use crate::friction::{Connectivity, Material, SummitStatistics};
+use crate::friction::{Connectivity, FrictionLaw, Material, SummitStatistics};
 use crate::nodes::number_list;
 use crate::units::Dimension;
 use crate::vocabulary::metrics as names;
@@ -23,6 +23,8 @@ impl FrictionTask {
             setup,
             // Derived from the upstream contact's parameters (in its key) and the hardness.
             input_flags: _,
+            // Derived from which upstream nodes the spec names (in the key as roles).
+            input_roles: _,
         } = self;
         // Room for the fields of every setup.
         let mut key = Vec::with_capacity(24);
@@ -45,8 +47,22 @@ impl FrictionTask {
             ),
         ]);
         key.extend(method_fields(setup));
+        key.extend(ploughing_field(law.as_ref(), setup));
         key
     }
+}
+
+/// Which body ploughs, for a per-spot law that reads the bodies' surfaces (one with a sliding
+/// direction): the order of the bodies' hardness decides it and which body flows.
+fn ploughing_field(law: &dyn FrictionLaw, setup: &MethodSetup) -> Option<Field> {
+    let MethodSetup::PerSpot { section, .. } = setup else {
+        return None;
+    };
+    law.sliding_direction()?;
+    Some(Field::text(
+        names::PLOUGHING_BODY,
+        section.hardness.ploughing().name(),
+    ))
 }
 
 /// A law's parameter or derived value as a key field.
@@ -124,6 +140,8 @@ fn method_fields(setup: &MethodSetup) -> Vec<Field> {
                     periodic: _,
                     connectivity,
                     spots_table,
+                    // In the key of a law that reads the bodies ([`ploughing_field`]).
+                    hardness: _,
                 },
         } => {
             let connectivity = match connectivity {

@@ -12,10 +12,12 @@
 //!   topography an upstream contact node solved (`fields: true`), with each summit's interference
 //!   from the contact's deformation there (`friction::per_summit_friction`); optional long table
 //!   `friction_summits`.
-//! * `method: per_spot` — the law per contact spot of that solution
-//!   (`friction::per_spot_friction`); optional long table `friction_spots`.
+//! * `method: per_spot` — the law per contact spot of that solution, on both bodies
+//!   (`friction::per_spot_friction`, the one call the Python binding makes too); optional long
+//!   table `friction_spots`.
 //!
-//! Every row says how far to trust it: `model_basis`, `load_share_beyond_fit`, and `mu_s` is
+//! Every row says how far to trust it: `model_basis`, `load_share_beyond_fit`, the adhesion
+//! share, the flags of its inputs (`trust`), a flag above the law's μ_s bound, and `mu_s` is
 //! never negative (`mu_s_computed`, `mu_s_floored` keep what the model gave).
 //!
 //! Table `friction`, one row per node instance (see `docs/study-format.md`).
@@ -49,14 +51,17 @@ mod per_summit;
 mod setup;
 mod spec_fields;
 mod statistical;
+mod trust;
 
 pub(crate) use crate::vocabulary::kinds::FRICTION as KIND;
 pub(crate) use crate::vocabulary::tables::FRICTION as TABLE;
 use crate::vocabulary::{metrics as names, roles};
 
 /// Implementation version of the `friction` kind; bump whenever its numerics change (4: keys
-/// derived from the law registry; the values are those of version 3).
-pub const FRICTION_KIND_VERSION: u32 = 4;
+/// derived from the law registry; the values are those of version 3; 5: ploughing on the
+/// harder body's deformed surface at each spot's loaded front, `tilted_junction` removed, merged
+/// spots and the adhesion share reported, flags inherited from the inputs).
+pub const FRICTION_KIND_VERSION: u32 = 5;
 
 /// Default adhesion energy Δγ (N/m): "somewhat clean" metal surfaces, the value of the static
 /// friction experiments on 17-4PH compared with the KE model (reference workflow; the range
@@ -214,6 +219,8 @@ pub struct FrictionTask {
     material: Material,
     /// Flags found when the node was resolved (a contact flow pressure that differs from H).
     input_flags: Vec<String>,
+    /// The role of each input, in input order (their flags carry over to the row).
+    input_roles: Vec<&'static str>,
     adhesion: AdhesionParameters,
     setup: MethodSetup,
 }
@@ -284,6 +291,32 @@ impl NodeTask for FrictionTask {
             Field::text(names::MODEL_BASIS, law.basis.name()),
         ];
         let mut tables = std::collections::BTreeMap::<String, Table>::new();
+        self.compute_method(inputs, &mut metrics, &mut tables)?;
+        let mut artifact = Artifact {
+            metrics,
+            arrays: Default::default(),
+            tables,
+            flags: self.input_flags.clone(),
+        };
+        if let Some(Value::Float(p)) = artifact.metric(names::NOMINAL_PRESSURE).map(|f| &f.value) {
+            validity::cross::pressure_within_flow(*p, self.material.hardness)
+                .map_err(NodeError::new)?;
+        }
+        trust::inherit_flags(&self.input_roles, inputs, &mut artifact.flags);
+        trust::flag_mu_s_beyond_law(law, &mut artifact);
+        validity::check_artifact(KIND, &mut artifact)?;
+        Ok(artifact)
+    }
+}
+
+impl FrictionTask {
+    /// The method's columns and tables.
+    fn compute_method(
+        &self,
+        inputs: &[&Artifact],
+        metrics: &mut Vec<Field>,
+        tables: &mut std::collections::BTreeMap<String, Table>,
+    ) -> Result<(), NodeError> {
         if let MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } =
             &self.setup
         {
@@ -303,9 +336,9 @@ impl NodeTask for FrictionTask {
                 roughness,
                 *nominal_area,
                 loads,
-                &mut metrics,
-                &mut tables,
-            )?,
+                metrics,
+                tables,
+            ),
             MethodSetup::PerSummit {
                 contact,
                 nominal_area,
@@ -317,29 +350,17 @@ impl NodeTask for FrictionTask {
                 *nominal_area,
                 *periodic,
                 *summits_table,
-                &mut metrics,
-                &mut tables,
-            )?,
+                metrics,
+                tables,
+            ),
             MethodSetup::PerSpot { contact, section } => per_spot::compute(
                 self,
                 input(inputs, *contact, roles::CONTACT)?,
                 section,
-                &mut metrics,
-                &mut tables,
-            )?,
+                metrics,
+                tables,
+            ),
         }
-        let mut artifact = Artifact {
-            metrics,
-            arrays: Default::default(),
-            tables,
-            flags: self.input_flags.clone(),
-        };
-        if let Some(Value::Float(p)) = artifact.metric(names::NOMINAL_PRESSURE).map(|f| &f.value) {
-            validity::cross::pressure_within_flow(*p, self.material.hardness)
-                .map_err(NodeError::new)?;
-        }
-        validity::check_artifact(KIND, &mut artifact)?;
-        Ok(artifact)
     }
 }
 
@@ -382,14 +403,29 @@ pub fn coefficient_fields(mu_computed: f64) -> [Field; 3] {
 /// `load_share_beyond_fit`: the share of the normal load carried outside the validated range of
 /// the law used (0 when there is no load).
 pub(crate) fn beyond_fit_field(load_beyond_fit: f64, normal_load: f64) -> Field {
-    let share = if normal_load > 0.0 {
-        (load_beyond_fit / normal_load).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
+    let share = share(load_beyond_fit, normal_load).clamp(0.0, 1.0);
     Field::float(
         names::LOAD_SHARE_BEYOND_FIT,
         share,
         Dimension::Dimensionless,
     )
+}
+
+/// `adhesion_share`: the adhesion force over the contact load, F_a/F_n (0 without load); above
+/// the validity rule's bound μ_s = Q/(F_n − F_a) is governed by a small difference.
+pub(crate) fn adhesion_share_field(adhesion_force: f64, normal_load: f64) -> Field {
+    Field::float(
+        names::ADHESION_SHARE,
+        share(adhesion_force, normal_load),
+        Dimension::Dimensionless,
+    )
+}
+
+/// `part / whole`, 0 when `whole` is not positive.
+pub(crate) fn share(part: f64, whole: f64) -> f64 {
+    if whole > 0.0 {
+        part / whole
+    } else {
+        0.0
+    }
 }

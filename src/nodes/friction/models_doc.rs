@@ -3,12 +3,12 @@
 
 use crate::friction::laws::{ParameterKind, Unit, LAWS};
 
-/// One row per law and parameter: model, basis, methods (default first), parameter, default,
-/// range, column, meaning.
+/// One row per law and parameter: model, basis, methods (default first), the largest μ_s a row
+/// reports as `ok`, parameter, default, range, column, meaning.
 pub fn friction_models_markdown() -> String {
     let mut out = String::from(
-        "| model | `model_basis` | methods (default first) | parameter | default | range | column | meaning |\n\
-         |-------|---------------|-------------------------|-----------|---------|-------|--------|---------|\n",
+        "| model | `model_basis` | methods (default first) | `ok` μ_s ≤ | parameter | default | range | column | meaning |\n\
+         |-------|---------------|-------------------------|------------|-----------|---------|-------|--------|---------|\n",
     );
     for law in LAWS {
         let methods: Vec<String> = law
@@ -17,10 +17,11 @@ pub fn friction_models_markdown() -> String {
             .map(|m| format!("`{}`", m.name()))
             .collect();
         let head = format!(
-            "| `{}` | `{}` | {} ",
+            "| `{}` | `{}` | {} | {} ",
             law.name,
             law.basis.name(),
-            methods.join(", ")
+            methods.join(", "),
+            law.mu_s_max
         );
         if law.parameters.is_empty() {
             out.push_str(&format!("{head}| – | | | | {} |\n", law.summary));

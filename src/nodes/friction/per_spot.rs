@@ -1,36 +1,38 @@
 //! `method: per_spot`: the friction law per contact spot of the solution a contact node computed
-//! (`fields: true`), [`crate::friction::per_spot_friction`].
+//! (`fields: true`), in one call of the numerics, [`crate::friction::per_spot_friction`], which
+//! the Python binding makes too.
 //!
 //! * **Spots**: connected components of the points with p > 0 of the contact's `pressure`
 //!   (4- or 8-neighbours, `spot_connectivity`), joined across the edges when the contact was
 //!   periodic; load Σ p dA and area from the solution, radius from a paraboloid fitted to the
 //!   contact's `composite_height` over the spot and its ring ([`crate::friction::contact_spots`]).
+//! * **Bodies**: the lower and upper bodies' heights, deformations and hardness
+//!   ([`crate::friction::bodies`]): a law with a sliding direction reads the loaded front of the
+//!   harder body's deformed surface.
 //! * **Adhesion** F_a: the Lennard-Jones attraction of the points out of contact across the
 //!   contact's `gap` (`adhesion_from_gap`), 0 with `adhesion_energy: 0`.
 //! * **Coefficient**: μ_s = Σ Q_i/(Σ P_i − F_a) of the section; forces are scaled to
 //!   `nominal_area` like the per-summit method (μ_s is invariant under that scaling).
-//! * **Trust**: `load_share_beyond_fit` (spots outside the law's validated range),
-//!   `load_share_one_pixel` and `one_pixel_spots` (resolution-limited spots),
-//!   `load_share_without_radius` and `spots_without_radius` (no convex radius: no Q, a lower
-//!   bound), spot-area and local-μ quantiles over the spots.
+//! * **Trust**: the load shares beyond the law's fit, without a radius, on merged spots under a
+//!   radius-based law, on one-pixel spots, the adhesion share F_a/F_n, spot-area and local-μ
+//!   quantiles over the spots (the validity rules flag the shares above their bounds).
 
 use std::collections::BTreeMap;
 
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::NodeError;
 use crate::engine::value::Field;
-use crate::friction::contact_spots::{
-    adhesion_from_gap, label_spots, measure_spots, Connectivity, ContactSpot,
-};
+use crate::friction::contact_spots::{Connectivity, ContactSpot};
 use crate::friction::per_summit::quantile;
 use crate::friction::{
-    per_spot_friction, per_spot_friction_on_slopes, spot_slopes, PerSpotResult, SpotLoad,
+    per_spot_friction, BodyHardness, BodyMaps, ContactBodies, ContactSection, PerSpotResult,
+    SectionFriction, SpotFriction,
 };
 use crate::units::Dimension;
 use crate::vocabulary::{self, metrics as names, spot_columns};
 
 use super::deformation_part::{extend_spots_table, push_parts};
-use super::{beyond_fit_field, coefficient_fields, FrictionTask};
+use super::{adhesion_share_field, beyond_fit_field, coefficient_fields, share, FrictionTask};
 use crate::nodes::contact_view::ContactView;
 
 /// How the section is read.
@@ -40,6 +42,32 @@ pub(crate) struct Section {
     pub periodic: bool,
     pub connectivity: Connectivity,
     pub spots_table: bool,
+    /// The bodies' hardness: which body flows, which ploughs.
+    pub hardness: BodyHardness,
+}
+
+/// The numerics' view of the contact node's solution.
+fn contact_section<'a>(
+    task: &FrictionTask,
+    fields: &ContactView<'a>,
+    section: &Section,
+) -> Result<ContactSection<'a>, crate::friction::FrictionError> {
+    let maps = BodyMaps {
+        composite_height: fields.composite_height,
+        upper_height: fields.upper_height,
+        deformation_lower: fields.deformation_lower,
+        deformation_upper: fields.deformation_upper,
+        plastic_penetration: fields.plastic_penetration,
+    };
+    Ok(ContactSection {
+        pressure: fields.pressure,
+        gap: fields.gap,
+        bodies: ContactBodies::new(maps, section.hardness)?,
+        spacing: (fields.dx, fields.dy),
+        periodic: section.periodic,
+        connectivity: section.connectivity,
+        adhesion: task.adhesion,
+    })
 }
 
 pub(super) fn compute(
@@ -50,67 +78,49 @@ pub(super) fn compute(
     tables: &mut BTreeMap<String, Table>,
 ) -> Result<(), NodeError> {
     let fields = ContactView::of(contact)?;
-    let (pressure, gap, height) = (fields.pressure, fields.gap, fields.composite_height);
-    let (dx, dy) = (fields.dx, fields.dy);
-    let fail = |what: &str, e: crate::friction::FrictionError| {
-        NodeError::new(format!("per-spot friction, {what}: {e}"))
-    };
-    let labels = label_spots(pressure, section.periodic, section.connectivity)
-        .map_err(|e| fail("contact spots", e))?;
-    let spots =
-        measure_spots(&labels, pressure, height, dx, dy).map_err(|e| fail("contact spots", e))?;
-    let adhesion =
-        adhesion_from_gap(gap, pressure, dx, dy, task.adhesion).map_err(|e| fail("adhesion", e))?;
-    let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
-    let law = task.law.as_ref();
-    let slopes = match law.sliding_direction() {
-        Some(direction) => Some(
-            spot_slopes(&labels, &spots, height, (dx, dy), direction)
-                .map_err(|e| fail("spot slopes", e))?,
-        ),
-        None => None,
-    };
-    let result = match &slopes {
-        Some(slopes) => per_spot_friction_on_slopes(&loads, slopes, law, adhesion),
-        None => per_spot_friction(&loads, law, adhesion),
-    }
-    .map_err(|e| fail("law", e))?;
+    let found = contact_section(task, &fields, section)
+        .and_then(|s| per_spot_friction(&s, task.law.as_ref()))
+        .map_err(|e| NodeError::new(format!("per-spot friction: {e}")))?;
+    let SectionFriction {
+        spots,
+        geometry,
+        result,
+    } = &found;
     let mu_s = result.mu_s.ok_or_else(|| {
         NodeError::new(format!(
             "no compressive net force on the contact spots (sum P = {} N, F_a = {} N): the section carries no friction",
             result.total_normal_force, result.adhesion_force
         ))
     })?;
-    let (ny, nx) = pressure.dim();
-    let section_area = nx as f64 * dx * ny as f64 * dy;
+    let (ny, nx) = fields.pressure.dim();
+    let section_area = nx as f64 * fields.dx * ny as f64 * fields.dy;
     let area = section.nominal_area.unwrap_or(section_area);
     metrics.extend(coefficient_fields(mu_s));
     metrics.push(beyond_fit_field(
         result.load_beyond_fit,
         result.total_normal_force,
     ));
-    let nominal_pressure = fields.nominal_pressure;
     push_forces(
         metrics,
-        &result,
+        result,
         area / section_area,
-        nominal_pressure * area,
+        fields.nominal_pressure * area,
     );
-    push_spot_statistics(metrics, &spots, &result, section_area, area);
-    if let Some(slopes) = &slopes {
-        push_parts(metrics, &spots, slopes, &result);
+    push_spot_statistics(metrics, spots, result, section_area, area);
+    if let Some(geometry) = geometry {
+        push_parts(metrics, spots, geometry, result);
     }
     if section.spots_table {
-        let mut table = spots_table(&spots, &result, dx, dy);
-        if let Some(slopes) = &slopes {
-            extend_spots_table(&mut table, &spots, slopes, &result);
+        let mut table = spots_table(spots, result, (fields.dx, fields.dy));
+        if let Some(geometry) = geometry {
+            extend_spots_table(&mut table, geometry, result);
         }
         tables.insert(String::from(vocabulary::tables::SPOTS), table);
     }
     Ok(())
 }
 
-/// The force columns, scaled from the section to the nominal area.
+/// The force columns, scaled from the section to the nominal area, and the adhesion share.
 fn push_forces(
     metrics: &mut Vec<Field>,
     result: &PerSpotResult,
@@ -131,10 +141,11 @@ fn push_forces(
             contact_normal_load,
             Dimension::Force,
         ),
+        adhesion_share_field(result.adhesion_force, result.total_normal_force),
     ]);
 }
 
-/// Area, spot counts, the resolution and radius shares and the quantiles over the spots.
+/// Area, spot counts, the trust shares and the quantiles over the spots.
 fn push_spot_statistics(
     metrics: &mut Vec<Field>,
     spots: &[ContactSpot],
@@ -143,13 +154,7 @@ fn push_spot_statistics(
     area: f64,
 ) {
     let n = |name: &'static str, v: f64| Field::float(name, v, Dimension::Dimensionless);
-    let share = |load: f64| {
-        if result.total_normal_force > 0.0 {
-            load / result.total_normal_force
-        } else {
-            0.0
-        }
-    };
+    let share = |load: f64| share(load, result.total_normal_force);
     let area_fraction = result.total_area / section_area;
     metrics.extend([
         Field::float(names::REAL_AREA, area_fraction * area, Dimension::Area),
@@ -167,12 +172,19 @@ fn push_spot_statistics(
             names::LOAD_SHARE_WITHOUT_RADIUS,
             share(result.load_without_radius),
         ),
+        Field::int(names::MERGED_SPOTS, result.merged_spots as i64),
+        n(names::LOAD_SHARE_MERGED, share(result.load_merged)),
     ]);
+    push_quantiles(metrics, spots, &result.spots);
+}
+
+/// Quantiles of the spot areas and of the local μ_i = Q_i/P_i (a negative one counts as 0).
+fn push_quantiles(metrics: &mut Vec<Field>, spots: &[ContactSpot], friction: &[SpotFriction]) {
     let mut areas: Vec<f64> = spots.iter().map(|s| s.area).collect();
     areas.sort_by(f64::total_cmp);
     let mut local: Vec<f64> = spots
         .iter()
-        .zip(&result.spots)
+        .zip(friction)
         .filter(|(s, _)| s.load > 0.0)
         .map(|(s, f)| (f.friction_force / s.load).max(0.0))
         .collect();
@@ -204,23 +216,24 @@ fn push_spot_statistics(
 }
 
 /// One row per spot: peak position, size, load, radius (0 with `radius_status` `not_convex`),
-/// load measure (P* for full stick, x for KE/CEB, 0 where the law has none), friction and
-/// whether the spot is inside the law's validated range (section values).
-fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) -> Table {
+/// summits, load measure (P* for full stick, x for KE/CEB, 0 where the law has none), friction
+/// and whether the spot is inside the law's validated range (section values).
+fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, (dx, dy): (f64, f64)) -> Table {
     let pairs: Vec<_> = spots.iter().zip(&result.spots).collect();
-    let float = |f: &dyn Fn(&ContactSpot, &crate::friction::SpotFriction) -> f64| {
+    let float = |f: &dyn Fn(&ContactSpot, &SpotFriction) -> f64| {
         pairs.iter().map(|(s, r)| f(s, r)).collect::<Vec<f64>>()
     };
+    let text = |f: &dyn Fn(&ContactSpot, &SpotFriction) -> &'static str| {
+        pairs
+            .iter()
+            .map(|(s, r)| String::from(f(s, r)))
+            .collect::<Vec<_>>()
+    };
+    let int = |f: &dyn Fn(&ContactSpot) -> usize| spots.iter().map(|s| f(s) as i64).collect();
     let mut t = Table::default();
     t.push_int(spot_columns::SPOT, (0..spots.len() as i64).collect());
-    t.push_int(
-        spot_columns::PEAK_IX,
-        spots.iter().map(|s| s.peak.1 as i64).collect(),
-    );
-    t.push_int(
-        spot_columns::PEAK_IY,
-        spots.iter().map(|s| s.peak.0 as i64).collect(),
-    );
+    t.push_int(spot_columns::PEAK_IX, int(&|s| s.peak.1));
+    t.push_int(spot_columns::PEAK_IY, int(&|s| s.peak.0));
     t.push_float(
         spot_columns::PEAK_X,
         Dimension::Length,
@@ -231,10 +244,7 @@ fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) 
         Dimension::Length,
         float(&|s, _| s.peak.0 as f64 * dy),
     );
-    t.push_int(
-        spot_columns::PIXELS,
-        spots.iter().map(|s| s.pixels as i64).collect(),
-    );
+    t.push_int(spot_columns::PIXELS, int(&|s| s.pixels));
     t.push_float(spot_columns::AREA, Dimension::Area, float(&|s, _| s.area));
     t.push_float(
         spot_columns::NORMAL_FORCE,
@@ -253,17 +263,12 @@ fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) 
     );
     t.push_text(
         spot_columns::RADIUS_STATUS,
-        spots
-            .iter()
-            .map(|s| {
-                String::from(if s.radius.is_some() {
-                    "convex"
-                } else {
-                    "not_convex"
-                })
-            })
-            .collect(),
+        text(&|s, _| match s.radius {
+            Some(_) => "convex",
+            None => "not_convex",
+        }),
     );
+    t.push_int(spot_columns::SUMMITS, int(&|s| s.summits));
     t.push_float(
         spot_columns::LOAD_MEASURE,
         Dimension::Dimensionless,
@@ -277,20 +282,11 @@ fn spots_table(spots: &[ContactSpot], result: &PerSpotResult, dx: f64, dy: f64) 
     t.push_float(
         spot_columns::LOCAL_MU,
         Dimension::Dimensionless,
-        float(&|s, r| {
-            if s.load > 0.0 {
-                (r.friction_force / s.load).max(0.0)
-            } else {
-                0.0
-            }
-        }),
+        float(&|s, r| share(r.friction_force.max(0.0), s.load)),
     );
     t.push_text(
         spot_columns::FIT,
-        pairs
-            .iter()
-            .map(|(_, r)| String::from(if r.beyond_fit { "beyond" } else { "inside" }))
-            .collect(),
+        text(&|_, r| if r.beyond_fit { "beyond" } else { "inside" }),
     );
     t
 }

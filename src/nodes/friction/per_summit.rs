@@ -39,7 +39,7 @@ use crate::surface::{find_summits, Boundary, HeightMap, Summit, SummitOptions, S
 use crate::units::Dimension;
 use crate::vocabulary::{metrics as names, summit_columns, tables};
 
-use super::{beyond_fit_field, coefficient_fields, FrictionTask};
+use super::{adhesion_share_field, beyond_fit_field, coefficient_fields, FrictionTask};
 use crate::nodes::contact_view::ContactView;
 
 /// The interference ω (m) of the summit at (iy, ix); see the module docs.
@@ -206,6 +206,7 @@ fn push_forces(
             Dimension::Force,
         ),
         Field::float(names::CONTACT_NORMAL_LOAD, contact_load, Dimension::Force),
+        adhesion_share_field(result.total_adhesion_force, result.total_normal_force),
     ]);
 }
 

@@ -3,7 +3,7 @@
 
 use crate::engine::study::{Located, ResolveContext, SourceLocation, SpecError};
 use crate::friction::laws::{find_law, LawInputs};
-use crate::friction::{AdhesionParameters, Method, SummitStatistics};
+use crate::friction::{AdhesionParameters, BodyHardness, Method, SummitStatistics};
 
 use super::contact_input;
 use super::material_pair::{resolve_material, MaterialPair};
@@ -145,6 +145,7 @@ pub(super) fn instantiate(
         law,
         material: pair.material,
         input_flags: input_flag.into_iter().collect(),
+        input_roles: spec.upstream().iter().map(|r| r.role).collect(),
         adhesion,
         setup,
     })
@@ -267,6 +268,7 @@ fn method_setup(
                     periodic,
                     connectivity,
                     spots_table,
+                    hardness: BodyHardness::of(&pair.bodies),
                 },
             }
         }

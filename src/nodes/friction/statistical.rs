@@ -25,7 +25,8 @@ use crate::units::Dimension;
 use crate::vocabulary::{curve_columns, metrics as names, roles, tables};
 
 use super::{
-    beyond_fit_field, coefficient_fields, float_metric, input, FrictionTask, Loads, Roughness,
+    adhesion_share_field, beyond_fit_field, coefficient_fields, float_metric, input, FrictionTask,
+    Loads, Roughness,
 };
 
 fn moments(surface: &Artifact, role: &str) -> Result<SpectralMoments, NodeError> {
@@ -160,6 +161,7 @@ fn result_fields(last: &StaticFrictionResult, summits: &SummitStatistics, area: 
         ),
         Field::float(names::NORMAL_LOAD, last.contact_load, Dimension::Force),
         Field::float(names::ADHESION_FORCE, last.adhesion_force, Dimension::Force),
+        adhesion_share_field(last.adhesion_force, last.contact_load),
         Field::float(
             names::FRICTION_FORCE,
             last.static_friction_force.max(0.0),

@@ -34,7 +34,9 @@
 //! offsets scaled to `[−1, 1]` and heights relative to the highest point, and solved by Gaussian
 //! elimination with partial pivoting. A spot wider than half a period on a periodic grid has no
 //! unique minimum image and its radius is not meaningful. One-pixel spots are resolution-limited:
-//! count and report them rather than trust their radius.
+//! count and report them rather than trust their radius. Nor is the radius meaningful when the
+//! spot holds two or more summits of the composite height (its points higher than each of their
+//! 8-neighbours): several asperities have merged into one junction (`summits`).
 
 use ndarray::{Array2, ArrayView2};
 use rayon::prelude::*;
@@ -106,6 +108,10 @@ pub struct ContactSpot {
     pub radius: Option<f64>,
     /// Number of points of the fit (the spot and its 8-neighbour ring).
     pub radius_points: usize,
+    /// Summits of the composite height in the spot: its points higher than each of their
+    /// 8-neighbours (those in the grid; wrapped on periodic grids). Two or more: the spot is
+    /// several asperities merged into one, whose single radius means nothing.
+    pub summits: usize,
 }
 
 /// Whether a point with pressure `p` is in contact.
@@ -414,7 +420,28 @@ impl SpotInput<'_> {
             max_pressure,
             radius: self.fit_radius(peak, points, ring)?,
             radius_points: points.len() + ring.len(),
+            summits: self.summits(points)?,
         })
+    }
+
+    /// The points of the spot higher than each of their 8-neighbours in the grid.
+    fn summits(&self, points: &[u32]) -> Result<usize, FrictionError> {
+        let (ny, nx) = self.labels.labels.dim();
+        let periodic = self.labels.periodic;
+        let mut count = 0;
+        for &at in points {
+            let (iy, ix) = self.coords(at);
+            let z = self.height_at(at)?;
+            let highest = (-1..=1)
+                .flat_map(|sy| (-1..=1).map(move |sx| (sy, sx)))
+                .filter(|&s| s != (0, 0))
+                .filter_map(|(sy, sx)| {
+                    Some((step(iy, sy, ny, periodic)?, step(ix, sx, nx, periodic)?))
+                })
+                .all(|(y, x)| self.height[[y, x]] < z);
+            count += usize::from(highest);
+        }
+        Ok(count)
     }
 
     /// The 8-neighbours of the spot's points that are not in the spot, sorted, without repeats.

@@ -25,7 +25,10 @@
 //!   homogenization to the whole surface;
 //! * [`contact_spots`] — connected contact spots of a contact solution with their load, area and
 //!   radius, and the Lennard-Jones adhesion across its gap;
-//! * [`per_spot`] — a law's tangential capacity per contact spot, summed over a section;
+//! * [`bodies`] — the two bodies of a contact solution: the sign convention of their heights,
+//!   each body's deformed surface, which body flows and which ploughs, which moves;
+//! * [`per_spot`] — the per-spot model of a contact section in one call: spots, adhesion, the
+//!   ploughing geometry, the law per spot and the section's sums;
 //! * `quadrature`, `root_finding` (crate-private) — adaptive Gauss–Kronrod and Brent (own implementations).
 //!
 //! The Li–Etsion–Talke (2010) model itself is not implemented (its equations were not found);
@@ -34,6 +37,7 @@
 //! All quantities are SI; nothing here prints, reads files or knows about the study engine.
 
 pub mod adhesion;
+pub mod bodies;
 pub mod contact_spots;
 pub mod error;
 pub mod gw_functions;
@@ -51,17 +55,16 @@ pub mod statistical_integrals;
 pub mod summit_statistics;
 
 pub use adhesion::AdhesionBeyondFits;
+pub use bodies::{BodyHardness, BodyMaps, ContactBodies, Ploughers};
 pub use contact_spots::{Connectivity, ContactSpot, SpotLabels};
 pub use error::FrictionError;
 pub use gw_functions::{gw_function, upper_tail_probability, INTEGRAL_REL_TOL};
 pub use laws::full_stick::jackson_green::JacksonGreenLaw;
 pub use laws::full_stick::stick::{FullStickLaw, StickFrictionLaw};
 pub use laws::kogut_etsion::{DeformationState, StaticFrictionForm};
-pub use laws::ploughing::deformation::{
-    deformation_friction, DeformationLaw, DeformationResult, DeformationSpot, SpotDeformation,
-};
-pub use laws::ploughing::spot_slope::spot_slopes;
-pub use laws::spot::{SlidingDirection, SpotSlope};
+pub use laws::ploughing::deformation::DeformationLaw;
+pub use laws::ploughing::front::front_geometry;
+pub use laws::spot::{FrontGeometry, SlidingDirection, SpotGeometry};
 pub use laws::{
     find_law, law_names, AsperityLaws, ChangEtsionBogy, FrictionLaw, FullStick, FullStickOptions,
     JunctionShear, KogutEtsion, LawDescriptor, LawInputs, Method, ModelBasis, Ploughing,
@@ -69,7 +72,9 @@ pub use laws::{
 };
 pub use material::{AdhesionParameters, CriticalValues, Material, TABOR_FACTOR};
 pub use net_load_grid::{net_load, GridEvaluations, NetLoadGrid};
-pub use per_spot::{per_spot_friction, per_spot_friction_on_slopes, PerSpotResult};
+pub use per_spot::{
+    per_spot_friction, sum_spots, ContactSection, PerSpotResult, SectionFriction, SectionGeometry,
+};
 pub use per_summit::{
     per_summit_friction, summit_friction, summit_interference, PerSummitResult, SummitContact,
     SummitFriction,

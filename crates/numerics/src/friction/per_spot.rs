@@ -1,34 +1,68 @@
 //! Static friction per contact spot of a contact solution (the deterministic stage 3 of the
 //! reference workflow on a boundary-element result; project reference
-//! `docs/friction-models.md`, "Per contact spot").
+//! `docs/friction-models.md`, "Per contact spot"). [`per_spot_friction`] is the one call a study's
+//! node and the Python binding make: spots, adhesion, the ploughing geometry of a law with a
+//! sliding direction, the law per spot and the section's sums.
 //!
 //! A contact spot is a connected set of points with p > 0 ([`super::contact_spots`]); its load
 //! P_i = Σ p dA and area A_i are exact results of the contact solution and its radius R_i comes
-//! from the composite topography ([`SpotLoad`]). This file only sums a section: each spot gets
-//! the tangential capacity Q_i of the chosen law ([`FrictionLaw::spot_friction`]), e.g.:
+//! from the composite topography ([`SpotLoad`]). Each spot gets the tangential capacity Q_i of
+//! the chosen law ([`FrictionLaw::spot_friction`]), e.g.:
 //!
 //! * **full stick**: Q_i = μ(P_i*) P_i with P_i* = P_i/L_c(R_i), L_c = L̄_c P_c(R_i)
 //!   ([`super::laws::full_stick`]);
 //! * **junction shear** (Bowden–Tabor): Q_i = τ_s A_i, every junction fails in shear at the
 //!   interfacial shear strength τ_s; no radius is needed;
-//! * **Kogut–Etsion / CEB**: the interference x_i that gives P_i under the model's load law
-//!   (smallest x with P_c(R_i)·(P/P_c)(x) ≥ P_i; the laws rise monotonically with upward jumps),
-//!   then Q_i = P_c(R_i)·(Q/P_c)(x_i).
+//! * **Kogut–Etsion / CEB**: the interference x_i that gives P_i under the model's load law,
+//!   then Q_i = P_c(R_i)·(Q/P_c)(x_i) ([`super::laws::interference`]);
+//! * **ploughing**: junction shear plus the deformation part of the harder body's asperity on
+//!   the spot's loaded front ([`super::laws::ploughing`], the bodies in [`super::bodies`]).
 //!
 //! The section's coefficient is Coulomb's law for the whole section,
 //! μ_s = Σ Q_i / (Σ P_i − F_a), with F_a the adhesion of the section (from the gap around the
-//! spots, [`super::contact_spots::adhesion_from_gap`]); the local μ_i = Q_i/P_i. A spot whose
-//! topography gives no convex radius cannot be assigned a radius-dependent law: it carries no Q
-//! (a lower bound) and its load is reported (`load_without_radius`). Spots beyond the validated
-//! range of the law add their load to `load_beyond_fit`: full stick P_i* above the stick load fit
-//! at ω* = 110; KE/CEB x_i above the fit limit of their asperity laws; junction shear has no fitted
-//! range. One-pixel spots are resolution-limited: their number and load are reported.
+//! spots, [`super::contact_spots::adhesion_from_gap`]); the local μ_i = Q_i/P_i. What the sums
+//! say about trust, each as the load it concerns: spots whose topography gives no convex radius
+//! carry no Q under a radius-dependent law (a lower bound, `load_without_radius`); spots beyond
+//! the validated range of the law (`load_beyond_fit`: full stick P_i* above the stick load fit at
+//! ω* = 110, KE/CEB x_i above their fit limit, ploughing without the geometry its law needs);
+//! merged spots under a law that rests on one asperity's radius (`load_merged`: two or more
+//! summits of the composite topography in one spot, so no single radius describes it); spots
+//! beyond the ploughing regime (`load_outside_regime`); one-pixel spots (resolution-limited).
 
+use ndarray::ArrayView2;
+
+use super::bodies::{motion, ContactBodies, Ploughers};
+use super::contact_spots::{
+    adhesion_from_gap, label_spots, measure_spots, Connectivity, ContactSpot, SpotLabels,
+};
 use super::error::FrictionError;
 use super::laws::law::FrictionLaw;
-use super::laws::spot::{SpotFriction, SpotLoad, SpotSlope};
+use super::laws::ploughing::baseline::slope_baseline;
+use super::laws::ploughing::front::front_geometry;
+use super::laws::spot::{FrontGeometry, SlidingDirection, SpotFriction, SpotGeometry, SpotLoad};
+use super::material::AdhesionParameters;
+use crate::materials::Side;
 
-/// The per-spot result of a section.
+/// A solved contact as per-spot friction reads it (`[[iy, ix]]` maps of one grid).
+#[derive(Debug, Clone, Copy)]
+pub struct ContactSection<'a> {
+    /// Pressure p (Pa).
+    pub pressure: ArrayView2<'a, f64>,
+    /// Gap after loading g (m), for the adhesion of the points out of contact.
+    pub gap: ArrayView2<'a, f64>,
+    /// The two bodies: heights, deformations, hardness.
+    pub bodies: ContactBodies<'a>,
+    /// Grid spacings (dx, dy) (m).
+    pub spacing: (f64, f64),
+    /// Whether the contact was periodic (spots join across the edges).
+    pub periodic: bool,
+    /// Which neighbours join two contact points into one spot.
+    pub connectivity: Connectivity,
+    /// Δγ and ε of the Lennard-Jones adhesion.
+    pub adhesion: AdhesionParameters,
+}
+
+/// The sums of a section (see the module documentation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PerSpotResult {
     /// One entry per input spot.
@@ -37,6 +71,8 @@ pub struct PerSpotResult {
     pub total_normal_force: f64,
     /// Σ Q_i (N).
     pub total_friction_force: f64,
+    /// Σ Q_d,i, the deformation part of Σ Q_i (N).
+    pub total_deformation_force: f64,
     /// Σ A_i (m²).
     pub total_area: f64,
     /// Adhesion force F_a of the section (N, attractive positive).
@@ -49,67 +85,142 @@ pub struct PerSpotResult {
     pub load_without_radius: f64,
     /// Number of spots without a convex radius.
     pub spots_without_radius: usize,
+    /// Σ P_i of the merged spots (two or more summits) whose Q rests on one radius (N).
+    pub load_merged: f64,
+    /// Number of spots with two or more summits.
+    pub merged_spots: usize,
+    /// Σ P_i of the spots beyond the ploughing regime (N).
+    pub load_outside_regime: f64,
     /// Σ P_i of the one-pixel spots (N).
     pub load_one_pixel: f64,
     /// Number of one-pixel spots.
     pub one_pixel_spots: usize,
-    /// The deformation part Q_d,i of each spot's Q_i (N), for a law with one
-    /// ([`per_spot_friction_on_slopes`]); empty otherwise.
-    pub deformation: Vec<f64>,
-    /// Σ Q_d,i (N).
-    pub total_deformation_force: f64,
 }
 
-/// The per-spot model of a section: `spots` with the section's adhesion force `adhesion_force`
-/// (N, ≥ 0). Errors on a non-finite or negative spot load or area.
+/// The ploughing geometry of a section, for a law with a sliding direction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SectionGeometry {
+    /// Which body ploughs.
+    pub ploughing: Ploughers,
+    /// One entry per spot.
+    pub spots: Vec<SpotGeometry>,
+    /// (2/π) × the rms slope along ψ of the ploughing body's surface over the section (the
+    /// share-weighted mean at equal hardness): the deformation part a topography statistic
+    /// alone would give ([`super::laws::ploughing::baseline`]).
+    pub slope_baseline: f64,
+}
+
+/// Everything [`per_spot_friction`] finds in a section.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SectionFriction {
+    /// The contact spots, in id order.
+    pub spots: Vec<ContactSpot>,
+    /// The ploughing geometry, for a law with a sliding direction.
+    pub geometry: Option<SectionGeometry>,
+    /// The law per spot and the section's sums.
+    pub result: PerSpotResult,
+}
+
+/// The per-spot model of a contact section under `law`, in one call (see the module docs).
+///
+/// Errors: maps of different shapes, spacings not finite and > 0, non-finite heights,
+/// deformations or gaps where they are read, a grid of 2³² points or more.
 pub fn per_spot_friction(
-    spots: &[SpotLoad],
+    section: &ContactSection,
     law: &dyn FrictionLaw,
-    adhesion_force: f64,
-) -> Result<PerSpotResult, FrictionError> {
-    section_friction(spots, None, law, adhesion_force)
+) -> Result<SectionFriction, FrictionError> {
+    let (dx, dy) = section.spacing;
+    let labels = label_spots(section.pressure, section.periodic, section.connectivity)?;
+    let height = section.bodies.composite_height();
+    let spots = measure_spots(&labels, section.pressure, height, dx, dy)?;
+    let adhesion = adhesion_from_gap(section.gap, section.pressure, dx, dy, section.adhesion)?;
+    let geometry = law
+        .sliding_direction()
+        .map(|direction| section_geometry(&labels, section, direction))
+        .transpose()?;
+    let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
+    let per_spot = geometry.as_ref().map(|g| g.spots.as_slice());
+    let result = sum_spots(&loads, per_spot, law, adhesion)?;
+    Ok(SectionFriction {
+        spots,
+        geometry,
+        result,
+    })
 }
 
-/// [`per_spot_friction`] for a law with a deformation part: each spot with its geometry along
-/// the law's sliding direction (`slopes[i]` of `spots[i]`, [`super::laws::ploughing::spot_slope::spot_slopes`]),
-/// [`FrictionLaw::sloped_spot_friction`]; the deformation parts are summed apart. Errors also
-/// when the lists differ in length.
-pub fn per_spot_friction_on_slopes(
+/// The fronts of the ploughing bodies of every spot and the slope baseline along `direction`.
+fn section_geometry(
+    labels: &SpotLabels,
+    section: &ContactSection,
+    direction: SlidingDirection,
+) -> Result<SectionGeometry, FrictionError> {
+    let ploughing = section.bodies.hardness().ploughing();
+    let mut fronts: [Option<(f64, Vec<Option<FrontGeometry>>)>; 2] = [None, None];
+    let mut baseline = 0.0;
+    for (side, share) in ploughing.bodies() {
+        let moving = SlidingDirection::new(motion(side, direction.angle()))?;
+        let front = front_geometry(labels, &section.bodies, side, moving, section.spacing)?;
+        let slot = match side {
+            Side::Lower => 0,
+            Side::Upper => 1,
+        };
+        fronts[slot] = Some((share, front));
+        baseline += share
+            * slope_baseline(
+                &section.bodies,
+                side,
+                direction,
+                section.spacing,
+                section.periodic,
+            );
+    }
+    let spots = (0..labels.count())
+        .map(|id| SpotGeometry {
+            fronts: fronts
+                .each_ref()
+                .map(|f| f.as_ref().map(|(share, fronts)| (*share, fronts[id]))),
+        })
+        .collect();
+    Ok(SectionGeometry {
+        ploughing,
+        spots,
+        slope_baseline: baseline,
+    })
+}
+
+/// The law per spot and the section's sums: `spots` with their ploughing geometry (one per spot,
+/// for a law with a sliding direction) and the section's adhesion force `adhesion_force` (N,
+/// ≥ 0). Errors on a non-finite or negative spot load or area, or a geometry list of another
+/// length than the spots.
+pub fn sum_spots(
     spots: &[SpotLoad],
-    slopes: &[SpotSlope],
+    geometry: Option<&[SpotGeometry]>,
     law: &dyn FrictionLaw,
     adhesion_force: f64,
 ) -> Result<PerSpotResult, FrictionError> {
-    if slopes.len() != spots.len() {
+    if let Some(g) = geometry.filter(|g| g.len() != spots.len()) {
         return Err(FrictionError::InvalidParameter {
-            name: "spot slopes",
-            value: slopes.len() as f64,
-            expected: "one slope per spot",
+            name: "spot geometry",
+            value: g.len() as f64,
+            expected: "one geometry per spot",
         });
     }
-    section_friction(spots, Some(slopes), law, adhesion_force)
-}
-
-fn section_friction(
-    spots: &[SpotLoad],
-    slopes: Option<&[SpotSlope]>,
-    law: &dyn FrictionLaw,
-    adhesion_force: f64,
-) -> Result<PerSpotResult, FrictionError> {
     let mut result = PerSpotResult {
         spots: Vec::with_capacity(spots.len()),
         total_normal_force: 0.0,
         total_friction_force: 0.0,
+        total_deformation_force: 0.0,
         total_area: 0.0,
         adhesion_force,
         mu_s: None,
         load_beyond_fit: 0.0,
         load_without_radius: 0.0,
         spots_without_radius: 0,
+        load_merged: 0.0,
+        merged_spots: 0,
+        load_outside_regime: 0.0,
         load_one_pixel: 0.0,
         one_pixel_spots: 0,
-        deformation: Vec::new(),
-        total_deformation_force: 0.0,
     };
     for (i, spot) in spots.iter().enumerate() {
         check_spot(spot)?;
@@ -117,39 +228,42 @@ fn section_friction(
             radius: spot.radius.filter(|r| r.is_finite() && *r > 0.0),
             ..*spot
         };
-        let found = match slopes {
-            Some(slopes) => law.sloped_spot_friction(&usable, &slopes[i]),
-            None => law.spot_friction(&usable).map(|f| (f, 0.0)),
-        };
-        let (friction, deformation) = found.unwrap_or_else(|| {
-            result.load_without_radius += spot.load;
-            result.spots_without_radius += 1;
-            let none = SpotFriction {
-                friction_force: 0.0,
-                load_measure: None,
-                beyond_fit: false,
-            };
-            (none, 0.0)
-        });
-        if friction.beyond_fit {
-            result.load_beyond_fit += spot.load;
-        }
-        if spot.pixels == 1 {
-            result.load_one_pixel += spot.load;
-            result.one_pixel_spots += 1;
-        }
-        result.total_normal_force += spot.load;
-        result.total_friction_force += friction.friction_force;
-        result.total_area += spot.area;
-        result.spots.push(friction);
-        if slopes.is_some() {
-            result.deformation.push(deformation);
-            result.total_deformation_force += deformation;
-        }
+        let found = law.spot_friction(&usable, geometry.map(|g| &g[i]));
+        result.add(spot, found);
     }
     let net = result.total_normal_force - adhesion_force;
     result.mu_s = (net > 0.0).then(|| result.total_friction_force / net);
     Ok(result)
+}
+
+impl PerSpotResult {
+    /// Adds one spot and its friction (`None`: no radius, no Q).
+    fn add(&mut self, spot: &SpotLoad, found: Option<SpotFriction>) {
+        let friction = found.unwrap_or_else(|| {
+            self.load_without_radius += spot.load;
+            self.spots_without_radius += 1;
+            SpotFriction::default()
+        });
+        let count = |yes: bool, load: &mut f64| {
+            if yes {
+                *load += spot.load;
+            }
+        };
+        count(friction.beyond_fit, &mut self.load_beyond_fit);
+        count(friction.outside_regime, &mut self.load_outside_regime);
+        count(
+            friction.radius_based && spot.summits > 1,
+            &mut self.load_merged,
+        );
+        count(spot.pixels == 1, &mut self.load_one_pixel);
+        self.merged_spots += usize::from(spot.summits > 1);
+        self.one_pixel_spots += usize::from(spot.pixels == 1);
+        self.total_normal_force += spot.load;
+        self.total_friction_force += friction.friction_force;
+        self.total_deformation_force += friction.deformation_force;
+        self.total_area += spot.area;
+        self.spots.push(friction);
+    }
 }
 
 fn check_spot(spot: &SpotLoad) -> Result<(), FrictionError> {

@@ -6,7 +6,7 @@
 use asperity_numerics::friction::laws::full_stick::stick::{stick_factors, STICK_LOAD_FIT_LIMIT};
 use asperity_numerics::friction::laws::interference::interference_for_load;
 use asperity_numerics::friction::{
-    per_spot_friction, AsperityLaws, FrictionError, FullStick, FullStickLaw, FullStickOptions,
+    sum_spots, AsperityLaws, FrictionError, FullStick, FullStickLaw, FullStickOptions,
     JacksonGreenLaw, JunctionShear, KogutEtsion, Material, SpotLoad, StaticFrictionForm,
     StickFrictionLaw, TABOR_FACTOR,
 };
@@ -193,6 +193,7 @@ fn junction_shear_closed_form_on_fully_plastic_contact() {
             area: n as f64 * dxdy,
             radius: None,
             pixels: n,
+            summits: 1,
         })
         .collect();
     for c in [1.0, 0.5] {
@@ -200,7 +201,7 @@ fn junction_shear_closed_form_on_fully_plastic_contact() {
         let law = JunctionShear::new(c, HARDNESS / TABOR_FACTOR / 3f64.sqrt())
             .unwrap_or_else(|e| panic!("{e}"));
         assert!(close(law.shear_strength(), tau, 1e-15));
-        let result = per_spot_friction(&spots, &law, 0.0).unwrap_or_else(|e| panic!("{e}"));
+        let result = sum_spots(&spots, None, &law, 0.0).unwrap_or_else(|e| panic!("{e}"));
         let expected = c / (TABOR_FACTOR * 3f64.sqrt());
         assert!(close(result.mu_s.unwrap_or(0.0), expected, 1e-12));
         assert!(close(expected / c, 0.2062, 1e-3));
@@ -222,12 +223,14 @@ fn full_stick_per_spot_values() {
             area: 1e-12,
             radius: Some(r),
             pixels: 4,
+            summits: 1,
         },
         SpotLoad {
             load: 2.0 * stick_load,
             area: 1e-12,
             radius: None,
             pixels: 1,
+            summits: 1,
         },
     ];
     let material = Material::new(E_PRIME, HARDNESS, 0.3).unwrap_or_else(|e| panic!("{e}"));
@@ -235,7 +238,7 @@ fn full_stick_per_spot_values() {
         FullStick::new(&material, FullStickOptions::default()).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(spot_law.law(), &law);
     let adhesion = 0.5 * stick_load;
-    let result = per_spot_friction(&spots, &spot_law, adhesion).unwrap_or_else(|e| panic!("{e}"));
+    let result = sum_spots(&spots, None, &spot_law, adhesion).unwrap_or_else(|e| panic!("{e}"));
     let q = law.friction_law.mu(10.0) * 10.0 * stick_load;
     assert!(close(result.total_friction_force, q, 1e-12));
     assert!(close(

@@ -49,6 +49,7 @@ fn every_law_builds_and_serves_its_methods() {
         area: 1e-10,
         radius: Some(20e-6),
         pixels: 9,
+        summits: 1,
     };
     for law in LAWS {
         let built: Arc<dyn FrictionLaw> = Arc::from(
@@ -67,7 +68,7 @@ fn every_law_builds_and_serves_its_methods() {
         }
         if law.supports(Method::PerSpot) {
             let q = built
-                .spot_friction(&spot)
+                .spot_friction(&spot, None)
                 .unwrap_or_else(|| panic!("{}", law.name));
             assert!(q.friction_force.is_finite() && q.friction_force >= 0.0);
         }
@@ -75,6 +76,15 @@ fn every_law_builds_and_serves_its_methods() {
         for p in law.parameters {
             assert!(reported.contains(&p.column), "{}: {}", law.name, p.column);
         }
+        // A law reads a sliding direction exactly when it declares one: the others have none in
+        // their parameters, key or row.
+        assert_eq!(
+            built.sliding_direction().is_some(),
+            reported.contains(&"sliding_direction"),
+            "{}",
+            law.name
+        );
+        assert!(law.mu_s_max > 0.0 && law.mu_s_max <= 1.5, "{}", law.name);
     }
 }
 

@@ -10,4 +10,6 @@ mod friction_per_summit;
 mod friction_ploughing;
 mod friction_sliding_direction;
 mod friction_static_solve;
+mod friction_two_bodies;
 mod law_support;
+mod ploughing_support;

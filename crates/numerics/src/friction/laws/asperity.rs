@@ -10,6 +10,13 @@ use std::fmt;
 /// x = 1: the first-yield interference, end of the elastic (Hertz) range of every law.
 pub const ELASTIC_LIMIT: f64 = 1.0;
 
+/// The largest μ_s of a yield-inception law (KE 2004, CEB) reported as `ok`: the tangential
+/// capacity of an asperity at first yield is 0.52 P_c against its load P_c (KE 2004 at x = 1),
+/// and beyond first yield it falls; a section above 1 carries its load on barely touching
+/// asperities (x ≪ 1, where Q/P = 0.52 x^−0.518 grows without bound), outside what the fits
+/// describe.
+pub const YIELD_INCEPTION_MU_S_MAX: f64 = 1.0;
+
 /// Single-asperity laws as ratios to the Kogut–Etsion critical values (see the module docs).
 pub trait AsperityLaws: fmt::Debug + Send + Sync {
     /// P/P_c at x (0 for x ≤ 0).

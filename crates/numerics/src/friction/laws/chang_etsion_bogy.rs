@@ -25,6 +25,7 @@ pub(super) const LAW: LawDescriptor = LawDescriptor {
     basis: ModelBasis::PublishedFits,
     methods: &[Method::Statistical, Method::PerSummit, Method::PerSpot],
     parameters: &[],
+    mu_s_max: super::asperity::YIELD_INCEPTION_MU_S_MAX,
     build,
 };
 

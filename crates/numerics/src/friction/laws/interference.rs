@@ -10,7 +10,7 @@ use std::sync::Arc;
 use super::asperity::AsperityLaws;
 use super::law::{FrictionLaw, LawDescriptor};
 use super::parameters::ReportedValue;
-use super::spot::{SpotFriction, SpotLoad};
+use super::spot::{SpotFriction, SpotGeometry, SpotLoad};
 use crate::friction::material::Material;
 
 /// A law whose single-asperity fits are all it needs: its descriptor, its material and the
@@ -35,7 +35,7 @@ impl<T: InterferenceLaw> FrictionLaw for T {
         Some(self)
     }
 
-    fn spot_friction(&self, spot: &SpotLoad) -> Option<SpotFriction> {
+    fn spot_friction(&self, spot: &SpotLoad, _: Option<&SpotGeometry>) -> Option<SpotFriction> {
         interference_spot_friction(self, self.material(), spot)
     }
 
@@ -57,6 +57,8 @@ pub fn interference_spot_friction(
         friction_force: critical * laws.friction_ratio(x),
         load_measure: Some(x),
         beyond_fit: x > laws.fit_limit(),
+        radius_based: true,
+        ..SpotFriction::default()
     })
 }
 

@@ -11,7 +11,7 @@ use super::law::{FrictionLaw, LawDescriptor, LawInputs, Method, ModelBasis};
 use super::parameters::{
     NumberRange, ParameterKind, ParameterSpec, ParameterValue, ReportedValue, Unit,
 };
-use super::spot::{SpotFriction, SpotLoad};
+use super::spot::{SpotFriction, SpotGeometry, SpotLoad};
 use crate::friction::error::{require_non_negative, FrictionError};
 
 /// The registry entry.
@@ -21,6 +21,7 @@ pub(super) const LAW: LawDescriptor = LawDescriptor {
     basis: ModelBasis::TextbookLaw,
     methods: &[Method::PerSpot],
     parameters: &[INTERFACE_FACTOR],
+    mu_s_max: super::law::DRY_METAL_MU_S_MAX,
     build,
 };
 
@@ -88,11 +89,10 @@ impl FrictionLaw for JunctionShear {
         None
     }
 
-    fn spot_friction(&self, spot: &SpotLoad) -> Option<SpotFriction> {
+    fn spot_friction(&self, spot: &SpotLoad, _: Option<&SpotGeometry>) -> Option<SpotFriction> {
         Some(SpotFriction {
             friction_force: self.shear_strength * spot.area,
-            load_measure: None,
-            beyond_fit: false,
+            ..SpotFriction::default()
         })
     }
 

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use super::asperity::AsperityLaws;
 use super::parameters::{LawParameters, ParameterSpec, ReportedValue};
-use super::spot::{SlidingDirection, SpotFriction, SpotLoad, SpotSlope};
+use super::spot::{SlidingDirection, SpotFriction, SpotGeometry, SpotLoad};
 use crate::friction::error::FrictionError;
 use crate::friction::material::Material;
 
@@ -77,6 +77,13 @@ pub struct LawInputs {
     pub parameters: LawParameters,
 }
 
+/// The largest μ_s of a law that can carry adhesion and junction growth (full stick, junction
+/// shear, ploughing) reported as `ok` — a bound stated by this project, not a published limit:
+/// handbook static friction coefficients of dry metal pairs in air are of order 0.1–1, and 1.5
+/// leaves room for clean junctions that grow under the tangential load. A larger section value
+/// comes from a load too small for the law's range or from spots whose radius means nothing.
+pub const DRY_METAL_MU_S_MAX: f64 = 1.5;
+
 /// Builds a law from its inputs.
 pub type BuildLaw = fn(&LawInputs) -> Result<Box<dyn FrictionLaw>, FrictionError>;
 
@@ -93,6 +100,9 @@ pub struct LawDescriptor {
     pub methods: &'static [Method],
     /// Its parameters, in the order of their columns.
     pub parameters: &'static [ParameterSpec],
+    /// The largest μ_s a row of the law reports as `ok`: above it the row is flagged, the law is
+    /// outside what it can describe (docs/study-format.md, the models table).
+    pub mu_s_max: f64,
     /// Its constructor.
     pub build: BuildLaw,
 }
@@ -129,27 +139,24 @@ pub trait FrictionLaw: fmt::Debug + Send + Sync {
     fn asperity_laws(self: Arc<Self>) -> Option<Arc<dyn AsperityLaws>>;
 
     /// The tangential capacity of one contact spot; `None` when the law needs a radius and
-    /// `spot.radius` is `None` (the spot then carries no tangential load).
-    fn spot_friction(&self, spot: &SpotLoad) -> Option<SpotFriction>;
+    /// `spot.radius` is `None` (the spot then carries no tangential load). `geometry` is the
+    /// spot's ploughing geometry along [`Self::sliding_direction`], given to a law that has one
+    /// (the others ignore it).
+    fn spot_friction(
+        &self,
+        spot: &SpotLoad,
+        geometry: Option<&SpotGeometry>,
+    ) -> Option<SpotFriction>;
 
     /// The values that identify the built law beyond the material: its parameters and what it
     /// derived from the material (key and table columns, in order).
     fn reported_values(&self) -> Vec<ReportedValue>;
 
-    /// For a law with a deformation part: the sliding direction along which it reads each
-    /// spot's geometry ([`super::ploughing::spot_slope`]); `None` (the default) for a law that reads none.
+    /// For a law with a deformation part: the sliding direction ψ of the upper body over the
+    /// lower, along which it reads each spot's loaded front ([`super::ploughing::front`]);
+    /// `None` (the default) for a law that reads none. A law that returns `None` has no
+    /// direction in its parameters, key or row.
     fn sliding_direction(&self) -> Option<SlidingDirection> {
         None
-    }
-
-    /// The tangential capacity of a spot with its geometry along [`Self::sliding_direction`],
-    /// and the part of it that is deformation (N). The default: [`Self::spot_friction`] with no
-    /// deformation part.
-    fn sloped_spot_friction(
-        &self,
-        spot: &SpotLoad,
-        _geometry: &SpotSlope,
-    ) -> Option<(SpotFriction, f64)> {
-        self.spot_friction(spot).map(|f| (f, 0.0))
     }
 }

@@ -18,7 +18,7 @@ use super::law::{FrictionLaw, LawDescriptor, LawInputs, Method, ModelBasis};
 use super::parameters::{
     NumberRange, ParameterKind, ParameterSpec, ParameterValue, ReportedValue, Unit,
 };
-use super::spot::{SpotFriction, SpotLoad};
+use super::spot::{SpotFriction, SpotGeometry, SpotLoad};
 use crate::friction::error::FrictionError;
 use crate::friction::material::Material;
 use stick::{FullStickLaw, StickFrictionLaw, STICK_LOAD_FIT_LIMIT};
@@ -31,6 +31,7 @@ pub(super) const LAW: LawDescriptor = LawDescriptor {
     basis: ModelBasis::ParameterisedUnverified,
     methods: &[Method::Statistical, Method::PerSummit, Method::PerSpot],
     parameters: &[A, B],
+    mu_s_max: super::law::DRY_METAL_MU_S_MAX,
     build,
 };
 
@@ -137,7 +138,7 @@ impl FrictionLaw for FullStick {
 
     /// Q_i = μ(P_i*) P_i with P_i* = P_i/L_c(R_i), L_c = L̄_c P_c(R_i); beyond the fit when P_i*
     /// exceeds the stick load fit at ω* = 110.
-    fn spot_friction(&self, spot: &SpotLoad) -> Option<SpotFriction> {
+    fn spot_friction(&self, spot: &SpotLoad, _: Option<&SpotGeometry>) -> Option<SpotFriction> {
         let radius = spot.radius?;
         let law = &self.law;
         let stick_load =
@@ -147,6 +148,8 @@ impl FrictionLaw for FullStick {
             friction_force: stick_load * law.friction_law.friction_ratio(p_star),
             load_measure: Some(p_star),
             beyond_fit: p_star > law.load_at_fit_limit(),
+            radius_based: true,
+            ..SpotFriction::default()
         })
     }
 

@@ -1,6 +1,6 @@
 //! The deformation (ploughing) part of friction of one junction: textbook laws of a hard
-//! asperity on a rigid–perfectly-plastic flat and of an inclined junction
-//! (docs/friction-models.md, "Deformation part", with the sources and what was confirmed).
+//! asperity on a rigid–perfectly-plastic flat (docs/friction-models.md, "Deformation part",
+//! with the sources and what was confirmed).
 //!
 //! **Ploughing** (Bowden & Tabor 1950). A hard asperity slid over a rigid–perfectly-plastic flat
 //! is carried by the flat's flow pressure on the front half of its projected contact and pushed
@@ -13,12 +13,6 @@
 //!   `R² arcsin(a/R) − a √(R² − a²)`, so
 //!   **`μ_p = (2/π) [(R/a)² arcsin(a/R) − √((R/a)² − 1)]`**, which tends to `4a/(3πR)` for
 //!   `a ≪ R` ([`sphere_ploughing`]); defined for `a ≤ R` (at most a hemisphere, `μ_p = 1`).
-//!
-//! **Inclined junction** (the inclined plane of statics). A junction whose plane rises by θ in
-//! the sliding direction, with local friction `μ_a = tan φ`, slides when the horizontal force
-//! reaches **`μ = tan(φ + θ) = (μ_a + tan θ)/(1 − μ_a tan θ)`** per unit vertical load; on a
-//! down-slope junction (θ < 0) this is `tan(φ − |θ|)`. It has no finite value for
-//! `φ + θ ≥ 90°`, where the junction locks ([`tilted_junction`]). θ = 0 gives `μ_a`.
 
 use std::f64::consts::FRAC_2_PI;
 
@@ -45,12 +39,4 @@ pub fn sphere_ploughing(a_over_r: f64) -> Option<f64> {
     }
     let r = 1.0 / x;
     Some(FRAC_2_PI * (r * r * x.asin() - (r * r - 1.0).max(0.0).sqrt()))
-}
-
-/// Friction `tan(φ + θ) = (μ_a + tan θ)/(1 − μ_a tan θ)` of a junction with local friction
-/// `μ_a` whose plane rises by `tan θ` in the sliding direction (negative down-slope); `None` when
-/// `μ_a tan θ ≥ 1` (φ + θ ≥ 90°: the junction locks).
-pub fn tilted_junction(local_friction: f64, tilt: f64) -> Option<f64> {
-    let denominator = 1.0 - local_friction * tilt;
-    (denominator > 0.0).then(|| (local_friction + tilt) / denominator)
 }
