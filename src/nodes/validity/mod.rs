@@ -103,6 +103,11 @@ pub const MAX_SPACING: f64 = 1.0;
 /// file (bytes of another format read as floats) or a wrong height unit.
 pub const MAX_HEIGHT: f64 = 1e3;
 
+/// The largest share of a friction row's load (or the adhesion share of its contact load) on
+/// what its law does not describe before the row is flagged: more than half, and μ_s is mostly
+/// about what the law does not describe.
+pub const MAX_UNTRUSTED_LOAD_SHARE: f64 = 0.5;
+
 /// The column rules of every kind.
 pub const RULES: &[ColumnRule] = &[
     ColumnRule {
@@ -242,10 +247,66 @@ pub const RULES: &[ColumnRule] = &[
             "load_share_beyond_fit",
             "load_share_one_pixel",
             "load_share_without_radius",
+            "load_share_merged",
+            "load_share_outside_regime",
         ],
         range: Range::Between(0.0, 1.0),
         severity: Severity::Fail,
         why: "a share of the load lies in [0, 1]",
+    },
+    ColumnRule {
+        kind: FRICTION,
+        columns: &["load_share_beyond_fit"],
+        range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
+        severity: Severity::Flag,
+        why: "more than half the load lies beyond the validated range of the friction law (KE \
+              beyond x = 6 and CEB beyond x = 1 carry no tangential load there, full stick is \
+              extrapolated beyond ω* = 110, ploughing lacks its front geometry): μ_s is mostly \
+              the law's extrapolation, not its fit (docs/friction-models.md gives each law's \
+              range)",
+    },
+    ColumnRule {
+        kind: FRICTION,
+        columns: &["load_share_without_radius"],
+        range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
+        severity: Severity::Flag,
+        why: "more than half the load sits on spots whose topography gives no convex radius, \
+              which carry no tangential load under a law that needs one: μ_s is a lower bound \
+              (junction shear needs no radius)",
+    },
+    ColumnRule {
+        kind: FRICTION,
+        columns: &["load_share_merged"],
+        range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
+        severity: Severity::Flag,
+        why: "more than half the load sits on merged spots (two or more summits of the composite \
+              topography in one spot), whose single-asperity radius means nothing: the \
+              single-asperity law does not describe them; lower the load or use junction shear",
+    },
+    ColumnRule {
+        kind: FRICTION,
+        columns: &["load_share_outside_regime"],
+        range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
+        severity: Severity::Flag,
+        why: "more than half the load sits on spots whose degree of penetration is beyond the \
+              ploughing regime (wedge forming or cutting after Hokkirigawa & Kato): the additive \
+              ploughing laws do not describe them",
+    },
+    ColumnRule {
+        kind: FRICTION,
+        columns: &["adhesion_share"],
+        range: Range::AtLeast(0.0),
+        severity: Severity::Fail,
+        why: "an attractive adhesion force over a compressive contact load is never negative",
+    },
+    ColumnRule {
+        kind: FRICTION,
+        columns: &["adhesion_share"],
+        range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
+        severity: Severity::Flag,
+        why: "adhesion carries more than half the contact load: μ_s = Q/(F_n − F_a) is governed \
+              by the small difference F_n − F_a (the external load), not by the contact; check \
+              the adhesion energy and the load",
     },
     ColumnRule {
         kind: FRICTION,
