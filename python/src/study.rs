@@ -197,10 +197,15 @@ fn run_study<'py>(
     }
     let (loaded, plan) = load(py, &study, &set)?;
     let out = out.unwrap_or_else(|| study_run::default_out(&loaded));
-    for warning in study_run::check_results_folder(&loaded, &out, force)
-        .map_err(|e| value_error("out", e))?
+    for warning in
+        study_run::check_results_folder(&loaded, &out, force).map_err(|e| value_error("out", e))?
     {
-        PyErr::warn(py, &py.get_type::<PyUserWarning>(), &CString::new(warning)?, 1)?;
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &CString::new(warning)?,
+            1,
+        )?;
     }
     let settings = RunSettings {
         out,

@@ -71,8 +71,8 @@ fn surface_report<'py>(
         Boundary::Open
     };
     let (artifact, lateral_scale_warning) = compute(py, || {
-        let (mut artifact, warning) =
-            surface_artifact(&map, boundary, None).map_err(|e| value_error("heights", e.message))?;
+        let (mut artifact, warning) = surface_artifact(&map, boundary, None)
+            .map_err(|e| value_error("heights", e.message))?;
         check_artifact(SURFACE, &mut artifact).map_err(|e| value_error("heights", e.message))?;
         Ok((artifact, warning))
     })?;

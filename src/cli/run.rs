@@ -5,9 +5,14 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
-use asperity::engine::execute::{execute, execute_nodes, NodeOutcome, NodeStatus, RunReport};
+use asperity::engine::cache::Cache;
+use asperity::engine::execute::{
+    execute, execute_nodes, ExecuteOptions, NodeOutcome, NodeStatus, RunReport,
+};
 use asperity::engine::plan::Plan;
 use asperity::engine::shard::{Shard, ShardPlan};
+use asperity::engine::study::Study;
+use asperity::nodes::TribologyNode;
 use asperity::study_run::{
     check_results_folder, default_memory_budget, default_out, execute_options, write_results_unless,
 };
@@ -79,24 +84,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     let _section = interrupt::cooperative();
     let progress = BarProgress::new(args.quiet);
     if let Some(shard) = args.shard {
-        let split = ShardPlan::split(&plan, &plan.needed_for(&study.outputs), shard.count);
-        let report = execute_nodes(&plan, &cache, split.nodes(shard), &options, &progress)?;
-        progress.finish();
-        report_failures(&plan, &report);
-        if interrupt::requested() {
-            return Ok(interrupted(&report, "no tables are written by a shard"));
-        }
-        println!(
-            "{} shard {shard}: {} computed, {} reused from cache, {} failed, {} skipped in {:.2} s \
-             (no tables written: run the study without --shard to assemble them)",
-            study.name(),
-            report.computed,
-            report.cached,
-            report.failed,
-            report.skipped,
-            report.wall_seconds
-        );
-        return Ok(exit_code(&report));
+        return run_shard(&study, &plan, &cache, shard, &options, &progress);
     }
     let report = execute(&plan, &cache, &options, &progress)?;
     progress.finish();
@@ -116,25 +104,7 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     {
         eprintln!("warning: {warning}");
     }
-    println!(
-        "{}: {} computed, {} reused from cache, {} failed, {} skipped{}{} in {:.2} s",
-        study.name(),
-        report.computed,
-        report.cached,
-        report.failed,
-        report.skipped,
-        if report.discarded > 0 {
-            format!(" ({} corrupt cache entries recomputed)", report.discarded)
-        } else {
-            String::new()
-        },
-        if report.not_stored > 0 {
-            format!(" ({} not stored in the cache)", report.not_stored)
-        } else {
-            String::new()
-        },
-        report.wall_seconds
-    );
+    println!("{}", run_summary(study.name(), &report));
     println!("tables in {}:", out.display());
     for f in published.files {
         println!("  {}", f.display());
@@ -144,6 +114,54 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
         return Ok(ExitCode::from(interrupt::EXIT_CODE));
     }
     Ok(exit_code(&report))
+}
+
+/// One shard of a study (`--shard i/n`): its nodes computed and cached, no tables written.
+fn run_shard(
+    study: &Study<TribologyNode>,
+    plan: &Plan,
+    cache: &Cache,
+    shard: Shard,
+    options: &ExecuteOptions,
+    progress: &BarProgress,
+) -> Result<ExitCode> {
+    let split = ShardPlan::split(plan, &plan.needed_for(&study.outputs), shard.count);
+    let report = execute_nodes(plan, cache, split.nodes(shard), options, progress)?;
+    progress.finish();
+    report_failures(plan, &report);
+    if interrupt::requested() {
+        return Ok(interrupted(&report, "no tables are written by a shard"));
+    }
+    println!(
+        "{} shard {shard}: {} computed, {} reused from cache, {} failed, {} skipped in {:.2} s \
+         (no tables written: run the study without --shard to assemble them)",
+        study.name(),
+        report.computed,
+        report.cached,
+        report.failed,
+        report.skipped,
+        report.wall_seconds
+    );
+    Ok(exit_code(&report))
+}
+
+/// The line a finished run prints: its counts and wall time.
+fn run_summary(name: &str, report: &RunReport) -> String {
+    let discarded = if report.discarded > 0 {
+        format!(" ({} corrupt cache entries recomputed)", report.discarded)
+    } else {
+        String::new()
+    };
+    let not_stored = if report.not_stored > 0 {
+        format!(" ({} not stored in the cache)", report.not_stored)
+    } else {
+        String::new()
+    };
+    format!(
+        "{name}: {} computed, {} reused from cache, {} failed, {} skipped{discarded}{not_stored} \
+         in {:.2} s",
+        report.computed, report.cached, report.failed, report.skipped, report.wall_seconds
+    )
 }
 
 /// Says what an interrupted run did (everything computed is cached, so a rerun continues

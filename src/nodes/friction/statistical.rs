@@ -198,84 +198,95 @@ fn result_fields(last: &StaticFrictionResult, summits: &SummitStatistics, area: 
 }
 
 fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, NodeError> {
-    let column = |f: fn(&StaticFrictionResult) -> f64| results.iter().map(f).collect::<Vec<_>>();
-    let mut t = Table::default();
-    t.push_int(curve_columns::POINT, (0..results.len() as i64).collect());
-    t.push_float(
-        names::EXTERNAL_LOAD,
-        Dimension::Force,
-        column(|r| r.external_load),
-    );
-    t.push_float(
-        names::NOMINAL_PRESSURE,
-        Dimension::Pressure,
-        results.iter().map(|r| r.external_load / area).collect(),
-    );
     let mu: Option<Vec<f64>> = results.iter().map(|r| r.mu_s).collect();
     let mu = mu.ok_or_else(|| NodeError::new("a curve load is not compressive"))?;
+    let mut t = Table::default();
+    t.push_int(curve_columns::POINT, (0..results.len() as i64).collect());
+    let share_beyond_fit = |r: &StaticFrictionResult| {
+        if r.contact_load > 0.0 {
+            (r.load_beyond_fit / r.contact_load).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    };
+    type Column<'a> = (
+        &'static str,
+        Dimension,
+        Box<dyn Fn(&StaticFrictionResult) -> f64 + 'a>,
+    );
+    let before_mu: [Column; 2] = [
+        (
+            names::EXTERNAL_LOAD,
+            Dimension::Force,
+            Box::new(|r| r.external_load),
+        ),
+        (
+            names::NOMINAL_PRESSURE,
+            Dimension::Pressure,
+            Box::new(|r| r.external_load / area),
+        ),
+    ];
+    let after_mu: [Column; 8] = [
+        (
+            names::NORMAL_LOAD,
+            Dimension::Force,
+            Box::new(|r| r.contact_load),
+        ),
+        (
+            names::ADHESION_FORCE,
+            Dimension::Force,
+            Box::new(|r| r.adhesion_force),
+        ),
+        (
+            names::FRICTION_FORCE,
+            Dimension::Force,
+            Box::new(|r| r.static_friction_force.max(0.0)),
+        ),
+        (
+            names::LOAD_SHARE_BEYOND_FIT,
+            Dimension::Dimensionless,
+            Box::new(share_beyond_fit),
+        ),
+        (
+            names::SEPARATION,
+            Dimension::Length,
+            Box::new(|r| r.separation_from_heights),
+        ),
+        (
+            names::CONTACTS,
+            Dimension::Dimensionless,
+            Box::new(|r| r.contacting_summits),
+        ),
+        (
+            names::REAL_AREA,
+            Dimension::Area,
+            Box::new(|r| r.real_contact_area),
+        ),
+        (
+            names::AREA_FRACTION,
+            Dimension::Dimensionless,
+            Box::new(|r| r.real_contact_area / area),
+        ),
+    ];
+    let push = |t: &mut Table, columns: &[Column]| {
+        for (name, dimension, value) in columns {
+            t.push_float(*name, *dimension, results.iter().map(value).collect());
+        }
+    };
+    push(&mut t, &before_mu);
     t.push_float(
         names::MU_S,
         Dimension::Dimensionless,
         mu.iter().map(|m| m.max(0.0)).collect(),
     );
     t.push_float(names::MU_S_COMPUTED, Dimension::Dimensionless, mu);
-    t.push_float(
-        names::NORMAL_LOAD,
-        Dimension::Force,
-        column(|r| r.contact_load),
-    );
-    t.push_float(
-        names::ADHESION_FORCE,
-        Dimension::Force,
-        column(|r| r.adhesion_force),
-    );
-    t.push_float(
-        names::FRICTION_FORCE,
-        Dimension::Force,
-        column(|r| r.static_friction_force.max(0.0)),
-    );
-    t.push_float(
-        names::LOAD_SHARE_BEYOND_FIT,
-        Dimension::Dimensionless,
-        column(|r| {
-            if r.contact_load > 0.0 {
-                (r.load_beyond_fit / r.contact_load).clamp(0.0, 1.0)
-            } else {
-                0.0
-            }
-        }),
-    );
-    t.push_float(
-        names::SEPARATION,
-        Dimension::Length,
-        column(|r| r.separation_from_heights),
-    );
-    t.push_float(
-        names::CONTACTS,
-        Dimension::Dimensionless,
-        column(|r| r.contacting_summits),
-    );
-    t.push_float(
-        names::REAL_AREA,
-        Dimension::Area,
-        column(|r| r.real_contact_area),
-    );
-    t.push_float(
-        names::AREA_FRACTION,
-        Dimension::Dimensionless,
-        results.iter().map(|r| r.real_contact_area / area).collect(),
-    );
-    t.push_int(
-        names::ITERATIONS,
-        results
-            .iter()
-            .map(|r| r.status.brent_iterations as i64)
-            .collect(),
-    );
+    push(&mut t, &after_mu);
+    let iterations = results.iter().map(|r| r.status.brent_iterations as i64);
+    t.push_int(names::ITERATIONS, iterations.collect());
     t.push_float(
         names::RESIDUAL,
         Dimension::Dimensionless,
-        column(|r| r.status.relative_residual),
+        results.iter().map(|r| r.status.relative_residual).collect(),
     );
     Ok(t)
 }

@@ -25,8 +25,9 @@ use crate::nodes::surface_view::{DX, DY, GRID_NX, GRID_NY, M0, M2, M4};
 use crate::nodes::validity;
 use crate::surface::spectral::{
     autocorrelation, hurst_exponent_of, periodic_autocorrelation_of, periodogram, radial_psd_of,
-    spectral_moments, spectral_moments_of, texture_direction_of, AcfBoundary, HurstFitOptions,
-    MomentMethod, Periodogram, Window, ISO_ACF_THRESHOLD,
+    spectral_moments, spectral_moments_of, texture_direction_of, AcfBoundary, Autocorrelation,
+    HurstFitOptions, MomentMethod, Periodogram, PsdTable, SpectralMoments, Window,
+    ISO_ACF_THRESHOLD,
 };
 use crate::surface::{
     amplitude_statistics, find_summits, functional_parameters_of, Boundary, FunctionalOptions,
@@ -136,6 +137,37 @@ fn spectral_metrics(
         spectral_moments(map, MomentMethod::FiniteDifference)
     }
     .map_err(|e| fail("spectral moments", &e))?;
+    moment_metrics(&m, metrics);
+    let acf = if periodic {
+        periodic_autocorrelation_of(&p, map)
+    } else {
+        autocorrelation(map, AcfBoundary::ZeroPadded)
+    }
+    .map_err(|e| fail("autocorrelation", &e))?;
+    acf_metrics(&acf, metrics);
+    if let Ok(direction) = texture_direction_of(&p, map) {
+        metrics.push(Field::float(
+            "std",
+            direction.std_deg.to_radians(),
+            Dimension::Angle,
+        ));
+    }
+    hurst_metrics(&psd, map, window, metrics);
+    let radial = acf.radial();
+    let mut acf_table = Table::default();
+    acf_table.push_float("r", Dimension::Length, radial.r);
+    acf_table.push_float("acf", Dimension::Dimensionless, radial.acf);
+    tables.insert(String::from("acf"), acf_table);
+    let mut psd_table = Table::default();
+    psd_table.push_float("q_rad_per_m", Dimension::Dimensionless, psd.q);
+    psd_table.push_float("c_m4", Dimension::Dimensionless, psd.c);
+    tables.insert(String::from("psd"), psd_table);
+    Ok(())
+}
+
+/// The spectral moments m0, m2, m4 (isotropic, along x and y) and the Greenwood–Williamson
+/// summit statistics they imply.
+fn moment_metrics(m: &SpectralMoments, metrics: &mut Vec<Field>) {
     for (suffix, p) in [("", m.isotropic), ("_x", m.x), ("_y", m.y)] {
         metrics.push(Field::float(format!("{M0}{suffix}"), p.m0, Dimension::Area));
         metrics.push(num(format!("{M2}{suffix}"), p.m2));
@@ -155,12 +187,10 @@ fn spectral_metrics(
             num("gw_alpha", gw.alpha),
         ]);
     }
-    let acf = if periodic {
-        periodic_autocorrelation_of(&p, map)
-    } else {
-        autocorrelation(map, AcfBoundary::ZeroPadded)
-    }
-    .map_err(|e| fail("autocorrelation", &e))?;
+}
+
+/// The ISO 25178-2 texture parameters Sal and Str and the correlation lengths of `acf`.
+fn acf_metrics(acf: &Autocorrelation, metrics: &mut Vec<Field>) {
     if let Ok(texture) = acf.texture(ISO_ACF_THRESHOLD) {
         metrics.push(len("sal", texture.sal));
         if let Some(str_ratio) = texture.str_ratio {
@@ -171,17 +201,14 @@ fn spectral_metrics(
         metrics.extend(lengths.x.map(|x| len("correlation_length_x", x)));
         metrics.extend(lengths.y.map(|y| len("correlation_length_y", y)));
     }
-    if let Ok(direction) = texture_direction_of(&p, map) {
-        metrics.push(Field::float(
-            "std",
-            direction.std_deg.to_radians(),
-            Dimension::Angle,
-        ));
-    }
+}
+
+/// The Hurst exponent fitted to the radial PSD.
+fn hurst_metrics(psd: &PsdTable, map: &HeightMap, window: Window, metrics: &mut Vec<Field>) {
     // The fit is reported only where the PSD in the band is self-affine (0 < H ≤ 1 and
     // r² ≥ 0.9); a band inside the roll-off plateau would give a meaningless exponent.
     if let Ok(fit) = hurst_exponent_of(
-        &psd,
+        psd,
         map,
         HurstFitOptions {
             q_min: None,
@@ -198,16 +225,6 @@ fn spectral_metrics(
             ]);
         }
     }
-    let radial = acf.radial();
-    let mut acf_table = Table::default();
-    acf_table.push_float("r", Dimension::Length, radial.r);
-    acf_table.push_float("acf", Dimension::Dimensionless, radial.acf);
-    tables.insert(String::from("acf"), acf_table);
-    let mut psd_table = Table::default();
-    psd_table.push_float("q_rad_per_m", Dimension::Dimensionless, psd.q);
-    psd_table.push_float("c_m4", Dimension::Dimensionless, psd.c);
-    tables.insert(String::from("psd"), psd_table);
-    Ok(())
 }
 
 /// Samples of the material ratio curve in the `material_ratio` table: every 1 %.

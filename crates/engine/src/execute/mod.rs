@@ -120,65 +120,16 @@ pub fn execute_nodes(
     progress: &dyn Progress,
 ) -> Result<RunReport, CacheError> {
     let start = Instant::now();
-    let stale = cache.clean_stale_tmp()?;
-    if stale > 0 {
-        progress.warn(&format!(
-            "removed {stale} temporary cache folder(s) left by interrupted runs"
-        ));
-    }
-    let storing = match cache_access::probe(cache) {
-        Ok(()) => Storing::Yes,
-        Err(e) => {
-            progress.warn(&cache_access::read_only_warning(cache, &e));
-            Storing::No
-        }
-    };
+    let storing = prepare_cache(cache, progress)?;
     let needed = plan.upstream_closure(nodes, None);
     let n = plan.nodes.len();
-    let entries: Vec<(&str, &NodeKey)> = needed
-        .iter()
-        .map(|&i| (plan.nodes[i].task.kind(), &plan.nodes[i].key))
-        .collect();
-    let mut in_cache = vec![false; n];
-    for (&i, present) in needed.iter().zip(cache.present(&entries)) {
-        in_cache[i] = present;
-    }
-    // An instance's arrays are loaded only when a dependant will be computed.
-    let mut wants_payload = vec![false; n];
-    let mut dependants = vec![0usize; n];
-    for &i in &needed {
-        for (_, u) in &plan.nodes[i].upstream {
-            dependants[*u] += 1;
-            if !in_cache[i] {
-                wants_payload[*u] = true;
-            }
-        }
-    }
-    // A node that derives arrays needs its upstream arrays to derive them.
-    for &i in needed.iter().rev() {
-        if wants_payload[i] && matches!(plan.nodes[i].task.array_storage(), ArrayStorage::Derive(_))
-        {
-            for (_, u) in &plan.nodes[i].upstream {
-                wants_payload[*u] = true;
-            }
-        }
-    }
-    // Instances run as soon as their upstream finished, deepest first; see [`RunContext::pull`].
-    let mut waiting = vec![0usize; n];
-    let mut downstream: Vec<Vec<usize>> = vec![Vec::new(); n];
-    let mut level = vec![0usize; n];
-    for &i in &needed {
-        for (_, u) in &plan.nodes[i].upstream {
-            waiting[i] += 1;
-            downstream[*u].push(i);
-            level[i] = level[i].max(level[*u] + 1);
-        }
-    }
-    let ready = needed
-        .iter()
-        .filter(|&&i| waiting[i] == 0)
-        .map(|&i| (level[i], Reverse(i)))
-        .collect();
+    let (wants_payload, dependants) = payload_needs(plan, cache, &needed);
+    let Schedule {
+        waiting,
+        downstream,
+        level,
+        ready,
+    } = Schedule::of(plan, &needed);
     progress.start(needed.len());
     let budget = MemoryBudget::new(options.memory_budget);
     let shared = Mutex::new(Shared {
@@ -213,6 +164,97 @@ pub fn execute_nodes(
     report.outcomes = outcomes;
     report.wall_seconds = start.elapsed().as_secs_f64();
     Ok(report)
+}
+
+/// Removes temporary folders of interrupted runs (with a warning) and says whether this run can
+/// store its results (a read-only cache is one warning, not one per node).
+fn prepare_cache(cache: &Cache, progress: &dyn Progress) -> Result<Storing, CacheError> {
+    let stale = cache.clean_stale_tmp()?;
+    if stale > 0 {
+        progress.warn(&format!(
+            "removed {stale} temporary cache folder(s) left by interrupted runs"
+        ));
+    }
+    Ok(match cache_access::probe(cache) {
+        Ok(()) => Storing::Yes,
+        Err(e) => {
+            progress.warn(&cache_access::read_only_warning(cache, &e));
+            Storing::No
+        }
+    })
+}
+
+/// Which instances of `needed` must be loaded with their arrays (a dependant will be computed,
+/// or derives its arrays from them) and how many dependants each has.
+fn payload_needs(plan: &Plan, cache: &Cache, needed: &[usize]) -> (Vec<bool>, Vec<usize>) {
+    let n = plan.nodes.len();
+    let entries: Vec<(&str, &NodeKey)> = needed
+        .iter()
+        .map(|&i| (plan.nodes[i].task.kind(), &plan.nodes[i].key))
+        .collect();
+    let mut in_cache = vec![false; n];
+    for (&i, present) in needed.iter().zip(cache.present(&entries)) {
+        in_cache[i] = present;
+    }
+    let mut wants_payload = vec![false; n];
+    let mut dependants = vec![0usize; n];
+    for &i in needed {
+        for (_, u) in &plan.nodes[i].upstream {
+            dependants[*u] += 1;
+            if !in_cache[i] {
+                wants_payload[*u] = true;
+            }
+        }
+    }
+    for &i in needed.iter().rev() {
+        if wants_payload[i] && matches!(plan.nodes[i].task.array_storage(), ArrayStorage::Derive(_))
+        {
+            for (_, u) in &plan.nodes[i].upstream {
+                wants_payload[*u] = true;
+            }
+        }
+    }
+    (wants_payload, dependants)
+}
+
+/// The order instances run in: each as soon as its upstream finished, deepest first (see
+/// [`RunContext::pull`]).
+struct Schedule {
+    /// Upstream instances not yet finished.
+    waiting: Vec<usize>,
+    /// The dependants of each instance.
+    downstream: Vec<Vec<usize>>,
+    /// Depth in the DAG (0: no upstream).
+    level: Vec<usize>,
+    /// The instances with nothing to wait for.
+    ready: BinaryHeap<(usize, Reverse<usize>)>,
+}
+
+impl Schedule {
+    fn of(plan: &Plan, needed: &[usize]) -> Schedule {
+        let n = plan.nodes.len();
+        let mut waiting = vec![0usize; n];
+        let mut downstream: Vec<Vec<usize>> = vec![Vec::new(); n];
+        let mut level = vec![0usize; n];
+        for &i in needed {
+            for (_, u) in &plan.nodes[i].upstream {
+                waiting[i] += 1;
+                downstream[*u].push(i);
+                level[i] = level[i].max(level[*u] + 1);
+            }
+        }
+        let ready = needed
+            .iter()
+            .filter(|&&i| waiting[i] == 0)
+            .map(|&i| (level[i], Reverse(i)))
+            .collect();
+        Schedule {
+            waiting,
+            downstream,
+            level,
+            ready,
+        }
+    }
 }
 
 /// What the running instances share.

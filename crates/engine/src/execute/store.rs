@@ -6,7 +6,6 @@ use std::time::{SystemTime, UNIX_EPOCH};
 
 use crate::artifact::Artifact;
 use crate::cache::{CachedEntry, Manifest, ENTRY_FORMAT};
-use crate::node::ArrayStorage;
 use crate::plan::PlannedNode;
 
 use super::{NodeOutcome, NodeStatus, RunContext};
@@ -29,7 +28,7 @@ impl RunContext<'_> {
         }
     }
 
-    /// Stores a computed artifact (without the arrays its [`ArrayStorage`] does not keep; not at
+    /// Stores a computed artifact (without the arrays its [`ArrayStorage`](crate::node::ArrayStorage) does not keep; not at
     /// all once the run stores nothing, [`Storing`]) and makes its outcome.
     pub(super) fn store_computed(
         &self,
@@ -100,7 +99,7 @@ impl RunContext<'_> {
         (outcome, Some(Arc::new(artifact)))
     }
 
-    /// The arrays of a cached [`ArrayStorage::Regenerate`] entry, recomputed. The recomputed
+    /// The arrays of a cached [`ArrayStorage::Regenerate`](crate::node::ArrayStorage::Regenerate) entry, recomputed. The recomputed
     /// metrics and flags must equal the cached ones; if they do not, the entry is replaced (and counted
     /// as discarded) and the node counts as computed.
     pub(super) fn regenerate(

@@ -63,6 +63,43 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             "text: file contains NUL bytes (binary, not text)",
         ));
     }
+    let TextLines {
+        header_lines,
+        rows,
+        columns,
+        count_line,
+    } = read_lines(&text)?;
+    if rows.is_empty() {
+        return Err(ParseError::malformed("text: no numeric data lines"));
+    }
+    let header = TextHeader::parse(&header_lines)?;
+    if columns == 2 && !header.describes_matrix() {
+        let mut t = line_scan(&rows, header_lines.last().copied())?;
+        if let Some(n) = count_line {
+            t.metadata.insert("declared_points".into(), n.to_string());
+        }
+        return Ok(t);
+    }
+    if columns == 3 && !header.describes_matrix() {
+        return xyz::grid(&rows);
+    }
+    matrix(rows, columns, &header)
+}
+
+/// A text file split into its header lines and its data block.
+struct TextLines<'a> {
+    /// The non-numeric lines above the data.
+    header_lines: Vec<&'a str>,
+    /// The data lines, flattened: `columns` values each.
+    rows: Vec<f64>,
+    columns: usize,
+    /// A point count written on a line of its own above the data.
+    count_line: Option<f64>,
+}
+
+/// Splits `text` into header lines and one rectangular block of numeric data lines; a damaged
+/// or ragged data line, or more data than a topography holds, is an error naming its line.
+fn read_lines(text: &str) -> Result<TextLines<'_>, ParseError> {
     let mut header_lines: Vec<&str> = Vec::new();
     // Data lines, flattened: `columns` values each.
     let mut rows: Vec<f64> = Vec::new();
@@ -121,21 +158,12 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Topography, ParseError> {
             }
         }
     }
-    if rows.is_empty() {
-        return Err(ParseError::malformed("text: no numeric data lines"));
-    }
-    let header = TextHeader::parse(&header_lines)?;
-    if columns == 2 && !header.describes_matrix() {
-        let mut t = line_scan(&rows, header_lines.last().copied())?;
-        if let Some(n) = count_line {
-            t.metadata.insert("declared_points".into(), n.to_string());
-        }
-        return Ok(t);
-    }
-    if columns == 3 && !header.describes_matrix() {
-        return xyz::grid(&rows);
-    }
-    matrix(rows, columns, &header)
+    Ok(TextLines {
+        header_lines,
+        rows,
+        columns,
+        count_line,
+    })
 }
 
 /// `true` when the data so far are one line holding one whole number and the next line has
