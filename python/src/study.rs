@@ -174,6 +174,27 @@ struct RunSettings {
     memory_budget: u64,
 }
 
+/// The CLI's checks of the results folder (another study's results are refused unless
+/// `force`); its warnings as Python `UserWarning`s.
+fn check_results_folder(
+    py: Python<'_>,
+    loaded: &Study<TribologyNode>,
+    out: &Path,
+    force: bool,
+) -> PyResult<()> {
+    for warning in
+        study_run::check_results_folder(loaded, out, force).map_err(|e| value_error("out", e))?
+    {
+        PyErr::warn(
+            py,
+            &py.get_type::<PyUserWarning>(),
+            &CString::new(warning)?,
+            1,
+        )?;
+    }
+    Ok(())
+}
+
 /// `run(study, set, out, cache, jobs, memory_mib, progress)`: runs the study and, unless
 /// interrupted, writes its tables; returns `(folder, files, report)` where `report` counts the instances and lists the
 /// failures and flags. `progress(event, a, b)` is called with `("start", total, "")`,
@@ -197,16 +218,7 @@ fn run_study<'py>(
     }
     let (loaded, plan) = load(py, &study, &set)?;
     let out = out.unwrap_or_else(|| study_run::default_out(&loaded));
-    for warning in
-        study_run::check_results_folder(&loaded, &out, force).map_err(|e| value_error("out", e))?
-    {
-        PyErr::warn(
-            py,
-            &py.get_type::<PyUserWarning>(),
-            &CString::new(warning)?,
-            1,
-        )?;
-    }
+    check_results_folder(py, &loaded, &out, force)?;
     let settings = RunSettings {
         out,
         cache: open_cache(cache)?,

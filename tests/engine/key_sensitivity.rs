@@ -100,37 +100,37 @@ const CASES: &[(&str, &str, &str)] = &[
     (
         "t",
         "seed: 1}
-  c:",
+  u:",
         "seed: 1, short_wavelength_cutoff: 5 um}
-  c:",
+  u:",
     ),
     (
         "t",
         "seed: 1}
-  c:",
+  u:",
         "seed: 1, hurst_band: [2 um, 8 um]}
-  c:",
+  u:",
     ),
     (
         "t",
         "seed: 1}
-  c:",
+  u:",
         "seed: 1, preprocess: {form_degree: 2}}
-  c:",
+  u:",
     ),
     (
         "t",
         "seed: 1}
-  c:",
+  u:",
         "seed: 1, preprocess: {l_filter: 20 um}}
-  c:",
+  u:",
     ),
     (
         "t",
         "seed: 1}
-  c:",
+  u:",
         "seed: 1, preprocess: {fill_missing: false}}
-  c:",
+  u:",
     ),
     ("c", "[10 MPa, 20 MPa]", "[10 MPa, 30 MPa]"),
     ("c", "fields: true", "fields: true\n      periodic: false"),

@@ -410,14 +410,16 @@ fn heights_of_a_kilometre_fail_the_surface_and_inspect() {
     let dir = scratch("km");
     let (plan, report) = run(&base_on_checkerboard(&dir, 2e3), "validity-km");
     let m = failure(named(&plan, &report.outcomes, "lower"));
-    assert!(m.contains("kilometre"), "{m}");
+    assert!(m.contains("beyond the ±10 m an instrument measures"), "{m}");
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_asperity"))
         .arg("inspect")
         .arg(dir.join("checkerboard.txt"))
         .output()
         .unwrap();
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("kilometre"));
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("beyond the ±10 m an instrument measures")
+    );
 }
 
 #[test]

@@ -82,13 +82,12 @@ fn every_shipped_study_runs_on_its_reduced_grid() {
             String::from_utf8_lossy(&output.stderr)
         );
         let scenarios = statuses(&dir.join("out/scenarios.parquet"));
-        // Ground steel at 0.56 µm pixels has a composite Sdq of 0.5–0.8, beyond the half-space
-        // solution's small-slope limit: those contacts are flagged (docs/study-format.md,
-        // "Validity of values"); every other shipped study is plainly ok.
-        let allowed: &[&str] = match name.as_str() {
-            "ground-validation" | "convergence" | "sq-parameter-study" => &["ok", "flagged"],
-            _ => &["ok"],
-        };
+        // No scenario fails. Flags are expected: ground steel at 0.56 µm pixels has a composite
+        // Sdq of 0.5–0.8, beyond the half-space solution's small-slope limit (its contacts are
+        // flagged, docs/study-format.md, "Validity of values"), and most of the Kogut–Etsion
+        // rows' load in the shipped studies is beyond the law's fit (ω/ω_c > 6); the rules
+        // themselves are tested in tests/nodes/validity.rs and tests/nodes/friction_trust.rs.
+        let allowed: &[&str] = &["ok", "flagged"];
         assert!(
             scenarios.iter().all(|s| allowed.contains(&s.as_str())),
             "{name}: scenario statuses {scenarios:?}"

@@ -202,6 +202,40 @@ fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, Nod
     let mu = mu.ok_or_else(|| NodeError::new("a curve load is not compressive"))?;
     let mut t = Table::default();
     t.push_int(curve_columns::POINT, (0..results.len() as i64).collect());
+    let columns = curve_float_columns(area);
+    let (before_mu, after_mu) = columns.split_at(2);
+    let push = |t: &mut Table, columns: &[CurveColumn]| {
+        for (name, dimension, value) in columns {
+            t.push_float(*name, *dimension, results.iter().map(value).collect());
+        }
+    };
+    push(&mut t, before_mu);
+    t.push_float(
+        names::MU_S,
+        Dimension::Dimensionless,
+        mu.iter().map(|m| m.max(0.0)).collect(),
+    );
+    t.push_float(names::MU_S_COMPUTED, Dimension::Dimensionless, mu);
+    push(&mut t, after_mu);
+    let iterations = results.iter().map(|r| r.status.brent_iterations as i64);
+    t.push_int(names::ITERATIONS, iterations.collect());
+    t.push_float(
+        names::RESIDUAL,
+        Dimension::Dimensionless,
+        results.iter().map(|r| r.status.relative_residual).collect(),
+    );
+    Ok(t)
+}
+
+/// A float column of the curve table: its name, dimension and value per load.
+type CurveColumn = (
+    &'static str,
+    Dimension,
+    Box<dyn Fn(&StaticFrictionResult) -> f64>,
+);
+
+/// The curve table's float columns in their order, μ_s going after the first two.
+fn curve_float_columns(area: f64) -> Vec<CurveColumn> {
     let share_beyond_fit = |r: &StaticFrictionResult| {
         if r.contact_load > 0.0 {
             (r.load_beyond_fit / r.contact_load).clamp(0.0, 1.0)
@@ -209,12 +243,7 @@ fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, Nod
             0.0
         }
     };
-    type Column<'a> = (
-        &'static str,
-        Dimension,
-        Box<dyn Fn(&StaticFrictionResult) -> f64 + 'a>,
-    );
-    let before_mu: [Column; 2] = [
+    vec![
         (
             names::EXTERNAL_LOAD,
             Dimension::Force,
@@ -223,10 +252,8 @@ fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, Nod
         (
             names::NOMINAL_PRESSURE,
             Dimension::Pressure,
-            Box::new(|r| r.external_load / area),
+            Box::new(move |r| r.external_load / area),
         ),
-    ];
-    let after_mu: [Column; 8] = [
         (
             names::NORMAL_LOAD,
             Dimension::Force,
@@ -265,28 +292,7 @@ fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, Nod
         (
             names::AREA_FRACTION,
             Dimension::Dimensionless,
-            Box::new(|r| r.real_contact_area / area),
+            Box::new(move |r| r.real_contact_area / area),
         ),
-    ];
-    let push = |t: &mut Table, columns: &[Column]| {
-        for (name, dimension, value) in columns {
-            t.push_float(*name, *dimension, results.iter().map(value).collect());
-        }
-    };
-    push(&mut t, &before_mu);
-    t.push_float(
-        names::MU_S,
-        Dimension::Dimensionless,
-        mu.iter().map(|m| m.max(0.0)).collect(),
-    );
-    t.push_float(names::MU_S_COMPUTED, Dimension::Dimensionless, mu);
-    push(&mut t, &after_mu);
-    let iterations = results.iter().map(|r| r.status.brent_iterations as i64);
-    t.push_int(names::ITERATIONS, iterations.collect());
-    t.push_float(
-        names::RESIDUAL,
-        Dimension::Dimensionless,
-        results.iter().map(|r| r.status.relative_residual).collect(),
-    );
-    Ok(t)
+    ]
 }

@@ -24,6 +24,7 @@ mod synthetic;
 mod twin;
 mod twin_band;
 mod twin_self_affine;
+mod twin_source;
 mod twin_spectrum;
 
 pub use height_unit::{apply_height_unit, height_unit_rule, HeightUnitSource};
@@ -34,7 +35,7 @@ pub use twin::TwinSpec;
 use lateral_scale::lateral_scale_warning;
 pub use lateral_scale::{apply_lateral_calibration, LateralCalibration};
 use measured::MeasuredSource;
-use twin::TwinSource;
+use twin_source::TwinSource;
 
 pub(crate) use crate::vocabulary::kinds::SURFACE as KIND;
 pub(crate) use crate::vocabulary::tables::SURFACES as TABLE;

@@ -16,8 +16,8 @@ use crate::surface::HeightMap;
 use crate::units::Dimension;
 
 use super::measured::{MeasuredFile, MeasuredSource};
-use super::twin::{TwinSource, TwinSq};
 use super::twin_band::{band_fields, band_of};
+use super::twin_source::{TwinSource, TwinSq};
 
 /// Measures, fits and generates a self-affine twin on `grid`.
 pub(super) fn generate(

@@ -24,8 +24,8 @@ use crate::surface::HeightMap;
 use crate::units::Dimension;
 
 use super::measured::{MeasuredFile, MeasuredSource};
-use super::twin::{TwinSource, TwinSq};
 use super::twin_band::{band_fields, band_of, FileBand};
+use super::twin_source::{TwinSource, TwinSq};
 
 /// A share of the measured spectrum's power the twin's grid may miss (or its tail add) before its
 /// row is flagged.

@@ -23,6 +23,7 @@ mod row_table;
 use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::fs::File;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use indexmap::IndexMap;
@@ -387,12 +388,16 @@ fn write_parquet(
     ];
     pairs.extend(extra.iter().map(|(k, v)| (k.to_string(), v.clone())));
     let metadata = KeyValueMetadata::from_static(pairs);
-    let mut file = File::create(&path).map_err(|e| err(e.to_string()))?;
-    ParquetWriter::new(&mut file)
+    // Encoded in memory first, so that a failing write (a full disk) reports the operating
+    // system's error rather than the encoder's loss of its stream.
+    let mut bytes = Vec::new();
+    ParquetWriter::new(&mut bytes)
         .with_compression(ParquetCompression::Uncompressed)
         .with_key_value_metadata(Some(metadata))
         .finish(&mut df)
         .map_err(|e| err(e.to_string()))?;
+    let mut file = File::create(&path).map_err(|e| err(e.to_string()))?;
+    file.write_all(&bytes).map_err(|e| err(e.to_string()))?;
     file.sync_all().map_err(|e| err(e.to_string()))?;
     Ok(file_name)
 }
