@@ -253,6 +253,10 @@ def per_spot_friction(
     """
     fields = _contact_fields(result, ("pressure", "gap", "deformation_lower", "plastic_penetration"))
     t, _ = as_topography("composite_height", composite_height, dx, dy)
+    if t.heights.shape != fields["pressure"].shape:
+        raise ValueError(
+            f"composite_height: shape {t.heights.shape} differs from result['pressure']'s shape {fields['pressure'].shape}; pass the heights the contact was solved on"
+        )
     connectivity = _args.integer("connectivity", connectivity, 4, "4 or 8 (neighbours)")
     if connectivity not in (4, 8):
         raise ValueError(f"connectivity: {connectivity!r} is out of range: expected 4 or 8 (neighbours)")

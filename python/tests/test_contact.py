@@ -1,4 +1,8 @@
-"""The contact solver from Python gives the command line's contact node's numbers bit for bit."""
+"""The contact solver from Python gives the command line's contact node's numbers bit for bit.
+
+The one exception is the spectral statistics of a synthetic surface: a study computes them from
+the surface's synthesized modes (no transform of its heights), Python from a transform of the
+heights it is given; the two agree to round-off (relative 1e-12 here), the contact bit for bit."""
 
 import math
 
@@ -15,6 +19,13 @@ def same_bits(a, b) -> bool:
     return np.float64(a).tobytes() == np.float64(b).tobytes()
 
 
+def same_to_round_off(a, b) -> bool:
+    """Equal bits, or (floats) equal to 1e-12 relative: see the module's docstring."""
+    if same_bits(a, b):
+        return True
+    return isinstance(a, float) and isinstance(b, float) and abs(a - b) <= 1e-12 * max(abs(a), abs(b))
+
+
 @pytest.mark.parametrize("seed", [3, 4])
 def test_python_contact_equals_the_cli_contact_bit_for_bit(asperity_bin, contact_study, tmp_path, seed):
     cli = run_cli(asperity_bin, "run", str(contact_study), "--out", "out", "--cache", "cache", "-q", cwd=tmp_path)
@@ -28,7 +39,7 @@ def test_python_contact_equals_the_cli_contact_bit_for_bit(asperity_bin, contact
     common = [c for c in surfaces.columns if c in stats]
     assert len(common) >= 30, common
     for column in common:
-        assert same_bits(stats[column], surfaces[column][0]), column
+        assert same_to_round_off(stats[column], surfaces[column][0]), column
     ours = asperity.contact(t, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
     arrays = asperity.contact(t.heights, t.dx, t.dy, nominal_pressures=C["pressures"], lower_material=C["material"], tolerance=C["tolerance"])
     assert same_bits(arrays["approach_m"], ours["approach_m"]) and np.array_equal(arrays["pressure"], ours["pressure"])

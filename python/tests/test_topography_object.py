@@ -23,7 +23,12 @@ def test_spectra_and_material_ratio_are_the_study_tables(asperity_bin, contact_s
         theirs = pl.read_parquet(tmp_path / "out" / f"surfaces_{table}.parquet").filter(pl.col("key") == key)
         assert set(ours) == set(theirs.columns) - {"key"}, table
         for column, values in ours.items():
-            assert np.array_equal(values, theirs[column].to_numpy()), (table, column)
+            # A study's spectra (and the ACF, their transform) of a synthetic surface come from its
+            # synthesized modes, Python's from a transform of its heights: equal to round-off.
+            if table in ("psd", "acf"):
+                assert np.allclose(values, theirs[column].to_numpy(), rtol=1e-12, atol=0.0), (table, column)
+            else:
+                assert np.array_equal(values, theirs[column].to_numpy()), (table, column)
 
 
 def test_array_functions_take_a_topography_and_return_one():

@@ -60,7 +60,7 @@ def test_the_seed_decides_the_bytes_and_the_grid_is_the_twins():
 
 def test_bad_spectrum_twin_input_names_the_parameter_and_the_fix():
     z, dx, dy = measured_map()
-    with pytest.raises(ValueError, match="spectrum: expected 'self_affine' or 'measured'"):
+    with pytest.raises(ValueError, match="spectrum: 'fitted' is not one of: 'self_affine', 'measured'"):
         asperity.synthetic_twin([(z, dx, dy)], sq=1e-6, grid=16, size=1e-4, spectrum="fitted")
     with pytest.raises(ValueError, match="extrapolation"):
         asperity.synthetic_twin([(z, dx, dy)], sq=1e-6, spectrum="measured", extrapolation="flat")
