@@ -249,7 +249,12 @@ fn main() {
     println!("| case  |  grid  |   tol   | iters | coarse | free | pairs/it | t_solve ms | t_iter ms | t_fft ms | ratio | path | errors |");
     println!("|-------|--------|---------|-------|--------|------|----------|------------|-----------|----------|-------|------|--------|");
 
-    // Hertz on a non-periodic grid, a = n/4 pixels.
+    hertz_rows(large, &tolerances);
+    rough_rows(large, &tolerances);
+}
+
+/// The `hertz` rows: a paraboloid on a non-periodic grid, a = n/4 pixels.
+fn hertz_rows(large: bool, tolerances: &[f64]) {
     let hertz_grids: &[usize] = if std::env::var("CONTACT_BENCH_HERTZ").is_ok_and(|v| v == "0") {
         &[]
     } else if large {
@@ -268,7 +273,7 @@ fn main() {
         });
         let material = ContactMaterial::against_rigid_flat(e_star, f64::INFINITY).unwrap();
         let mut clock = FftClock::new(fast_even_length(2 * n));
-        for &tol in &tolerances {
+        for &tol in tolerances {
             let problem =
                 ContactProblem::from_gap_array(gap.view(), dx, dx, material, Boundary::NonPeriodic)
                     .unwrap();
@@ -286,8 +291,10 @@ fn main() {
             print_row("hertz", n, tol, &step, t, clock.take_median(), &errors);
         }
     }
+}
 
-    // Self-affine rough surface, elastic–plastic, periodic.
+/// The `ref`, `rough` and `warm` rows: a self-affine rough surface, elastic–plastic, periodic.
+fn rough_rows(large: bool, tolerances: &[f64]) {
     let side = 1e-3;
     let material = ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, 4e9).unwrap();
     let grids = rough_grids(large);
@@ -329,7 +336,7 @@ fn main() {
     for &n in &grids {
         let gap = CompositeGap::against_flat(&self_affine(n, side)).unwrap();
         let mut clock = FftClock::new(n);
-        for &tol in &tolerances {
+        for &tol in tolerances {
             let problem = ContactProblem::new(gap.clone(), material, Boundary::Periodic);
             let mut solver = ContactSolver::new(problem, options(tol)).unwrap();
             let (step, t) = timed_solve(&mut solver, 20e6, reps(n), &mut clock);
