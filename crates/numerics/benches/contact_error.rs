@@ -3,7 +3,9 @@
 //! `cargo bench -p asperity-numerics --bench contact_error` (Hertz up to 512², rough up to 1024²);
 //! `CONTACT_BENCH_LARGE=1 cargo bench -p asperity-numerics --bench contact_error` adds Hertz 1024² and rough 2048²
 //! and 4096²; `CONTACT_BENCH_GRIDS=256,512,1024,2048` picks the rough grids explicitly (the
-//! finest one is the reference). Release profile; medians of several solves on small grids.
+//! finest one is the reference); `CONTACT_BENCH_MIXED=0` (or `1`) solves with
+//! `SolverOptions::mixed_precision` off (on). Release profile; medians of several solves on
+//! small grids.
 //!
 //! * `hertz`: paraboloid on a non-periodic grid with `a = n/4 · dx`; relative errors of the
 //!   contact radius `a` (from the contact area), the approach `δ = a²/R` and the mean contact
@@ -12,7 +14,7 @@
 //! * `rough`: self-affine periodic surface (H = 0.8, wavelengths 1 mm … 10 µm, S_q = 1 µm) on a
 //!   1 mm square against a flat, steel–steel (E* = 115 GPa), p_lim = 4 GPa, 20 MPa nominal,
 //!   solved from a cold start; errors of A/A₀ and θ against a solve of the same surface on the
-//!   finest grid with tolerance 1e-9 (`ref`).
+//!   finest grid with tolerance 1e-9 (`ref`, in double precision throughout).
 //! * `warm`: the same 20 MPa step warm-started from the converged 15 MPa step (a load curve).
 //!
 //! Columns: CG iterations, CG iterations of the multilevel start on the coarser grids (`coarse`,
@@ -163,10 +165,19 @@ fn self_affine(n: usize, side: f64) -> HeightMap {
     HeightMap::new(z, side / n as f64, side / n as f64).unwrap()
 }
 
+/// The solver's options at `tolerance`; `CONTACT_BENCH_MIXED=1` or `0` sets
+/// `SolverOptions::mixed_precision` (default: the solver's default).
 fn options(tolerance: f64) -> SolverOptions {
+    let defaults = SolverOptions::default();
+    let mixed_precision = match std::env::var("CONTACT_BENCH_MIXED").as_deref() {
+        Ok("1") => true,
+        Ok("0") => false,
+        _ => defaults.mixed_precision,
+    };
     SolverOptions {
         tolerance,
-        ..SolverOptions::default()
+        mixed_precision,
+        ..defaults
     }
 }
 
@@ -238,7 +249,12 @@ fn main() {
     println!("| case  |  grid  |   tol   | iters | coarse | free | pairs/it | t_solve ms | t_iter ms | t_fft ms | ratio | path | errors |");
     println!("|-------|--------|---------|-------|--------|------|----------|------------|-----------|----------|-------|------|--------|");
 
-    // Hertz on a non-periodic grid, a = n/4 pixels.
+    hertz_rows(large, &tolerances);
+    rough_rows(large, &tolerances);
+}
+
+/// The `hertz` rows: a paraboloid on a non-periodic grid, a = n/4 pixels.
+fn hertz_rows(large: bool, tolerances: &[f64]) {
     let hertz_grids: &[usize] = if std::env::var("CONTACT_BENCH_HERTZ").is_ok_and(|v| v == "0") {
         &[]
     } else if large {
@@ -257,7 +273,7 @@ fn main() {
         });
         let material = ContactMaterial::against_rigid_flat(e_star, f64::INFINITY).unwrap();
         let mut clock = FftClock::new(fast_even_length(2 * n));
-        for &tol in &tolerances {
+        for &tol in tolerances {
             let problem =
                 ContactProblem::from_gap_array(gap.view(), dx, dx, material, Boundary::NonPeriodic)
                     .unwrap();
@@ -275,8 +291,10 @@ fn main() {
             print_row("hertz", n, tol, &step, t, clock.take_median(), &errors);
         }
     }
+}
 
-    // Self-affine rough surface, elastic–plastic, periodic.
+/// The `ref`, `rough` and `warm` rows: a self-affine rough surface, elastic–plastic, periodic.
+fn rough_rows(large: bool, tolerances: &[f64]) {
     let side = 1e-3;
     let material = ContactMaterial::from_young_poisson(210e9, 0.3, 210e9, 0.3, 4e9).unwrap();
     let grids = rough_grids(large);
@@ -287,7 +305,10 @@ fn main() {
         let gap = CompositeGap::against_flat(&self_affine(finest, side)).unwrap();
         let mut solver = ContactSolver::new(
             ContactProblem::new(gap, material, Boundary::Periodic),
-            options(1e-9),
+            SolverOptions {
+                mixed_precision: false,
+                ..options(1e-9)
+            },
         )
         .unwrap();
         let mut clock = FftClock::new(finest);
@@ -315,7 +336,7 @@ fn main() {
     for &n in &grids {
         let gap = CompositeGap::against_flat(&self_affine(n, side)).unwrap();
         let mut clock = FftClock::new(n);
-        for &tol in &tolerances {
+        for &tol in tolerances {
             let problem = ContactProblem::new(gap.clone(), material, Boundary::Periodic);
             let mut solver = ContactSolver::new(problem, options(tol)).unwrap();
             let (step, t) = timed_solve(&mut solver, 20e6, reps(n), &mut clock);

@@ -10,6 +10,10 @@
 //!   where `n` has a prime factor above 31).
 //! * `dc_convolve`: the non-periodic DC-FFT shape, `convolve` of an `n/2 × n/2` block in the
 //!   top-left corner of the `n × n` zero-padded grid with a real kernel, output the same block.
+//! * `periodic f32`: `periodic` with single-precision transforms
+//!   (`RealFft2d::<f32>::in_precision`, the kernel rounded to `f32`), as the contact solver
+//!   iterates before its double-precision polish; `error`: its largest deviation from the
+//!   `periodic` result relative to that result's largest magnitude.
 //!
 //! `checksum` folds the bits of one result from a fixed input: equal checksums across builds
 //! mean bit-identical results.
@@ -17,6 +21,7 @@
 use std::time::Instant;
 
 use asperity_numerics::contact::RealFft2d;
+use asperity_numerics::fft2::Real;
 
 /// Median and minimum of the samples.
 fn median_min(mut v: Vec<f64>) -> (f64, f64) {
@@ -66,8 +71,9 @@ fn round_trip(n: usize) -> ((f64, f64), u64) {
     (t, sum)
 }
 
-fn periodic(n: usize) -> ((f64, f64), u64) {
-    let mut fft = RealFft2d::for_convolution(n, n);
+/// `periodic` in the precision `T`: timings, checksum and the output.
+fn periodic<T: Real>(n: usize) -> ((f64, f64), u64, Vec<f64>) {
+    let mut fft = RealFft2d::<T>::in_precision(n, n, true);
     let input = signal(n * n);
     let nxc = n / 2 + 1;
     let spectral: Vec<f64> = (0..nxc * n)
@@ -77,14 +83,29 @@ fn periodic(n: usize) -> ((f64, f64), u64) {
             1.0 / ((1 + kx * kx + ky * ky) as f64 * (n * n) as f64)
         })
         .collect();
-    let kernel = fft.convolution_kernel(spectral).unwrap();
+    let kernel: Vec<T> = RealFft2d::for_convolution(n, n)
+        .convolution_kernel(spectral)
+        .unwrap()
+        .into_iter()
+        .map(T::of)
+        .collect();
     let mut output = vec![0.0; n * n];
     fft.convolve(&input, &kernel, &mut output, n, n).unwrap();
     let sum = checksum(&output);
     let t = timed(reps(n), || {
         fft.convolve(&input, &kernel, &mut output, n, n).unwrap()
     });
-    (t, sum)
+    (t, sum, output)
+}
+
+/// Largest deviation of `values` from `reference` relative to the largest `|reference|`.
+fn relative_error(values: &[f64], reference: &[f64]) -> f64 {
+    let scale = reference.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let error = values
+        .iter()
+        .zip(reference)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    error / scale
 }
 
 fn dc_convolve(n: usize) -> ((f64, f64), u64) {
@@ -112,21 +133,30 @@ fn main() {
         .map(|s| s.split(',').filter_map(|g| g.trim().parse().ok()).collect())
         .unwrap_or_else(|| vec![256, 512, 1024, 2048]);
     println!(
-        "{:>6} {:>16} {:>18} {:>16} {:>18} {:>16} {:>18}",
-        "n", "round_trip ms", "checksum", "periodic ms", "checksum", "dc_convolve ms", "checksum"
+        "{:>6} {:>16} {:>18} {:>16} {:>18} {:>16} {:>18} {:>17} {:>8}",
+        "n",
+        "round_trip ms",
+        "checksum",
+        "periodic ms",
+        "checksum",
+        "dc_convolve ms",
+        "checksum",
+        "periodic f32 ms",
+        "error"
     );
+    let ms = |t: (f64, f64)| format!("{:>7.3} ({:>6.3})", t.0 * 1e3, t.1 * 1e3);
     for n in grids {
         let (t_rt, sum_rt) = round_trip(n);
-        let (t_p, sum_p) = periodic(n);
+        let (t_p, sum_p, double) = periodic::<f64>(n);
         let (t_dc, sum_dc) = dc_convolve(n);
+        let (t_s, _, single) = periodic::<f32>(n);
         println!(
-            "{n:>6} {:>7.3} ({:>6.3}) {sum_rt:>18x} {:>7.3} ({:>6.3}) {sum_p:>18x} {:>7.3} ({:>6.3}) {sum_dc:>18x}",
-            t_rt.0 * 1e3,
-            t_rt.1 * 1e3,
-            t_p.0 * 1e3,
-            t_p.1 * 1e3,
-            t_dc.0 * 1e3,
-            t_dc.1 * 1e3
+            "{n:>6} {} {sum_rt:>18x} {} {sum_p:>18x} {} {sum_dc:>18x} {} {:>8.1e}",
+            ms(t_rt),
+            ms(t_p),
+            ms(t_dc),
+            ms(t_s),
+            relative_error(&single, &double)
         );
     }
 }

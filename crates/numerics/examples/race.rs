@@ -5,12 +5,14 @@
 //! (`[[iy, ix]]`, x fastest), one period of a doubly periodic surface of side `--length` metres.
 //!
 //! Run: `cargo run --release -p asperity-numerics --example race -- --surface FILE --grid N
-//!       --length M --modulus PA --pressure PA [--flow-pressure PA] [--tolerance T] [--repeat R]`
+//!       --length M --modulus PA --pressure PA [--flow-pressure PA] [--tolerance T] [--repeat R]
+//!       [--mixed-precision true|false]`
 //!
 //! * `--modulus`: composite modulus `E*` of the elastic body (the flat is rigid);
 //! * `--flow-pressure`: pressure cap `p_lim` (elastic–perfectly-plastic); omitted: elastic;
 //! * `--tolerance`: `SolverOptions::tolerance` (default: the solver's default);
-//! * `--repeat`: number of timed solves, each by a new solver (default 1).
+//! * `--repeat`: number of timed solves, each by a new solver (default 1);
+//! * `--mixed-precision`: `SolverOptions::mixed_precision` (default: the solver's default).
 //!
 //! `iterations` are the CG iterations on the grid, `coarse_iterations` those of the multilevel
 //! start on the coarser grids (their time is in `solve_s`).
@@ -38,10 +40,12 @@ struct Args {
     flow_pressure: f64,
     tolerance: f64,
     repeat: usize,
+    mixed_precision: bool,
 }
 
 const USAGE: &str = "usage: race --surface FILE --grid N --length M --modulus PA --pressure PA \
-                     [--flow-pressure PA] [--tolerance T] [--repeat R]";
+                     [--flow-pressure PA] [--tolerance T] [--repeat R] \
+                     [--mixed-precision true|false]";
 
 fn main() -> ExitCode {
     match run() {
@@ -65,6 +69,7 @@ fn parse_args() -> Result<Args, String> {
     let mut flow_pressure = f64::INFINITY;
     let mut tolerance = SolverOptions::default().tolerance;
     let mut repeat = 1;
+    let mut mixed_precision = SolverOptions::default().mixed_precision;
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
         let value = args
@@ -89,6 +94,11 @@ fn parse_args() -> Result<Args, String> {
             "--flow-pressure" => flow_pressure = number()?,
             "--tolerance" => tolerance = number()?,
             "--repeat" => repeat = count()?,
+            "--mixed-precision" => {
+                mixed_precision = value
+                    .parse::<bool>()
+                    .map_err(|e| format!("{flag} {value}: {e} (true or false)"))?
+            }
             _ => return Err(format!("unknown argument {flag}\n{USAGE}")),
         }
     }
@@ -102,6 +112,7 @@ fn parse_args() -> Result<Args, String> {
         flow_pressure,
         tolerance,
         repeat: repeat.max(1),
+        mixed_precision,
     })
 }
 
@@ -139,6 +150,7 @@ fn run() -> Result<String, String> {
     .map_err(|e| e.to_string())?;
     let options = SolverOptions {
         tolerance: args.tolerance,
+        mixed_precision: args.mixed_precision,
         ..SolverOptions::default()
     };
     let mut setups = Vec::with_capacity(args.repeat);

@@ -2,6 +2,7 @@
 
 use std::f64::consts::PI;
 
+use super::transforms::{single_transforms, Precision, Transforms};
 use crate::fft2::{fast_even_length, FftFailure, RealFft2d, RowSink, RowSource};
 
 /// Lateral boundary condition of the contact domain.
@@ -52,13 +53,17 @@ pub(crate) fn pixel_influence(x: f64, y: f64, dx: f64, dy: f64) -> f64 {
 }
 
 /// Linear operator `u = K p` from pressures (Pa) on the `ny × nx` grid to the composite normal
-/// displacement `u = u₁ + u₂` (m) of the two surfaces, evaluated with one real FFT pair.
+/// displacement `u = u₁ + u₂` (m) of the two surfaces, evaluated with one real FFT pair, in
+/// double precision or (where the kernels fit, see `transforms.rs`) in single precision, as
+/// the caller sets ([`Self::set_precision`]).
 #[derive(Debug)]
 pub(crate) struct InfluenceOperator {
-    fft: RealFft2d,
-    kernel: Vec<f64>,
-    /// The kernel of the preconditioner `M` ([`Self::precondition_rows_into`]), if it was built.
-    inverse_kernel: Option<Vec<f64>>,
+    double: Transforms<f64>,
+    single: Option<Transforms<f32>>,
+    /// The precision of the next transforms.
+    precision: Precision,
+    /// The precision of the last forward transform kept for a `finish_*`.
+    kept: Precision,
     nx: usize,
     ny: usize,
     boundary: Boundary,
@@ -159,11 +164,28 @@ fn non_periodic_kernels(
     Ok((fft, kernel, inverse))
 }
 
+/// Runs `$body` with `$t` bound to the operator's transforms of precision `$precision`
+/// (`Transforms<f64>` or `Transforms<f32>`); single precision falls back to double where the
+/// operator has none.
+macro_rules! in_precision {
+    ($self:ident, $precision:expr, |$t:ident| $body:expr) => {
+        match ($precision, $self.single.as_mut()) {
+            (Precision::Single, Some($t)) => $body,
+            _ => {
+                let $t = &mut $self.double;
+                $body
+            }
+        }
+    };
+}
+
 impl InfluenceOperator {
     /// Builds the kernel for a grid `nx × ny` of pixel size `dx × dy` (m) and composite modulus
     /// `E*` (Pa); with `preconditioner`, also the kernel of [`Self::precondition_rows_into`]
     /// (one more kernel array, and with padded columns one more padded transform of it, which
-    /// only elastic contacts use).
+    /// only elastic contacts use). The single-precision transforms are planned beside the
+    /// double-precision ones (see [`Self::set_precision`]); the operator starts in double
+    /// precision.
     pub(crate) fn new(
         nx: usize,
         ny: usize,
@@ -181,10 +203,16 @@ impl InfluenceOperator {
                 non_periodic_kernels(nx, ny, dx, dy, composite_modulus, preconditioner)?
             }
         };
+        let single = single_transforms(&fft, &kernel, inverse_kernel.as_deref());
         let mut operator = Self {
-            fft,
-            kernel,
-            inverse_kernel,
+            double: Transforms {
+                fft,
+                kernel,
+                inverse_kernel,
+            },
+            single,
+            precision: Precision::Double,
+            kept: Precision::Double,
             nx,
             ny,
             boundary,
@@ -210,14 +238,32 @@ impl InfluenceOperator {
         Ok(operator)
     }
 
-    /// `displacement = K pressure`, both `ny × nx` row-major.
+    /// Whether the operator has single-precision transforms (its kernels fit their range,
+    /// `transforms.rs`).
+    pub(crate) fn has_single(&self) -> bool {
+        self.single.is_some()
+    }
+
+    /// The precision of the transforms from now on (single precision only where
+    /// [`Self::has_single`]; otherwise double). A `finish_*` still uses the precision of the
+    /// `start_*` it finishes.
+    pub(crate) fn set_precision(&mut self, precision: Precision) {
+        self.precision = if self.single.is_some() {
+            precision
+        } else {
+            Precision::Double
+        };
+    }
+
+    /// `displacement = K pressure`, both `ny × nx` row-major, in double precision.
     pub(crate) fn apply(
         &mut self,
         pressure: &[f64],
         displacement: &mut [f64],
     ) -> Result<(), FftFailure> {
-        self.fft
-            .convolve(pressure, &self.kernel, displacement, self.nx, self.ny)?;
+        let t = &mut self.double;
+        t.fft
+            .convolve(pressure, &t.kernel, displacement, self.nx, self.ny)?;
         self.transforms += 2;
         Ok(())
     }
@@ -231,12 +277,10 @@ impl InfluenceOperator {
         out: &mut [f64],
         sink: &S,
     ) -> Result<&[f64], FftFailure> {
-        let inverse = self.inverse_kernel.as_deref().ok_or_else(|| {
-            FftFailure::new("the influence operator was built without its preconditioner")
-        })?;
         self.transforms += 2;
-        self.fft
-            .convolve_rows_into(fill, inverse, out, self.nx, self.ny, sink)
+        let block = (self.nx, self.ny);
+        in_precision!(self, self.precision, |t| t
+            .precondition_rows_into(fill, out, block, sink))
     }
 
     /// [`Self::apply`] to the pressure whose rows `fill` supplies, the displacement rows going
@@ -248,8 +292,15 @@ impl InfluenceOperator {
         sink: &S,
     ) -> Result<&[f64], FftFailure> {
         self.transforms += 2;
-        self.fft
-            .convolve_rows_into(fill, &self.kernel, displacement, self.nx, self.ny, sink)
+        let (nx, ny) = (self.nx, self.ny);
+        in_precision!(self, self.precision, |t| t.fft.convolve_rows_into(
+            fill,
+            &t.kernel,
+            displacement,
+            nx,
+            ny,
+            sink
+        ))
     }
 
     /// First half of `displacement = K pressure`: transforms `pressure` (kept for
@@ -257,23 +308,35 @@ impl InfluenceOperator {
     /// (Parseval; one forward FFT).
     pub(crate) fn start_apply(&mut self, pressure: &[f64]) -> Result<f64, FftFailure> {
         self.transforms += 1;
-        self.fft
-            .start_convolve(pressure, &self.kernel, self.nx, self.ny)
+        self.kept = self.precision;
+        let (nx, ny) = (self.nx, self.ny);
+        in_precision!(self, self.precision, |t| t
+            .fft
+            .start_convolve(pressure, &t.kernel, nx, ny))
     }
 
     /// [`Self::start_apply`] to the pressure whose rows `fill` supplies.
     pub(crate) fn start_apply_rows<F: RowSource>(&mut self, fill: &F) -> Result<f64, FftFailure> {
         self.transforms += 1;
-        self.fft
-            .start_convolve_rows(fill, &self.kernel, self.nx, self.ny)
+        self.kept = self.precision;
+        let (nx, ny) = (self.nx, self.ny);
+        in_precision!(self, self.precision, |t| t
+            .fft
+            .start_convolve_rows(fill, &t.kernel, nx, ny))
     }
 
     /// Second half of `displacement = K pressure` for the pressure of the last
-    /// [`Self::start_apply`] (one inverse FFT; bit-identical to [`Self::apply`]).
+    /// [`Self::start_apply`], in its precision (one inverse FFT; bit-identical to
+    /// [`Self::apply`] in double precision).
     pub(crate) fn finish_apply(&mut self, displacement: &mut [f64]) -> Result<(), FftFailure> {
         self.transforms += 1;
-        self.fft
-            .finish_convolve(&self.kernel, displacement, self.nx, self.ny)
+        let (nx, ny) = (self.nx, self.ny);
+        in_precision!(self, self.kept, |t| t.fft.finish_convolve(
+            &t.kernel,
+            displacement,
+            nx,
+            ny
+        ))
     }
 
     /// [`Self::finish_apply`] with the displacement rows going through `sink`; returns the
@@ -284,8 +347,14 @@ impl InfluenceOperator {
         sink: &S,
     ) -> Result<&[f64], FftFailure> {
         self.transforms += 1;
-        self.fft
-            .finish_convolve_into(&self.kernel, displacement, self.nx, self.ny, sink)
+        let (nx, ny) = (self.nx, self.ny);
+        in_precision!(self, self.kept, |t| t.fft.finish_convolve_into(
+            &t.kernel,
+            displacement,
+            nx,
+            ny,
+            sink
+        ))
     }
 
     /// Real 2-D FFTs (forward or inverse; a full convolution is two) this operator has run,

@@ -23,6 +23,7 @@ mod problem;
 mod restricted_matrix;
 mod selection;
 mod solver;
+mod transforms;
 mod work;
 mod workspace;
 

@@ -103,6 +103,13 @@ pub struct SolverOptions {
     /// `constrained_cg.rs`). Other starts and contacts with a flow pressure are never
     /// preconditioned.
     pub preconditioned: bool,
+    /// Iterate with single-precision transforms until the residual reaches the tolerance or
+    /// `1e-5`, then finish in double precision (default `true`; see
+    /// `constrained_cg/precision.rs`): every convergence is still judged on a displacement
+    /// `u = K p` computed in double precision, so the result meets the tolerance as a
+    /// double-precision solve does, though not bit for bit the same. With `false`, every
+    /// transform is in double precision (the results of the solver before this option).
+    pub mixed_precision: bool,
     /// Fields returned with every load step.
     pub fields: FieldRequest,
 }
@@ -150,6 +157,7 @@ impl Default for SolverOptions {
             strategy: SolveStrategy::Auto,
             multilevel: true,
             preconditioned: true,
+            mixed_precision: true,
             fields: FieldRequest::NONE,
         }
     }

@@ -218,6 +218,7 @@ impl ContactSolver {
             // Measured to pay from a coarse grid's solution only (`precondition` in
             // `constrained_cg.rs`).
             precondition: preconditions(&self.options, self.problem.material()) && prolongated,
+            mixed_precision: self.options.mixed_precision,
         }
     }
 

@@ -9,26 +9,34 @@
 //!
 //! Rows and columns are transformed in parallel with rayon; every 1-D transform is computed by
 //! the same code whatever the chunking, so results are bit-identical for any thread count.
+//!
+//! The transforms run in double precision (`RealFft2d<f64>`, [`RealFft2d::new`]) or in single
+//! precision (`RealFft2d<f32>`, [`RealFft2d::in_precision`]: half the bytes per value and twice
+//! the values per SIMD register, relative round-off about `1e-7` instead of `1e-16`; see
+//! [`Real`]). Either way the caller's real data are `f64`.
 
 use std::sync::Arc;
 
 use realfft::num_complex::Complex;
-use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
 mod fast_length;
 mod grid;
 mod padded;
 mod passes;
+mod real;
 mod rows;
+mod rows_pass;
 mod transpose;
 
 pub use fast_length::fast_even_length;
 
 pub(crate) use grid::{forward_real_2d, inverse_real_2d};
 use padded::{PaddedColumns, PADDED_TILE};
+pub use real::Real;
 use rows::{dense_rows, Copy};
 pub use rows::{RowSink, RowSource};
+use rows_pass::RowPlan;
 use transpose::transpose_all;
 
 /// Columns transformed together: a tile of `TILE` columns of `ny` complex values is transposed,
@@ -63,16 +71,20 @@ impl From<realfft::FftError> for FftFailure {
 }
 
 /// Cache-sized working memory of one parallel work chunk.
-struct ChunkBuffers {
+struct ChunkBuffers<T> {
     /// Scratch of the 1-D transforms.
-    fft: Vec<Complex<f64>>,
+    fft: Vec<Complex<T>>,
     /// One tile of `TILE` columns of `ny` values, transformed without being kept
     /// ([`ColumnPass::Energy`]), or of `PADDED_TILE` padded columns.
-    tile: Vec<Complex<f64>>,
+    tile: Vec<Complex<T>>,
     /// One real row of `nx` values (a zero-padded input row or an inverse-transformed row).
-    row: Vec<f64>,
+    row: Vec<T>,
+    /// Two rows of `nx` values in `f64`, as callers read and write them (see [`Real`]).
+    io: Vec<f64>,
+    /// Two packed rows of `nx` complex values ([`RowPlan::Packed`]; empty otherwise).
+    pair: Vec<Complex<T>>,
     /// `TILE_ROWS` row spectra of `nx/2 + 1` values gathered for the inverse row transforms.
-    spectra: Vec<Complex<f64>>,
+    spectra: Vec<Complex<T>>,
 }
 
 /// Real 2-D FFT of an `ny × nx` grid with plans, buffers and scratch allocated once.
@@ -85,59 +97,60 @@ struct ChunkBuffers {
 /// are gathered and transformed back into the output. Rows that are all zero (the padding of a
 /// [`RealFft2d::convolve`] block, or rows without load) are not transformed: their spectrum is
 /// zero. A transform allocates nothing, but for the row buffer, which the first forward transform
-/// allocates (an inverse transform alone never needs it).
-pub struct RealFft2d {
+/// allocates (an inverse transform alone never needs it). `T` is the precision of the
+/// transforms (module docs).
+pub struct RealFft2d<T: Real = f64> {
     nx: usize,
     ny: usize,
     nxc: usize,
-    r2c: Arc<dyn RealToComplex<f64>>,
-    c2r: Arc<dyn ComplexToReal<f64>>,
-    col_forward: Arc<dyn Fft<f64>>,
-    col_inverse: Arc<dyn Fft<f64>>,
+    rows_plan: RowPlan<T>,
+    col_forward: Arc<dyn Fft<T>>,
+    col_inverse: Arc<dyn Fft<T>>,
     /// The column pass of convolutions as padded linear convolutions, when `ny` is slow to
     /// transform (see [`RealFft2d::for_convolution`]).
-    padded: Option<PaddedColumns>,
-    rows: Vec<Complex<f64>>,
-    cols: Vec<Complex<f64>>,
+    padded: Option<PaddedColumns<T>>,
+    rows: Vec<Complex<T>>,
+    cols: Vec<Complex<T>>,
     /// Per-column results of an [`ColumnPass::Energy`] pass, summed in column order.
     column_energy: Vec<f64>,
     /// Per-row results of a [`RowSink`].
     row_values: Vec<f64>,
-    chunks: Vec<ChunkBuffers>,
+    chunks: Vec<ChunkBuffers<T>>,
     cols_per_chunk: usize,
 }
 
-impl std::fmt::Debug for RealFft2d {
+impl<T: Real> std::fmt::Debug for RealFft2d<T> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("RealFft2d")
             .field("nx", &self.nx)
             .field("ny", &self.ny)
+            .field("precision", &std::any::type_name::<T>())
             .finish_non_exhaustive()
     }
 }
 
 /// What the column pass does.
 #[derive(Clone, Copy)]
-enum ColumnPass<'a> {
+enum ColumnPass<'a, T> {
     /// Transpose the row spectra in and transform forward.
     Forward,
     /// Forward, multiply by `factor`, inverse.
     Scale(f64),
     /// Forward, multiply by the real kernel (layout `[kx][ky]`), inverse.
-    Kernel(&'a [f64]),
+    Kernel(&'a [T]),
     /// Inverse only, of the spectrum already in the column buffer.
     Inverse,
     /// Forward, then the energy `Σ_ky kernel |X|²` of every column. The tiles are transformed
     /// in the chunk's own tile buffer: the column buffer is not written (the row spectra, which
     /// the pass only reads, still hold everything a later [`ColumnPass::Kernel`] needs).
-    Energy(&'a [f64]),
+    Energy(&'a [T]),
 }
 
 impl RealFft2d {
     /// Plans the transforms of an `ny × nx` grid (sizes below 1 are taken as 1); convolution
     /// kernels are spectral kernels, in the layout of [`RealFft2d::forward`].
     pub fn new(nx: usize, ny: usize) -> Self {
-        Self::planned(nx, ny, None)
+        Self::in_precision(nx, ny, false)
     }
 
     /// Plans the transforms of an `ny × nx` grid for convolutions. Where `ny` has a prime factor
@@ -147,34 +160,55 @@ impl RealFft2d {
     /// [`RealFft2d::convolution_kernel`]. Otherwise this is [`RealFft2d::new`]. Forward and
     /// inverse transforms are the same either way.
     pub fn for_convolution(nx: usize, ny: usize) -> Self {
-        Self::planned(nx, ny, PaddedColumns::for_columns(ny.max(1)))
+        Self::in_precision(nx, ny, true)
     }
 
-    fn planned(nx: usize, ny: usize, padded: Option<PaddedColumns>) -> Self {
+    /// The convolution kernel of the real spectral kernel `spectral` (layout `[kx][ky]`,
+    /// normalisation `1/(nx·ny)` included, even in `ky`): `spectral` itself, or with padded
+    /// columns its padded form (one inverse transform of each column and one padded forward
+    /// transform). A spectral kernel that is not even in `ky` is an error there. A transform of
+    /// the same grid in single precision takes this kernel rounded to `f32`.
+    pub fn convolution_kernel(&self, spectral: Vec<f64>) -> Result<Vec<f64>, FftFailure> {
+        self.check_len("spectral kernel", spectral.len(), self.spectrum_len())?;
+        match &self.padded {
+            None => Ok(spectral),
+            Some(padded) => padded.kernel(&spectral, self.ny, self.col_inverse.as_ref()),
+        }
+    }
+}
+
+impl<T: Real> RealFft2d<T> {
+    /// [`RealFft2d::new`] (or with `convolution` [`RealFft2d::for_convolution`]) in the
+    /// precision `T`.
+    pub fn in_precision(nx: usize, ny: usize, convolution: bool) -> Self {
+        let padded = if convolution {
+            PaddedColumns::for_columns(ny.max(1))
+        } else {
+            None
+        };
         let nx = nx.max(1);
         let ny = ny.max(1);
         let nxc = nx / 2 + 1;
-        let mut real_planner = RealFftPlanner::<f64>::new();
-        let r2c = real_planner.plan_fft_forward(nx);
-        let c2r = real_planner.plan_fft_inverse(nx);
-        let mut planner = FftPlanner::<f64>::new();
+        let rows_plan = RowPlan::new(nx);
+        let mut planner = FftPlanner::<T>::new();
         let col_forward = planner.plan_fft_forward(ny);
         let col_inverse = planner.plan_fft_inverse(ny);
-        let scratch_len = r2c
-            .get_scratch_len()
-            .max(c2r.get_scratch_len())
+        let scratch_len = rows_plan
+            .scratch_len()
             .max(col_forward.get_inplace_scratch_len())
             .max(col_inverse.get_inplace_scratch_len())
             .max(padded.as_ref().map_or(0, PaddedColumns::scratch_len));
         let tile_len = (TILE * ny).max(padded.as_ref().map_or(0, |p| PADDED_TILE * p.len()));
         let chunks = (CHUNKS_PER_THREAD * rayon::current_num_threads()).max(1);
         let cols_per_chunk = nxc.div_ceil(chunks).max(1);
-        let zero = Complex::new(0.0, 0.0);
+        let zero = Complex::new(T::zero(), T::zero());
         let chunks = (0..chunks)
             .map(|_| ChunkBuffers {
                 fft: vec![zero; scratch_len],
                 tile: vec![zero; tile_len],
-                row: vec![0.0; nx],
+                row: vec![T::zero(); nx],
+                io: vec![0.0; 2 * nx],
+                pair: vec![zero; if T::PACKED_ROWS { nx } else { 0 }],
                 spectra: vec![zero; TILE_ROWS * nxc],
             })
             .collect();
@@ -182,8 +216,7 @@ impl RealFft2d {
             nx,
             ny,
             nxc,
-            r2c,
-            c2r,
+            rows_plan,
             col_forward,
             col_inverse,
             padded,
@@ -215,20 +248,8 @@ impl RealFft2d {
             .map_or(self.spectrum_len(), |p| self.nxc * p.half_len())
     }
 
-    /// The convolution kernel of the real spectral kernel `spectral` (layout `[kx][ky]`,
-    /// normalisation `1/(nx·ny)` included, even in `ky`): `spectral` itself, or with padded
-    /// columns its padded form (one inverse transform of each column and one padded forward
-    /// transform). A spectral kernel that is not even in `ky` is an error there.
-    pub fn convolution_kernel(&self, spectral: Vec<f64>) -> Result<Vec<f64>, FftFailure> {
-        self.check_len("spectral kernel", spectral.len(), self.spectrum_len())?;
-        match &self.padded {
-            None => Ok(spectral),
-            Some(padded) => padded.kernel(&spectral, self.ny, self.col_inverse.as_ref()),
-        }
-    }
-
     /// Forward transform of a full `ny × nx` grid; returns the spectrum in layout `[kx][ky]`.
-    pub fn forward(&mut self, input: &[f64]) -> Result<&[Complex<f64>], FftFailure> {
+    pub fn forward(&mut self, input: &[f64]) -> Result<&[Complex<T>], FftFailure> {
         self.check_len("input", input.len(), self.nx * self.ny)?;
         self.rows_forward(&dense_rows(input), self.nx, self.ny)?;
         self.columns(ColumnPass::Forward, self.ny);
@@ -240,7 +261,7 @@ impl RealFft2d {
     /// even `nx`, `kx = nx/2` after the column transform) are dropped.
     pub fn inverse(
         &mut self,
-        spectrum: &[Complex<f64>],
+        spectrum: &[Complex<T>],
         output: &mut [f64],
     ) -> Result<(), FftFailure> {
         self.check_inverse(spectrum, output)?;
@@ -252,7 +273,7 @@ impl RealFft2d {
     /// `nx/2 + 1` values), transposed into the column buffer in tiles.
     pub(crate) fn inverse_natural(
         &mut self,
-        spectrum: &[Complex<f64>],
+        spectrum: &[Complex<T>],
         output: &mut [f64],
     ) -> Result<(), FftFailure> {
         self.check_inverse(spectrum, output)?;
@@ -260,7 +281,7 @@ impl RealFft2d {
         self.inverse_of_cols(output)
     }
 
-    fn check_inverse(&self, spectrum: &[Complex<f64>], output: &[f64]) -> Result<(), FftFailure> {
+    fn check_inverse(&self, spectrum: &[Complex<T>], output: &[f64]) -> Result<(), FftFailure> {
         self.check_len("spectrum", spectrum.len(), self.spectrum_len())?;
         self.check_len("output", output.len(), self.nx * self.ny)
     }
@@ -288,7 +309,7 @@ impl RealFft2d {
     pub fn convolve(
         &mut self,
         input: &[f64],
-        kernel: &[f64],
+        kernel: &[T],
         output: &mut [f64],
         cols: usize,
         rows: usize,
@@ -310,7 +331,7 @@ impl RealFft2d {
     pub fn convolve_rows_into<F: RowSource, S: RowSink>(
         &mut self,
         fill: &F,
-        kernel: &[f64],
+        kernel: &[T],
         output: &mut [f64],
         cols: usize,
         rows: usize,
@@ -324,7 +345,7 @@ impl RealFft2d {
     fn convolve_through<F: RowSource, S: RowSink>(
         &mut self,
         fill: &F,
-        kernel: &[f64],
+        kernel: &[T],
         output: &mut [f64],
         cols: usize,
         rows: usize,
@@ -348,7 +369,7 @@ impl RealFft2d {
     pub fn start_convolve(
         &mut self,
         input: &[f64],
-        kernel: &[f64],
+        kernel: &[T],
         cols: usize,
         rows: usize,
     ) -> Result<f64, FftFailure> {
@@ -361,7 +382,7 @@ impl RealFft2d {
     pub fn start_convolve_rows<F: RowSource>(
         &mut self,
         fill: &F,
-        kernel: &[f64],
+        kernel: &[T],
         cols: usize,
         rows: usize,
     ) -> Result<f64, FftFailure> {
@@ -397,7 +418,7 @@ impl RealFft2d {
     /// caller needs only sometimes.)
     pub fn finish_convolve(
         &mut self,
-        kernel: &[f64],
+        kernel: &[T],
         output: &mut [f64],
         cols: usize,
         rows: usize,
@@ -413,7 +434,7 @@ impl RealFft2d {
     /// returns the sink's value of each of the `rows` rows.
     pub fn finish_convolve_into<S: RowSink>(
         &mut self,
-        kernel: &[f64],
+        kernel: &[T],
         output: &mut [f64],
         cols: usize,
         rows: usize,
@@ -431,7 +452,7 @@ impl RealFft2d {
     /// kernel, inverse transforms, output rows written directly or through `sink`.
     fn finish_through<S: RowSink>(
         &mut self,
-        kernel: &[f64],
+        kernel: &[T],
         output: &mut [f64],
         cols: usize,
         rows: usize,
@@ -444,7 +465,7 @@ impl RealFft2d {
     /// The block, kernel and output of a convolution's way back.
     fn check_back(
         &self,
-        kernel: &[f64],
+        kernel: &[T],
         output: &[f64],
         cols: usize,
         rows: usize,

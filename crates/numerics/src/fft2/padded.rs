@@ -26,37 +26,38 @@ use realfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
 use super::fast_length::{fast_even_length, has_slow_factor};
+use super::passes::weighted_norm;
 use super::transpose::transpose;
-use super::{ChunkBuffers, FftFailure};
+use super::{ChunkBuffers, FftFailure, Real};
 
 /// Padded columns transformed together, as many as the spectral pass (`TILE`); narrower tiles,
 /// which fit a 512 kB L2 cache, measured slower (`docs/contact-solver-design.md`).
 pub(super) const PADDED_TILE: usize = 16;
 
 /// One padded column pass: what it reads from the [`super::RealFft2d`].
-pub(super) struct PaddedPass<'a> {
+pub(super) struct PaddedPass<'a, T> {
     /// Row spectra, `nxc` values per row; the first `rows` rows are read.
-    pub(super) spectra: &'a [Complex<f64>],
+    pub(super) spectra: &'a [Complex<T>],
     pub(super) nxc: usize,
     /// Column length `n`.
     pub(super) ny: usize,
     pub(super) rows: usize,
     pub(super) cols_per_chunk: usize,
     /// Padded kernel, `m/2 + 1` values per column.
-    pub(super) kernel: &'a [f64],
+    pub(super) kernel: &'a [T],
     /// Only the quadratic form of each column: the column buffer is not written.
     pub(super) energy_only: bool,
 }
 
 /// Plans of the padded column pass.
-pub(super) struct PaddedColumns {
+pub(super) struct PaddedColumns<T> {
     /// Padded length `m ≥ 2n − 1`, even and 7-smooth.
     len: usize,
-    forward: Arc<dyn Fft<f64>>,
-    inverse: Arc<dyn Fft<f64>>,
+    forward: Arc<dyn Fft<T>>,
+    inverse: Arc<dyn Fft<T>>,
 }
 
-impl PaddedColumns {
+impl<T: Real> PaddedColumns<T> {
     /// The padded pass for columns of length `n`, or `None` when `n` has no prime factor above
     /// 31 and its own transforms are the faster way.
     pub(super) fn for_columns(n: usize) -> Option<Self> {
@@ -64,7 +65,7 @@ impl PaddedColumns {
             return None;
         }
         let len = fast_even_length(2 * n);
-        let mut planner = FftPlanner::<f64>::new();
+        let mut planner = FftPlanner::<T>::new();
         Some(Self {
             len,
             forward: planner.plan_fft_forward(len),
@@ -89,6 +90,95 @@ impl PaddedColumns {
             .max(self.inverse.get_inplace_scratch_len())
     }
 
+    /// The column pass of a convolution (or of its quadratic form, `job.energy_only`) through
+    /// padded columns: the output columns (`n` values each) go to `cols`, the quadratic forms of
+    /// the columns to `energy`. Chunked as the spectral pass, in tiles of [`PADDED_TILE`]
+    /// columns; every column is computed by the same code whatever the chunking.
+    pub(super) fn run(
+        &self,
+        job: PaddedPass<'_, T>,
+        cols: &mut [Complex<T>],
+        energy: &mut [f64],
+        chunks: &mut [ChunkBuffers<T>],
+    ) {
+        let (n, cpc, half, m) = (job.ny, job.cols_per_chunk, self.half_len(), self.len);
+        cols.par_chunks_mut(n * cpc)
+            .zip(energy.par_chunks_mut(cpc))
+            .zip(chunks.par_iter_mut())
+            .enumerate()
+            .for_each(|(chunk, ((cols, energy), buffers))| {
+                for (t, (out, energies)) in cols
+                    .chunks_mut(n * PADDED_TILE)
+                    .zip(energy.chunks_mut(PADDED_TILE))
+                    .enumerate()
+                {
+                    let first_col = chunk * cpc + t * PADDED_TILE;
+                    let width = energies.len();
+                    let tile = &mut buffers.tile[..width * m];
+                    let kernel = &job.kernel[first_col * half..][..width * half];
+                    transpose(job.spectra, job.nxc, job.rows, first_col, width, tile, m);
+                    self.forward(tile, job.rows, &mut buffers.fft);
+                    if job.energy_only {
+                        for ((e, column), weights) in energies
+                            .iter_mut()
+                            .zip(tile.chunks(m))
+                            .zip(kernel.chunks(half))
+                        {
+                            *e = self.energy(column, weights);
+                        }
+                    } else {
+                        self.finish(tile, kernel, out, &mut buffers.fft);
+                    }
+                }
+            });
+    }
+
+    /// Forward transforms of the padded columns of `tile` (`m` values each, the first `rows`
+    /// set, the rest zeroed here).
+    fn forward(&self, tile: &mut [Complex<T>], rows: usize, scratch: &mut [Complex<T>]) {
+        for column in tile.chunks_mut(self.len) {
+            column[rows..].fill(Complex::new(T::zero(), T::zero()));
+        }
+        self.forward
+            .process_with_scratch(tile, &mut scratch[..self.forward.get_inplace_scratch_len()]);
+    }
+
+    /// Multiplies the forward-transformed columns of `tile` by their kernels `kernel`
+    /// (`m/2 + 1` values per column), transforms them back and writes the first `n` values of
+    /// each to the columns of `out` (`n` values each).
+    fn finish(
+        &self,
+        tile: &mut [Complex<T>],
+        kernel: &[T],
+        out: &mut [Complex<T>],
+        scratch: &mut [Complex<T>],
+    ) {
+        let m = self.len;
+        for (column, weights) in tile.chunks_mut(m).zip(kernel.chunks(self.half_len())) {
+            for (j, c) in column.iter_mut().enumerate() {
+                *c *= weights[j.min(m - j)];
+            }
+        }
+        self.inverse
+            .process_with_scratch(tile, &mut scratch[..self.inverse.get_inplace_scratch_len()]);
+        let n = out.len() / (tile.len() / m);
+        for (column, out) in tile.chunks(m).zip(out.chunks_mut(n)) {
+            out.copy_from_slice(&column[..n]);
+        }
+    }
+
+    /// `Σ_j E(j) |C(j)|²` of one forward-transformed column `column` with its kernel `weights`.
+    fn energy(&self, column: &[Complex<T>], weights: &[T]) -> f64 {
+        let m = self.len;
+        column
+            .iter()
+            .enumerate()
+            .map(|(j, &c)| weighted_norm(c, weights[j.min(m - j)]))
+            .sum()
+    }
+}
+
+impl PaddedColumns<f64> {
     /// The padded kernel `E(kx, 0..=m/2)` (layout `[kx][j]`) of the spectral kernel `spectral`
     /// (layout `[kx][ky]`, `n` values per column, normalisation included), whose columns are
     /// inverse-transformed by `column_inverse` (length `n`). The spectral kernel must be even
@@ -131,93 +221,6 @@ impl PaddedColumns {
                 },
             );
         Ok(padded)
-    }
-
-    /// The column pass of a convolution (or of its quadratic form, `job.energy_only`) through
-    /// padded columns: the output columns (`n` values each) go to `cols`, the quadratic forms of
-    /// the columns to `energy`. Chunked as the spectral pass, in tiles of [`PADDED_TILE`]
-    /// columns; every column is computed by the same code whatever the chunking.
-    pub(super) fn run(
-        &self,
-        job: PaddedPass<'_>,
-        cols: &mut [Complex<f64>],
-        energy: &mut [f64],
-        chunks: &mut [ChunkBuffers],
-    ) {
-        let (n, cpc, half, m) = (job.ny, job.cols_per_chunk, self.half_len(), self.len);
-        cols.par_chunks_mut(n * cpc)
-            .zip(energy.par_chunks_mut(cpc))
-            .zip(chunks.par_iter_mut())
-            .enumerate()
-            .for_each(|(chunk, ((cols, energy), buffers))| {
-                for (t, (out, energies)) in cols
-                    .chunks_mut(n * PADDED_TILE)
-                    .zip(energy.chunks_mut(PADDED_TILE))
-                    .enumerate()
-                {
-                    let first_col = chunk * cpc + t * PADDED_TILE;
-                    let width = energies.len();
-                    let tile = &mut buffers.tile[..width * m];
-                    let kernel = &job.kernel[first_col * half..][..width * half];
-                    transpose(job.spectra, job.nxc, job.rows, first_col, width, tile, m);
-                    self.forward(tile, job.rows, &mut buffers.fft);
-                    if job.energy_only {
-                        for ((e, column), weights) in energies
-                            .iter_mut()
-                            .zip(tile.chunks(m))
-                            .zip(kernel.chunks(half))
-                        {
-                            *e = self.energy(column, weights);
-                        }
-                    } else {
-                        self.finish(tile, kernel, out, &mut buffers.fft);
-                    }
-                }
-            });
-    }
-
-    /// Forward transforms of the padded columns of `tile` (`m` values each, the first `rows`
-    /// set, the rest zeroed here).
-    fn forward(&self, tile: &mut [Complex<f64>], rows: usize, scratch: &mut [Complex<f64>]) {
-        for column in tile.chunks_mut(self.len) {
-            column[rows..].fill(Complex::new(0.0, 0.0));
-        }
-        self.forward
-            .process_with_scratch(tile, &mut scratch[..self.forward.get_inplace_scratch_len()]);
-    }
-
-    /// Multiplies the forward-transformed columns of `tile` by their kernels `kernel`
-    /// (`m/2 + 1` values per column), transforms them back and writes the first `n` values of
-    /// each to the columns of `out` (`n` values each).
-    fn finish(
-        &self,
-        tile: &mut [Complex<f64>],
-        kernel: &[f64],
-        out: &mut [Complex<f64>],
-        scratch: &mut [Complex<f64>],
-    ) {
-        let m = self.len;
-        for (column, weights) in tile.chunks_mut(m).zip(kernel.chunks(self.half_len())) {
-            for (j, c) in column.iter_mut().enumerate() {
-                *c *= weights[j.min(m - j)];
-            }
-        }
-        self.inverse
-            .process_with_scratch(tile, &mut scratch[..self.inverse.get_inplace_scratch_len()]);
-        let n = out.len() / (tile.len() / m);
-        for (column, out) in tile.chunks(m).zip(out.chunks_mut(n)) {
-            out.copy_from_slice(&column[..n]);
-        }
-    }
-
-    /// `Σ_j E(j) |C(j)|²` of one forward-transformed column `column` with its kernel `weights`.
-    fn energy(&self, column: &[Complex<f64>], weights: &[f64]) -> f64 {
-        let m = self.len;
-        column
-            .iter()
-            .enumerate()
-            .map(|(j, c)| weights[j.min(m - j)] * c.norm_sqr())
-            .sum()
     }
 }
 

@@ -243,39 +243,104 @@ fn row_sinks_see_the_rows_of_the_result() {
     }
 }
 
-#[test]
-fn results_are_bit_identical_for_any_thread_count() {
-    // The chunking follows the rayon thread count; every 1-D transform must not.
+/// The bits of a convolution, its quadratic form, a round trip and a forward transform in the
+/// precision `T` on `threads` threads (odd block heights, so that packed rows leave a row
+/// without a partner, and a zero pair of rows).
+fn bits_on_threads<T: Real>(threads: usize) -> Vec<u64> {
     let (cols, rows, nx, ny) = (21, 35, 42, 70);
     let mut input = signal(cols, rows);
-    input[5 * cols..7 * cols].fill(0.0);
-    let kernel: Vec<f64> = signal(nx / 2 + 1, ny);
-    let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
-            let mut fft = RealFft2d::new(nx, ny);
-            let mut out = vec![0.0; cols * rows];
-            fft.convolve(&input, &kernel, &mut out, cols, rows).unwrap();
-            let energy = fft.start_convolve(&input, &kernel, cols, rows).unwrap();
-            out.push(energy);
-            let mut grid = signal(nx, ny);
-            fft.round_trip(&mut grid).unwrap();
-            out.extend(grid);
-            out.extend(
-                fft.forward(&signal(nx, ny))
-                    .unwrap()
-                    .iter()
-                    .map(|c| c.re + c.im),
-            );
-            out.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
-        })
-    };
-    let one = run(1);
+    input[6 * cols..8 * cols].fill(0.0);
+    let kernel: Vec<T> = signal(nx / 2 + 1, ny).into_iter().map(T::of).collect();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let mut fft = RealFft2d::<T>::in_precision(nx, ny, false);
+        let mut out = vec![0.0; cols * rows];
+        fft.convolve(&input, &kernel, &mut out, cols, rows).unwrap();
+        let energy = fft.start_convolve(&input, &kernel, cols, rows).unwrap();
+        out.push(energy);
+        let mut grid = signal(nx, ny);
+        fft.round_trip(&mut grid).unwrap();
+        out.extend(grid);
+        out.extend(
+            fft.forward(&signal(nx, ny))
+                .unwrap()
+                .iter()
+                .map(|c| (c.re + c.im).into()),
+        );
+        out.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+    })
+}
+
+#[test]
+fn results_are_bit_identical_for_any_thread_count() {
+    // The chunking follows the rayon thread count; every 1-D transform (in single precision
+    // every pair of rows) must not.
+    let (double, single) = (bits_on_threads::<f64>(1), bits_on_threads::<f32>(1));
     for threads in [2, 3] {
-        assert!(one == run(threads), "{threads} threads differ from 1");
+        assert!(
+            double == bits_on_threads::<f64>(threads),
+            "{threads} threads differ from 1"
+        );
+        assert!(
+            single == bits_on_threads::<f32>(threads),
+            "{threads} threads differ from 1 in single precision"
+        );
+    }
+}
+
+#[test]
+fn single_precision_matches_double_to_its_round_off() {
+    // Blocks with zero rows and odd heights (rows without a partner), full odd and even grids,
+    // padded columns (37 and 2 · 41 points): the single-precision convolution, its halves and
+    // its quadratic form against the double-precision ones. Bound: the round-off of f32
+    // (6e-8) in the input and kernel and through two transforms of length ≤ 164 (a few
+    // 6e-8 · log₂ 164 ≈ 4.4e-7), relative to the largest value.
+    for (cols, rows, nx, ny) in [
+        (6, 5, 12, 10),
+        (7, 9, 7, 9),
+        (8, 8, 8, 8),
+        (12, 37, 12, 37),
+        (5, 30, 9, 82),
+    ] {
+        let mut input = signal(cols, rows);
+        input[cols..2 * cols].fill(0.0);
+        let spectral = spectral_kernel(&mut RealFft2d::new(nx, ny), &even_stencil(nx, ny));
+        let mut double = RealFft2d::for_convolution(nx, ny);
+        let kernel = double.convolution_kernel(spectral).unwrap();
+        let rounded: Vec<f32> = kernel.iter().map(|&k| k as f32).collect();
+        let mut single = RealFft2d::<f32>::in_precision(nx, ny, true);
+        let mut expected = vec![0.0; cols * rows];
+        double
+            .convolve(&input, &kernel, &mut expected, cols, rows)
+            .unwrap();
+        let expected_energy = double.start_convolve(&input, &kernel, cols, rows).unwrap();
+        let mut whole = vec![0.0; cols * rows];
+        single
+            .convolve(&input, &rounded, &mut whole, cols, rows)
+            .unwrap();
+        let energy = single.start_convolve(&input, &rounded, cols, rows).unwrap();
+        let mut split = vec![0.0; cols * rows];
+        single
+            .finish_convolve(&rounded, &mut split, cols, rows)
+            .unwrap();
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&whole), bits(&split), "{nx}×{ny}");
+        let largest = expected.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        for (a, b) in whole.iter().zip(&expected) {
+            assert!((a - b).abs() < 2e-6 * largest, "{nx}×{ny}: {a} vs {b}");
+        }
+        let scale: f64 = input
+            .iter()
+            .zip(&expected)
+            .map(|(a, b)| (a * b).abs())
+            .sum();
+        assert!(
+            (energy - expected_energy).abs() < 2e-6 * scale,
+            "{nx}×{ny}: {energy} vs {expected_energy}"
+        );
     }
 }
 

@@ -12,7 +12,7 @@ use ndarray::Array2;
 /// Deterministic rough surface: a sum of `modes` random-phase cosines on integer wave numbers
 /// (periodic on the grid) with amplitudes `∝ |k|^(−1−H)`, H = 0.8, scaled to rms `sq` (m).
 /// Random numbers from a 64-bit LCG (Knuth's MMIX constants).
-fn rough_surface(n: usize, dx: f64, sq: f64, seed: u64, modes: usize) -> HeightMap {
+pub(super) fn rough_surface(n: usize, dx: f64, sq: f64, seed: u64, modes: usize) -> HeightMap {
     let mut state = seed
         .wrapping_mul(6364136223846793005)
         .wrapping_add(1442695040888963407);
@@ -93,7 +93,12 @@ fn hertz_sphere_on_non_periodic_grid() {
     assert!((mean - nominal).abs() < 1e-8 * nominal);
 }
 
-fn westergaard_problem(n: usize, amplitude: f64, e_star: f64, plim: f64) -> ContactProblem {
+pub(super) fn westergaard_problem(
+    n: usize,
+    amplitude: f64,
+    e_star: f64,
+    plim: f64,
+) -> ContactProblem {
     let dx = 1e-6;
     let lambda = n as f64 * dx;
     let z = Array2::from_shape_fn((4, n), |(_, ix)| {
@@ -314,7 +319,7 @@ fn results_do_not_depend_on_the_thread_count() {
 
 /// A 512² rough surface against a flat, steel on steel, elastic (no flow pressure): A/A₀ of a
 /// few per cent at 50 MPa.
-fn elastic_rough_contact() -> (CompositeGap, ContactMaterial) {
+pub(super) fn elastic_rough_contact() -> (CompositeGap, ContactMaterial) {
     let surface = rough_surface(512, 1e-6, 1e-6, 11, 400);
     let gap = CompositeGap::against_flat(&surface).unwrap();
     let material =

@@ -77,6 +77,10 @@
 //! Everything but the transforms (whose inputs are read from the lists) and, after a pending
 //! update, one dense pass over the points out of contact runs over explicit contact lists (see
 //! [`super::workspace`]).
+//!
+//! Mixed precision ([`CgSettings::mixed_precision`], `precision.rs`): the iteration may run on
+//! single-precision transforms first and ends in double precision, where every convergence is
+//! judged.
 
 use super::free_set::{self, FreeSetTask};
 use super::influence::InfluenceOperator;
@@ -85,6 +89,7 @@ use super::work::Work;
 use super::workspace::{ContactStats, FreeStats, Workspace};
 use crate::fft2::FftFailure;
 
+mod precision;
 mod step;
 
 /// The conjugation restarts (`β = 0`) when the points that entered the free set in the last step
@@ -154,6 +159,8 @@ pub(crate) struct CgSettings {
     pub default_step: f64,
     /// The conjugate directions are built from the preconditioned residual `M r` (module docs).
     pub precondition: bool,
+    /// Iterate on single-precision transforms first (`precision.rs`).
+    pub mixed_precision: bool,
 }
 
 /// Result of one solve.
@@ -181,6 +188,7 @@ pub(crate) fn solve(
         match cg.decide(&m) {
             Decision::Stop(termination) => return cg.finish(termination, &m),
             Decision::Confirm => cg.confirm(&m),
+            Decision::Double => cg.end_single_phase(&m),
             Decision::Step if cg.free_set_applies(&m) => cg.free_set_tail(&m)?,
             Decision::Step => cg.next_iter(&m)?,
         }
@@ -204,6 +212,9 @@ enum Decision {
     /// The residuals meet the tolerance on an incrementally updated `u`: recompute `u = K p` and
     /// measure again.
     Confirm,
+    /// The single-precision phase ends: recompute `u = K p` in double precision and measure
+    /// again.
+    Double,
     Step,
 }
 
@@ -227,6 +238,8 @@ struct ConstrainedCg<'a> {
     free_set_mark: f64,
     /// `u` was recomputed from `p` at this iterate (not only updated incrementally).
     u_fresh: bool,
+    /// The transforms are in single precision (`precision.rs`).
+    single: bool,
     displacement: Displacement,
     /// Σ p over the contact lists (`p` vanishes off them).
     p_sum: f64,
@@ -264,6 +277,7 @@ impl<'a> ConstrainedCg<'a> {
         let p_sum = ws.free_stats().total();
         let n = ws.len() as f64;
         let start_transforms = op.transforms();
+        let single = precision::start(settings, op);
         Self {
             ws,
             op,
@@ -276,6 +290,7 @@ impl<'a> ConstrainedCg<'a> {
             free_set_iterations: 0,
             free_set_mark: f64::INFINITY,
             u_fresh: false,
+            single,
             displacement: Displacement::Stale,
             p_sum,
             delta_prev: 0.0,
@@ -380,6 +395,9 @@ impl<'a> ConstrainedCg<'a> {
     /// The convergence criterion (every residual ≤ the tolerance on a recomputed `u`) and the
     /// stopping rules of the module docs.
     fn decide(&mut self, m: &Measurement) -> Decision {
+        if self.single {
+            return self.decide_single(m);
+        }
         let r = m.residuals.max();
         let settings = self.settings;
         if !r.is_finite() {
