@@ -281,10 +281,8 @@ impl<'a> Reader<'a> {
 
     /// A count or length (a varint), at most the bytes left (every item takes at least one byte).
     fn len(&mut self) -> Result<usize, String> {
-        self.varint()?
-            .try_into()
-            .ok()
-            .filter(|&n: &usize| n <= self.0.len())
+        Some(self.varint()?)
+            .filter(|&n| n <= self.0.len())
             .ok_or_else(|| String::from("length beyond the end"))
     }
 
