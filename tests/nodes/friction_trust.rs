@@ -2,7 +2,7 @@
 //! the contact's reason; a row with more than half its load beyond its law's fit, without a
 //! radius or on merged spots is flagged with that share; no row is `ok` with μ_s above what its
 //! law describes, over loads from 1e-6·H to 0.95·H; adhesion carrying more than half the load is
-//! flagged.
+//! flagged; so is a ploughing row with more than half its load beyond the ploughing regime.
 
 use crate::nodes_common;
 use asperity::engine::execute::{NodeOutcome, RunReport};
@@ -173,4 +173,56 @@ fn adhesion_carrying_most_of_the_load_is_flagged() {
         .flags
         .iter()
         .any(|f| f.contains("adhesion carries more than half")));
+}
+
+/// A hard rough bearing steel on a soft aluminium flat (the rough body ploughs) with the
+/// ploughing regime's bound far below and far above its spots' degrees of penetration.
+const REGIME: &str = r#"
+study: regime
+nodes:
+  rough:
+    surface:
+      synthetic: {grid: [64, 64], size: [64 um, 64 um], sq: 0.4 um, hurst: 0.8,
+                  correlation_length: 16 um, seed: 5}
+  smooth:
+    surface:
+      synthetic: {grid: [64, 64], size: [64 um, 64 um], sq: 2 nm, hurst: 0.8,
+                  correlation_length: 16 um, seed: 6}
+  pair:
+    contact: {lower: rough, upper: smooth, lower_material: aisi52100,
+              upper_material: al6061-t6, nominal_pressures: [20 MPa], fields: true}
+  tight:
+    friction: {model: {ploughing: {penetration_limit: 0.001}}, contact: pair,
+               lower_material: aisi52100, upper_material: al6061-t6}
+  loose:
+    friction: {model: {ploughing: {penetration_limit: 10}}, contact: pair,
+               lower_material: aisi52100, upper_material: al6061-t6}
+"#;
+
+#[test]
+fn a_row_with_most_load_beyond_the_ploughing_regime_is_flagged() {
+    let (plan, report) = run(REGIME, "regime");
+    let contact = &outcomes(&plan, &report, "contact")[0];
+    assert!(contact.flags.is_empty(), "{:?}", contact.flags);
+    let node = |name: &str| {
+        plan.nodes
+            .iter()
+            .zip(&report.outcomes)
+            .find(|(n, _)| n.names.iter().any(|m| m == name))
+            .and_then(|(_, o)| o.as_ref())
+            .unwrap()
+    };
+    let (tight, loose) = (node("tight"), node("loose"));
+    let regime = |row: &NodeOutcome| {
+        row.flags
+            .iter()
+            .any(|f| f.contains("load_share_outside_regime") && f.contains("ploughing regime"))
+    };
+    let share = float(tight, "load_share_outside_regime");
+    assert!(share > 0.5, "{share}");
+    assert!(regime(tight), "{:?}", tight.flags);
+    assert_eq!(float(loose, "load_share_outside_regime"), 0.0);
+    assert!(!regime(loose), "{:?}", loose.flags);
+    // The bound only says how far to trust the row: the coefficient is the same.
+    assert_eq!(float(tight, "mu_s"), float(loose, "mu_s"));
 }

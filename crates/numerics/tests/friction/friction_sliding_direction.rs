@@ -140,7 +140,8 @@ fn angle_moves_mu_only_within_the_spread_on_isotropic_surfaces() {
 
 #[test]
 fn attack_slope_and_groove_grow_as_the_sampling_interval_shrinks() {
-    // One surface sampled at 4, 2 and 1 µm (docs/friction-models.md has the table).
+    // One surface sampled at 4, 2 and 1 µm (docs/friction-models.md, "Checks on the production
+    // path"; the ground validation's resolution series is in docs/studies.md).
     let fine = surface(512, 3, None);
     let mut rows = Vec::new();
     for step in [4usize, 2, 1] {
