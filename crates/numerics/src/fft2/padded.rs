@@ -26,7 +26,7 @@ use realfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
 use super::fast_length::{fast_even_length, has_slow_factor};
-use super::passes::weighted_norm;
+use super::real::weighted_norm;
 use super::transpose::transpose;
 use super::{ChunkBuffers, FftFailure, Real};
 

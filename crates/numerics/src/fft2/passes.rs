@@ -9,6 +9,7 @@ use realfft::{ComplexToReal, RealToComplex};
 use rustfft::Fft;
 
 use super::padded::PaddedPass;
+use super::real::weighted_norm;
 use super::rows_pass::{forward_pair, inverse_pair, RowPlan};
 use super::transpose::transpose;
 use super::{
@@ -374,11 +375,4 @@ fn packed_inverse<T: Real, S: RowSink>(
             tile.emit(2 * j + 1, io_b, sink);
         }
     }
-}
-
-/// `w |c|²` in `f64` (a single-precision square can overflow where the quadratic form does not),
-/// with the operations of `w * c.norm_sqr()` in double precision.
-pub(super) fn weighted_norm<T: Real>(c: Complex<T>, w: T) -> f64 {
-    let (re, im): (f64, f64) = (c.re.into(), c.im.into());
-    w.into() * (re * re + im * im)
 }

@@ -97,3 +97,10 @@ impl Real for f32 {
         Ok(())
     }
 }
+
+/// `w |c|²` in `f64` (a single-precision square can overflow where the quadratic form does not),
+/// with the operations of `w * c.norm_sqr()` in double precision.
+pub(super) fn weighted_norm<T: Real>(c: Complex<T>, w: T) -> f64 {
+    let (re, im): (f64, f64) = (c.re.into(), c.im.into());
+    w.into() * (re * re + im * im)
+}
