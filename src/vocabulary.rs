@@ -3,6 +3,8 @@
 //! neither side, so the report reads results without importing the node kinds
 //! (`tests/engine/architecture.rs`) and a renamed column cannot leave the report behind.
 
+pub mod all;
+
 /// Node kinds: the `kind` of a task, the cache folder of its entries.
 pub mod kinds {
     /// The `surface` node kind.
@@ -216,6 +218,12 @@ pub mod metrics {
     pub const HARDNESS: &str = "hardness";
     /// Poisson ratio of the softer body.
     pub const POISSON_RATIO: &str = "poisson_ratio";
+    /// Yield strength Y of the softer body (Pa), as the stick laws report it (the numerics'
+    /// law registry spells it too: it knows no application vocabulary).
+    pub const YIELD_STRENGTH: &str = "yield_strength";
+    /// Shear strength k of the softer body (Pa), as junction shear reports it (spelt in the
+    /// numerics' law registry too).
+    pub const SHEAR_STRENGTH: &str = "shear_strength";
     /// Adhesion energy Δγ (N/m).
     pub const ADHESION_ENERGY: &str = "adhesion_energy";
     /// Lennard-Jones equilibrium distance ε (m).
@@ -311,6 +319,8 @@ pub mod contact_metrics {
 
 /// Columns of a friction node's `spots` table (`friction_spots`, one row per contact spot).
 pub mod spot_columns {
+    /// The prefix of a Python per-spot result's list of one of these columns (`spot_area_m2`).
+    pub const LIST_PREFIX: &str = "spot_";
     /// Spot id.
     pub const SPOT: &str = "spot";
     /// Column of the highest point.
@@ -364,6 +374,9 @@ pub mod spot_columns {
 /// Columns of a friction node's `summits` table (`friction_summits`, one row per summit) and of
 /// a surface's (`surfaces_summits`: ix, iy, x, y, height, slope, radius).
 pub mod summit_columns {
+    /// The prefix of a Python per-summit result's list of one of these columns
+    /// (`summit_radius_m`).
+    pub const LIST_PREFIX: &str = "summit_";
     /// Column index.
     pub const IX: &str = "ix";
     /// Row index.

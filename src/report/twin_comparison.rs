@@ -7,6 +7,8 @@
 //! sample standard deviation over the replicates (seeds) against the measured value, one point
 //! per group of the other swept parameters (e.g. per file), with the line of equality.
 
+use crate::engine::value::column_name;
+use crate::units::Dimension;
 use crate::vocabulary::surface_parameters::{twin_of_blake3, FILE_BLAKE3, SOURCE};
 use crate::vocabulary::{kinds, metrics, roles};
 
@@ -40,7 +42,7 @@ pub fn twin_comparison(scenarios: &ScenarioSet, tables: &[NodeTable]) -> Option<
             table: surfaces,
             measured,
             twin,
-            column: format!("{}_m", metrics::SUMMIT_MEAN_RADIUS),
+            column: column_name(metrics::SUMMIT_MEAN_RADIUS, Dimension::Length),
         });
         let contacts = of_kind(kinds::CONTACT).and_then(|c| {
             let on = |surface| {

@@ -331,7 +331,7 @@ pub const RULES: &[ColumnRule] = &[
             m::REAL_AREA,
             m::CONTACTS,
             m::PLASTICITY_INDEX,
-            "shear_strength",
+            m::SHEAR_STRENGTH,
             m::SPOT_AREA_P10,
             m::SPOT_AREA_MEDIAN,
             m::SPOT_AREA_P90,
