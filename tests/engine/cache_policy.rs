@@ -193,7 +193,7 @@ fn identical_arrays_of_an_entry_are_stored_once() {
         .unwrap());
     let entry = cache.load("test", &key, true).unwrap().unwrap();
     assert_eq!(entry.artifact.arrays.len(), 2);
-    assert!(entry.artifact.arrays.values().all(|a| a == &map));
+    assert!(entry.artifact.arrays.values().all(|a| *a == map));
     let files = cache.entry_dir("test", &key);
     assert!(files.join("a.npy.zst").exists());
     assert!(!files.join("b.npy.zst").exists() && !files.join("left_out.npy.zst").exists());

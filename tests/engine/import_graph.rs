@@ -75,7 +75,7 @@ fn use_tree_paths(tokens: &[String], mut i: usize) -> (Vec<ModulePath>, usize) {
             ";" => break,
             "{" => {
                 let mut base = prefix_stack.last().unwrap().clone();
-                base.extend(current.drain(..));
+                base.append(&mut current);
                 prefix_stack.push(base);
             }
             "}" => {
