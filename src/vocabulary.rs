@@ -3,6 +3,8 @@
 //! neither side, so the report reads results without importing the node kinds
 //! (`tests/engine/architecture.rs`) and a renamed column cannot leave the report behind.
 
+pub mod all;
+
 /// Node kinds: the `kind` of a task, the cache folder of its entries.
 pub mod kinds {
     /// The `surface` node kind.
@@ -31,9 +33,14 @@ pub mod tables {
     pub const MATERIAL_RATIO: &str = "material_ratio";
     /// The engine's `<table>_<own table>` for [`MATERIAL_RATIO`] of [`SURFACES`].
     pub const SURFACES_MATERIAL_RATIO: &str = "surfaces_material_ratio";
+    /// A surface's own table of its radially averaged autocorrelation (`surfaces_acf`).
+    pub const ACF: &str = "acf";
+    /// A surface's own table of its radially averaged power spectral density (`surfaces_psd`).
+    pub const PSD: &str = "psd";
     /// A friction node's own table of its contact spots (`friction_spots`).
     pub const SPOTS: &str = "spots";
-    /// A friction node's own table of its summits (`friction_summits`).
+    /// A friction node's own table of its summits (`friction_summits`); a surface's own table of
+    /// its identified summits (`surfaces_summits`).
     pub const SUMMITS: &str = "summits";
     /// A statistical friction node's own table of its μ(F) curve (`friction_curve`).
     pub const CURVE: &str = "curve";
@@ -211,6 +218,12 @@ pub mod metrics {
     pub const HARDNESS: &str = "hardness";
     /// Poisson ratio of the softer body.
     pub const POISSON_RATIO: &str = "poisson_ratio";
+    /// Yield strength Y of the softer body (Pa), as the stick laws report it (the numerics'
+    /// law registry spells it too: it knows no application vocabulary).
+    pub const YIELD_STRENGTH: &str = "yield_strength";
+    /// Shear strength k of the softer body (Pa), as junction shear reports it (spelt in the
+    /// numerics' law registry too).
+    pub const SHEAR_STRENGTH: &str = "shear_strength";
     /// Adhesion energy Δγ (N/m).
     pub const ADHESION_ENERGY: &str = "adhesion_energy";
     /// Lennard-Jones equilibrium distance ε (m).
@@ -235,8 +248,79 @@ pub mod metrics {
     pub const SPOTS_TABLE: &str = "spots_table";
 }
 
+/// The resolved parameters of a surface node (its key fields; columns of `surfaces`).
+pub mod surface_parameters;
+
+/// What a surface node measures on its heights (columns of `surfaces` beyond
+/// [`super::metrics`]' shared ones).
+pub mod surface_metrics;
+
+/// What a twin surface reports of its model and calibration (columns of `surfaces`).
+pub mod twin_metrics;
+
+/// Columns of a surface's `psd` table (`surfaces_psd`).
+pub mod psd_columns {
+    /// Wavenumber q (rad/m).
+    pub const Q: &str = "q_rad_per_m";
+    /// Radially averaged PSD C(q) (m⁴).
+    pub const C: &str = "c_m4";
+}
+
+/// Columns of a surface's `acf` table (`surfaces_acf`).
+pub mod acf_columns {
+    /// Lag r (m).
+    pub const R: &str = "r";
+    /// Radially averaged autocorrelation, normalised to 1 at r = 0.
+    pub const ACF: &str = "acf";
+}
+
+/// Columns of a surface's `material_ratio` table (`surfaces_material_ratio`).
+pub mod material_ratio_columns {
+    /// Material ratio (%).
+    pub const MATERIAL_RATIO_PERCENT: &str = "material_ratio_percent";
+    /// Height at that ratio (m).
+    pub const HEIGHT: &str = "height";
+}
+
+/// The resolved parameters of a contact node (its key fields; columns of `contacts`).
+pub mod contact_parameters {
+    /// Flow pressure of the softer body (Pa).
+    pub const FLOW_PRESSURE: &str = "flow_pressure";
+    /// Whether the surfaces are periodic.
+    pub const PERIODIC: &str = "periodic";
+    /// Relative tolerance of the solver.
+    pub const TOLERANCE: &str = "tolerance";
+    /// Whether the final step's fields are kept.
+    pub const FIELDS: &str = "fields";
+    /// Young's modulus of a body (Pa), after its side ([`lower`](super::roles::LOWER)
+    /// or [`upper`](super::roles::UPPER)).
+    pub const YOUNGS_MODULUS: &str = "youngs_modulus";
+
+    /// A body's material column: `<side>_<name>` (`lower_youngs_modulus`).
+    pub fn of_side(side: &str, name: &str) -> String {
+        format!("{side}_{name}")
+    }
+}
+
+/// What a contact node reports of its final step (columns of `contacts` and
+/// `contacts_load_curve` beyond [`super::metrics`]' shared ones).
+pub mod contact_metrics {
+    /// Share of the contact area at the flow pressure.
+    pub const PLASTIC_AREA_SHARE: &str = "plastic_area_share";
+    /// Mean separation of the deformed surfaces (m).
+    pub const MEAN_SEPARATION: &str = "mean_separation";
+    /// Largest elastic deformation (m).
+    pub const MAX_ELASTIC_DEFORMATION: &str = "max_elastic_deformation";
+    /// Iterations on the coarse grid.
+    pub const COARSE_ITERATIONS: &str = "coarse_iterations";
+    /// Iterations of the free-set (plastic) loop.
+    pub const FREE_SET_ITERATIONS: &str = "free_set_iterations";
+}
+
 /// Columns of a friction node's `spots` table (`friction_spots`, one row per contact spot).
 pub mod spot_columns {
+    /// The prefix of a Python per-spot result's list of one of these columns (`spot_area_m2`).
+    pub const LIST_PREFIX: &str = "spot_";
     /// Spot id.
     pub const SPOT: &str = "spot";
     /// Column of the highest point.
@@ -287,8 +371,12 @@ pub mod spot_columns {
     pub const REGIME: &str = "regime";
 }
 
-/// Columns of a friction node's `summits` table (`friction_summits`, one row per summit).
+/// Columns of a friction node's `summits` table (`friction_summits`, one row per summit) and of
+/// a surface's (`surfaces_summits`: ix, iy, x, y, height, slope, radius).
 pub mod summit_columns {
+    /// The prefix of a Python per-summit result's list of one of these columns
+    /// (`summit_radius_m`).
+    pub const LIST_PREFIX: &str = "summit_";
     /// Column index.
     pub const IX: &str = "ix";
     /// Row index.
@@ -301,6 +389,8 @@ pub mod summit_columns {
     pub const HEIGHT: &str = "height";
     /// Summit radius (m).
     pub const RADIUS: &str = "radius";
+    /// Surface slope at the summit (`surfaces_summits`).
+    pub const SLOPE: &str = "slope";
     /// Interference ω (m).
     pub const INTERFERENCE: &str = "interference";
     /// x = ω/ω_c.

@@ -123,7 +123,9 @@ def synthetic_twin(
 ) -> Tuple[F64, float, float, Dict[str, Any]]:
     """A synthetic twin of measured surfaces (complete maps: :class:`Topography` objects or
     ``(heights, dx, dy)`` in m) on ``grid`` over ``size`` (m), at Sq ``sq`` (m, or
-    ``"measured"``). Returns ``(heights, dx, dy, info)``.
+    ``"measured"``). Returns ``(heights, dx, dy, info)``; ``info`` is keyed by the names of the
+    twin's columns in a study's ``surfaces`` table (``twin_sq_m``, ``twin_hurst``, …;
+    ``twin_warnings`` a list of sentences).
 
     ``spectrum="self_affine"`` (default): their texture (correlation lengths at ACF ``threshold``,
     Hurst exponent) fitted against Sq and predicted at ``sq`` (``"measured"``: the maps'

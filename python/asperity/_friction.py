@@ -161,9 +161,11 @@ def static_friction(
     and ε in m (defaults as in a study).
 
     Returns one dict per pressure: ``mu_s`` (never negative; None at a non-compressive load),
-    ``mu_s_computed`` and ``mu_s_floored``, the contact and friction forces (N), real contact
-    area (m²), d*, plasticity index, contacting summits and the load beyond the friction law's
-    validated range.
+    ``mu_s_computed`` and ``mu_s_floored``, the forces ``normal_load_N``, ``external_load_N``,
+    ``adhesion_force_N`` and ``friction_force_N``, ``real_area_m2``, ``d_star``, ``separation_m``,
+    ``plasticity_index``, the number of contacting summits ``contacts`` and the share of the
+    load beyond the friction law's validated range ``load_share_beyond_fit`` (the names of the
+    ``friction`` table).
     """
     e, h, nu, y, k = _friction_material(material, composite_modulus, hardness, poisson_ratio)
     m, s, area = _roughness(moments, summits, surface, nominal_area)
@@ -182,7 +184,7 @@ def static_friction(
         *_law_options(parameters, yield_strength, shear_strength, y, k),
     )
     for row in rows:
-        warn(summit_sentences(row["contacting_summits"], row["nominal_pressure_Pa"]))
+        warn(summit_sentences(row["contacts"], row["nominal_pressure_Pa"]))
     return cast(List[StaticFrictionRow], rows)
 
 
@@ -245,11 +247,13 @@ def per_spot_friction(
     along ``parameters["sliding_direction"]`` (an angle with its unit, e.g. ``"30 deg"``).
 
     Returns ``mu_s`` (never negative; None without a compressive net force), ``mu_s_computed``,
-    ``mu_s_floored``, ``mu_deformation``, the totals (N, m²), the adhesion force (N), the loads
+    ``mu_s_floored``, ``mu_deformation``, the totals ``normal_load_N``, ``friction_force_N``,
+    ``deformation_force_N``, ``real_area_m2`` and ``adhesion_force_N``, the shares of the load
     beyond the law's validated range, without a radius, on merged spots and beyond the ploughing
-    regime, for ploughing ``ploughing_body`` and ``mu_deformation_slope_baseline``, and per spot
-    ``spot_load_N``, ``spot_area_m2``, ``spot_radius_m`` (None without a convex fit),
-    ``spot_summits``, ``spot_friction_N`` and ``spot_deformation_N``.
+    regime (``load_share_beyond_fit``, ``load_share_without_radius``, ``load_share_merged``,
+    ``load_share_outside_regime``), for ploughing ``ploughing_body`` and ``mu_deformation_slope_baseline``, and per spot
+    ``spot_normal_force_N``, ``spot_area_m2``, ``spot_radius_m`` (None without a convex fit),
+    ``spot_summits``, ``spot_friction_force_N`` and ``spot_deformation_force_N``.
     """
     fields = _contact_fields(result, ("pressure", "gap", "deformation_lower", "plastic_penetration"))
     t, _ = as_topography("composite_height", composite_height, dx, dy)
@@ -321,7 +325,8 @@ def per_summit_friction(
     :func:`static_friction`.
 
     Returns ``mu_s`` (never negative; None without a compressive net force), ``mu_s_computed``,
-    ``mu_s_floored``, the totals (N), the load beyond the laws' validated range and per summit
+    ``mu_s_floored``, the totals ``normal_load_N``, ``adhesion_force_N`` and ``friction_force_N``,
+    the share of the load beyond the laws' validated range ``load_share_beyond_fit`` and per summit
     ``summit_radius_m``, ``summit_interference_m`` (m, < 0: a gap), ``summit_normal_force_N``,
     ``summit_friction_force_N`` and ``summit_adhesion_force_N``.
     """

@@ -3,8 +3,10 @@ type checker sees every key and its type. The keys are the tables' column names 
 unit) where a table has the quantity; this module is the one place the Python package spells
 them (a test compares every result's keys with these definitions).
 
-Keys that are not identifiers (``m0_m^2``) use the functional form; keys present only for some
-inputs (spectral statistics of complete maps, the upper body's deformation) are not required.
+Every key is a Python identifier (the unit suffixes are ``_m2``, ``_per_m2``, ``_N_per_m``, …);
+the spectral statistics use the functional form because one of them is called ``str``. Keys
+present only for some inputs (spectral statistics of complete maps, the upper body's deformation)
+are not required.
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ F64 = npt.NDArray[np.float64]
 I64 = npt.NDArray[np.int64]
 
 #: The keys of the isotropic spectral moments m0 (m²), m2 and m4 (m⁻²) in :class:`SurfaceStatistics`.
-MOMENT_KEYS = ("m0_m^2", "m2", "m4_m^-2")
+MOMENT_KEYS = ("m0_m2", "m2", "m4_per_m2")
 
 # ---------------------------------------------------------------- studies
 
@@ -38,16 +40,16 @@ class StudyCounts(TypedDict):
 _SurfaceSpectral = TypedDict(
     "_SurfaceSpectral",
     {
-        "m0_m^2": float,
+        "m0_m2": float,
         "m2": float,
-        "m4_m^-2": float,
-        "m0_x_m^2": float,
+        "m4_per_m2": float,
+        "m0_x_m2": float,
         "m2_x": float,
-        "m4_x_m^-2": float,
-        "m0_y_m^2": float,
+        "m4_x_per_m2": float,
+        "m0_y_m2": float,
         "m2_y": float,
-        "m4_y_m^-2": float,
-        "gw_summit_density_m^-2": float,
+        "m4_y_per_m2": float,
+        "gw_summit_density_per_m2": float,
         "gw_summit_radius_m": float,
         "gw_sigma_s_m": float,
         "gw_y_s_m": float,
@@ -73,7 +75,7 @@ _SurfaceSpectral = TypedDict(
 )
 
 
-_SurfaceDensity = TypedDict("_SurfaceDensity", {"summit_density_m^-2": float})
+_SurfaceDensity = TypedDict("_SurfaceDensity", {"summit_density_per_m2": float})
 
 
 class SurfaceStatistics(_SurfaceDensity, _SurfaceSpectral):
@@ -241,16 +243,16 @@ class StaticFrictionRow(_Coefficient):
     """:func:`asperity.static_friction`: the result at one nominal pressure."""
 
     nominal_pressure_Pa: float
-    static_friction_force_N: float
+    friction_force_N: float
     external_load_N: float
-    contact_load_N: float
+    normal_load_N: float
     adhesion_force_N: float
-    real_contact_area_m2: float
+    real_area_m2: float
     d_star: float
-    separation_from_heights_m: float
+    separation_m: float
     plasticity_index: float
-    contacting_summits: float
-    load_beyond_fit_N: float
+    contacts: float
+    load_share_beyond_fit: float
 
 
 class _Ploughing(TypedDict, total=False):
@@ -264,32 +266,32 @@ class PerSpotResult(_Coefficient, _Ploughing):
     """:func:`asperity.per_spot_friction`: the totals and one list entry per contact spot."""
 
     mu_deformation: Optional[float]
-    total_normal_force_N: float
-    total_friction_force_N: float
-    total_deformation_force_N: float
-    total_area_m2: float
+    normal_load_N: float
+    friction_force_N: float
+    deformation_force_N: float
+    real_area_m2: float
     adhesion_force_N: float
-    load_beyond_fit_N: float
-    load_without_radius_N: float
-    load_merged_N: float
-    load_outside_regime_N: float
+    load_share_beyond_fit: float
+    load_share_without_radius: float
+    load_share_merged: float
+    load_share_outside_regime: float
     spot_count: int
     spots_without_radius: int
-    spot_load_N: List[float]
+    spot_normal_force_N: List[float]
     spot_area_m2: List[float]
     spot_radius_m: List[Optional[float]]
     spot_summits: List[int]
-    spot_friction_N: List[float]
-    spot_deformation_N: List[float]
+    spot_friction_force_N: List[float]
+    spot_deformation_force_N: List[float]
 
 
 class PerSummitResult(_Coefficient):
     """:func:`asperity.per_summit_friction`: the totals and one list entry per summit."""
 
-    total_normal_force_N: float
-    total_adhesion_force_N: float
-    total_friction_force_N: float
-    load_beyond_fit_N: float
+    normal_load_N: float
+    adhesion_force_N: float
+    friction_force_N: float
+    load_share_beyond_fit: float
     summit_count: int
     summit_radius_m: List[float]
     summit_interference_m: List[float]

@@ -29,7 +29,16 @@ use pyo3::types::PyDict;
 
 use crate::guard::{compute, value_error};
 use crate::laws::{parameter_value, Parameter};
-use crate::row::set_coefficient;
+use crate::row::{key, set_coefficient, set_field, spot, summit};
+use asperity::nodes::{beyond_fit_field, share};
+use asperity::units::Dimension::{Area, Dimensionless, Force, Length, Pressure};
+use asperity::vocabulary::metrics::{
+    ADHESION_FORCE, CONTACTS, D_STAR, EXTERNAL_LOAD, FRICTION_FORCE, LOAD_SHARE_MERGED,
+    LOAD_SHARE_OUTSIDE_REGIME, LOAD_SHARE_WITHOUT_RADIUS, MU_DEFORMATION,
+    MU_DEFORMATION_SLOPE_BASELINE, NOMINAL_PRESSURE, NORMAL_LOAD, PLASTICITY_INDEX, PLOUGHING_BODY,
+    REAL_AREA, SEPARATION, SPOTS_WITHOUT_RADIUS, SPOT_COUNT, SUMMIT_COUNT,
+};
+use asperity::vocabulary::{spot_columns as spots, summit_columns as summits};
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(static_friction, m)?)?;
@@ -168,18 +177,18 @@ fn static_friction<'py>(
         .map(|(r, p)| {
             let r = r.map_err(|e| value_error("nominal_pressures", format!("at {p:e} Pa: {e}")))?;
             let d = PyDict::new(py);
-            d.set_item("nominal_pressure_Pa", p)?;
+            d.set_item(key(NOMINAL_PRESSURE, Pressure), p)?;
             set_coefficient(&d, r.mu_s)?;
-            d.set_item("static_friction_force_N", r.static_friction_force)?;
-            d.set_item("external_load_N", r.external_load)?;
-            d.set_item("contact_load_N", r.contact_load)?;
-            d.set_item("adhesion_force_N", r.adhesion_force)?;
-            d.set_item("real_contact_area_m2", r.real_contact_area)?;
-            d.set_item("d_star", r.d_star)?;
-            d.set_item("separation_from_heights_m", r.separation_from_heights)?;
-            d.set_item("plasticity_index", r.plasticity_index)?;
-            d.set_item("contacting_summits", r.contacting_summits)?;
-            d.set_item("load_beyond_fit_N", r.load_beyond_fit)?;
+            d.set_item(key(FRICTION_FORCE, Force), r.static_friction_force)?;
+            d.set_item(key(EXTERNAL_LOAD, Force), r.external_load)?;
+            d.set_item(key(NORMAL_LOAD, Force), r.contact_load)?;
+            d.set_item(key(ADHESION_FORCE, Force), r.adhesion_force)?;
+            d.set_item(key(REAL_AREA, Area), r.real_contact_area)?;
+            d.set_item(D_STAR, r.d_star)?;
+            d.set_item(key(SEPARATION, Length), r.separation_from_heights)?;
+            d.set_item(PLASTICITY_INDEX, r.plasticity_index)?;
+            d.set_item(CONTACTS, r.contacting_summits)?;
+            set_field(&d, beyond_fit_field(r.load_beyond_fit, r.contact_load))?;
             Ok(d)
         })
         .collect()
@@ -291,41 +300,51 @@ fn spot_dict<'py>(py: Python<'py>, found: &SectionFriction) -> PyResult<Bound<'p
     let net = result.total_normal_force - result.adhesion_force;
     set_coefficient(&d, result.mu_s)?;
     d.set_item(
-        "mu_deformation",
+        MU_DEFORMATION,
         result.mu_s.map(|_| result.total_deformation_force / net),
     )?;
-    d.set_item("total_normal_force_N", result.total_normal_force)?;
-    d.set_item("total_friction_force_N", result.total_friction_force)?;
-    d.set_item("total_deformation_force_N", result.total_deformation_force)?;
-    d.set_item("total_area_m2", result.total_area)?;
-    d.set_item("adhesion_force_N", result.adhesion_force)?;
-    d.set_item("load_beyond_fit_N", result.load_beyond_fit)?;
-    d.set_item("load_without_radius_N", result.load_without_radius)?;
-    d.set_item("load_merged_N", result.load_merged)?;
-    d.set_item("load_outside_regime_N", result.load_outside_regime)?;
-    d.set_item("spot_count", spots.len())?;
-    d.set_item("spots_without_radius", result.spots_without_radius)?;
+    let load = result.total_normal_force;
+    d.set_item(key(NORMAL_LOAD, Force), load)?;
+    d.set_item(key(FRICTION_FORCE, Force), result.total_friction_force)?;
+    d.set_item(
+        key(spots::DEFORMATION_FORCE, Force),
+        result.total_deformation_force,
+    )?;
+    d.set_item(key(REAL_AREA, Area), result.total_area)?;
+    d.set_item(key(ADHESION_FORCE, Force), result.adhesion_force)?;
+    set_field(&d, beyond_fit_field(result.load_beyond_fit, load))?;
+    d.set_item(
+        LOAD_SHARE_WITHOUT_RADIUS,
+        share(result.load_without_radius, load),
+    )?;
+    d.set_item(LOAD_SHARE_MERGED, share(result.load_merged, load))?;
+    d.set_item(
+        LOAD_SHARE_OUTSIDE_REGIME,
+        share(result.load_outside_regime, load),
+    )?;
+    d.set_item(SPOT_COUNT, spots.len())?;
+    d.set_item(SPOTS_WITHOUT_RADIUS, result.spots_without_radius)?;
     if let Some(geometry) = &found.geometry {
-        d.set_item("ploughing_body", geometry.ploughing.name())?;
-        d.set_item("mu_deformation_slope_baseline", geometry.slope_baseline)?;
+        d.set_item(PLOUGHING_BODY, geometry.ploughing.name())?;
+        d.set_item(MU_DEFORMATION_SLOPE_BASELINE, geometry.slope_baseline)?;
     }
     let column = |f: &dyn Fn(usize) -> f64| (0..spots.len()).map(f).collect::<Vec<f64>>();
-    d.set_item("spot_load_N", column(&|i| spots[i].load))?;
-    d.set_item("spot_area_m2", column(&|i| spots[i].area))?;
+    d.set_item(spot(spots::NORMAL_FORCE, Force), column(&|i| spots[i].load))?;
+    d.set_item(spot(spots::AREA, Area), column(&|i| spots[i].area))?;
     d.set_item(
-        "spot_radius_m",
+        spot(spots::RADIUS, Length),
         spots.iter().map(|s| s.radius).collect::<Vec<_>>(),
     )?;
     d.set_item(
-        "spot_summits",
+        spot(spots::SUMMITS, Dimensionless),
         spots.iter().map(|s| s.summits).collect::<Vec<_>>(),
     )?;
     d.set_item(
-        "spot_friction_N",
+        spot(spots::FRICTION_FORCE, Force),
         column(&|i| result.spots[i].friction_force),
     )?;
     d.set_item(
-        "spot_deformation_N",
+        spot(spots::DEFORMATION_FORCE, Force),
         column(&|i| result.spots[i].deformation_force),
     )?;
     Ok(d)
@@ -435,22 +454,34 @@ fn summit_dict<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     set_coefficient(&d, result.mu_s)?;
-    d.set_item("total_normal_force_N", result.total_normal_force)?;
-    d.set_item("total_adhesion_force_N", result.total_adhesion_force)?;
-    d.set_item("total_friction_force_N", result.total_friction_force)?;
-    d.set_item("load_beyond_fit_N", result.load_beyond_fit)?;
-    d.set_item("summit_count", contacts.len())?;
+    d.set_item(key(NORMAL_LOAD, Force), result.total_normal_force)?;
+    d.set_item(key(ADHESION_FORCE, Force), result.total_adhesion_force)?;
+    d.set_item(key(FRICTION_FORCE, Force), result.total_friction_force)?;
+    set_field(
+        &d,
+        beyond_fit_field(result.load_beyond_fit, result.total_normal_force),
+    )?;
+    d.set_item(SUMMIT_COUNT, contacts.len())?;
     let column = |f: fn(&SummitFriction) -> f64| result.summits.iter().map(f).collect::<Vec<_>>();
     d.set_item(
-        "summit_radius_m",
+        summit(summits::RADIUS, Length),
         contacts.iter().map(|c| c.radius).collect::<Vec<_>>(),
     )?;
     d.set_item(
-        "summit_interference_m",
+        summit(summits::INTERFERENCE, Length),
         contacts.iter().map(|c| c.interference).collect::<Vec<_>>(),
     )?;
-    d.set_item("summit_normal_force_N", column(|s| s.normal_force))?;
-    d.set_item("summit_friction_force_N", column(|s| s.friction_force))?;
-    d.set_item("summit_adhesion_force_N", column(|s| s.adhesion_force))?;
+    d.set_item(
+        summit(summits::NORMAL_FORCE, Force),
+        column(|s| s.normal_force),
+    )?;
+    d.set_item(
+        summit(summits::FRICTION_FORCE, Force),
+        column(|s| s.friction_force),
+    )?;
+    d.set_item(
+        summit(summits::ADHESION_FORCE, Force),
+        column(|s| s.adhesion_force),
+    )?;
     Ok(d)
 }

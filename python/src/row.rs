@@ -1,8 +1,10 @@
 //! Table rows as Python dicts: a node's metrics ([`Field`]s) keyed by their column names, so a
 //! Python result and the table row of the same computation share their keys.
 
-use asperity::engine::value::{Field, Value};
+use asperity::engine::value::{column_name, Field, Value};
 use asperity::nodes::coefficient_fields;
+use asperity::units::Dimension;
+use asperity::vocabulary::{spot_columns, summit_columns};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -15,6 +17,29 @@ pub fn set_field(d: &Bound<'_, PyDict>, field: Field) -> PyResult<()> {
         Value::Bool(v) => d.set_item(key, v),
         Value::Text(v) => d.set_item(key, v),
     }
+}
+
+/// The key of a quantity `name` of `dimension`: its column name (`friction_force_N`).
+pub fn key(name: &str, dimension: Dimension) -> String {
+    column_name(name, dimension)
+}
+
+/// The key of a per-spot list: the spot table's column after `spot_` (`spot_area_m2`).
+pub fn spot(column: &str, dimension: Dimension) -> String {
+    format!(
+        "{}{}",
+        spot_columns::LIST_PREFIX,
+        column_name(column, dimension)
+    )
+}
+
+/// The key of a per-summit list: the summit table's column after `summit_` (`summit_radius_m`).
+pub fn summit(column: &str, dimension: Dimension) -> String {
+    format!(
+        "{}{}",
+        summit_columns::LIST_PREFIX,
+        column_name(column, dimension)
+    )
 }
 
 /// Sets every field of `fields` in `d`.

@@ -16,7 +16,15 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::guard::{compute, value_error};
+use crate::row::key;
 use crate::surface::height_map;
+use asperity::units::Dimension::Length;
+use asperity::vocabulary::twin_metrics::{
+    TWIN_EXTRAPOLATED_POWER_SHARE, TWIN_EXTRAPOLATION, TWIN_GRID_POWER_SHARE,
+    TWIN_MEASURED_SPECTRUM_SQ, TWIN_MEASURED_SQ, TWIN_MODES_CUT, TWIN_MODES_EXTRAPOLATED,
+    TWIN_MODES_LONGER_THAN_MEASURED, TWIN_MODES_MEASURED, TWIN_SPECTRUM, TWIN_SPECTRUM_SCALE,
+    TWIN_SPECTRUM_SQ, TWIN_SQ,
+};
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spectrum_twin, m)?)?;
@@ -86,23 +94,26 @@ fn spectrum_twin<'py>(
         make_twin(&spectra, &spec).map_err(|e| value_error("measured", e))
     })?;
     let d = PyDict::new(py);
-    d.set_item("spectrum", "measured")?;
-    d.set_item("extrapolation", extrapolation.name())?;
-    d.set_item("sq_m", twin.sq)?;
-    d.set_item("measured_sq_m", twin.measured_sq)?;
-    d.set_item("measured_spectrum_sq_m", twin.measured_spectrum_sq)?;
-    d.set_item("spectrum_sq_m", twin.spectrum_sq)?;
+    d.set_item(TWIN_SPECTRUM, "measured")?;
+    d.set_item(TWIN_EXTRAPOLATION, extrapolation.name())?;
+    d.set_item(key(TWIN_SQ, Length), twin.sq)?;
+    d.set_item(key(TWIN_MEASURED_SQ, Length), twin.measured_sq)?;
     d.set_item(
-        "grid_power_share",
+        key(TWIN_MEASURED_SPECTRUM_SQ, Length),
+        twin.measured_spectrum_sq,
+    )?;
+    d.set_item(key(TWIN_SPECTRUM_SQ, Length), twin.spectrum_sq)?;
+    d.set_item(
+        TWIN_GRID_POWER_SHARE,
         (twin.spectrum_sq / twin.measured_spectrum_sq).powi(2),
     )?;
-    d.set_item("spectrum_scale", twin.sq / twin.spectrum_sq)?;
-    d.set_item("modes_measured", twin.modes.measured)?;
-    d.set_item("modes_extrapolated", twin.modes.shorter)?;
-    d.set_item("modes_longer_than_measured", twin.modes.longer)?;
-    d.set_item("modes_cut", twin.modes.cut)?;
+    d.set_item(TWIN_SPECTRUM_SCALE, twin.sq / twin.spectrum_sq)?;
+    d.set_item(TWIN_MODES_MEASURED, twin.modes.measured)?;
+    d.set_item(TWIN_MODES_EXTRAPOLATED, twin.modes.shorter)?;
+    d.set_item(TWIN_MODES_LONGER_THAN_MEASURED, twin.modes.longer)?;
+    d.set_item(TWIN_MODES_CUT, twin.modes.cut)?;
     d.set_item(
-        "extrapolated_power_share",
+        TWIN_EXTRAPOLATED_POWER_SHARE,
         twin.modes.extrapolated_power_share,
     )?;
     let (dx, dy) = (twin.surface.dx(), twin.surface.dy());

@@ -18,7 +18,12 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::guard::{compute, owned, value_error};
-use crate::row::set_fields;
+use crate::row::{key, set_fields};
+use asperity::units::Dimension::Length;
+use asperity::vocabulary::twin_metrics::{
+    TWIN_CORRELATION_LENGTH_X, TWIN_CORRELATION_LENGTH_Y, TWIN_HURST, TWIN_HURST_PREDICTED,
+    TWIN_SQ, TWIN_WARNINGS,
+};
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(surface_report, m)?)?;
@@ -280,13 +285,19 @@ fn synthetic_twin<'py>(
     })?;
     let p = &twin.prediction;
     let d = PyDict::new(py);
-    d.set_item("sq_m", p.sq)?;
-    d.set_item("correlation_length_x_m", p.correlation_length_x)?;
-    d.set_item("correlation_length_y_m", p.correlation_length_y)?;
-    d.set_item("hurst", p.hurst)?;
-    d.set_item("hurst_predicted", p.hurst_predicted)?;
+    d.set_item(key(TWIN_SQ, Length), p.sq)?;
     d.set_item(
-        "warnings",
+        key(TWIN_CORRELATION_LENGTH_X, Length),
+        p.correlation_length_x,
+    )?;
+    d.set_item(
+        key(TWIN_CORRELATION_LENGTH_Y, Length),
+        p.correlation_length_y,
+    )?;
+    d.set_item(TWIN_HURST, p.hurst)?;
+    d.set_item(TWIN_HURST_PREDICTED, p.hurst_predicted)?;
+    d.set_item(
+        TWIN_WARNINGS,
         p.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
     )?;
     let (dx, dy) = (twin.surface.dx(), twin.surface.dy());

@@ -10,12 +10,20 @@ use crate::guard::value_error;
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(parse_quantity, m)?)?;
+    m.add_function(wrap_pyfunction!(is_column_name, m)?)?;
     let dimensions = PyDict::new(m.py());
     for d in Dimension::ALL {
         dimensions.set_item(d.name(), (d.si_symbol(), d.example(), d.accepted_units()))?;
     }
     m.add("DIMENSIONS", dimensions)?;
     Ok(())
+}
+
+/// Whether `name` is a column of the one vocabulary with its unit suffix
+/// (`asperity::nodes::is_known_column`): what every result's keys are checked against.
+#[pyfunction]
+fn is_column_name(name: &str) -> bool {
+    asperity::nodes::is_known_column(name)
 }
 
 /// The dimension called `name` (as `Dimension::name` writes it: "length", "pressure", …).

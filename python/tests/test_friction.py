@@ -23,7 +23,7 @@ def test_static_friction_equals_the_cli_friction_node(asperity_bin, contact_stud
             nominal_pressures=C["pressures"],
             nominal_area=C["size"][0] * C["size"][1],
             material=C["material"],
-            moments=(s["m0_m^2"], s["m2"], s["m4_m^-2"]),
+            moments=(s["m0_m2"], s["m2"], s["m4_per_m2"]),
         )
         key = surfaces.filter(pl.col("seed") == seed)["key"][0]
         row = friction.filter(pl.col("lower_key") == key)
@@ -44,7 +44,7 @@ def test_explicit_summits_and_bad_models():
     base = dict(nominal_pressures=[1e6], nominal_area=1e-6, material=steel, summits=(0.3e-6, 50e-6, 5e9))
     for model in ("kogut_etsion", "chang_etsion_bogy", "full_stick"):
         (r,) = asperity.static_friction(model=model, **base)
-        assert abs(r["mu_s"]) < 5 and r["contact_load_N"] > 0 and r["real_contact_area_m2"] > 0, model
+        assert abs(r["mu_s"]) < 5 and r["normal_load_N"] > 0 and r["real_area_m2"] > 0, model
     (stick,) = asperity.static_friction(model="full_stick", **base)
     assert stick["mu_s"] > 0
     with pytest.raises(ValueError, match="model"):
@@ -73,8 +73,8 @@ def test_per_spot_friction_equals_the_cli_per_spot_node(asperity_bin, contact_st
     row = friction.filter((pl.col("contact_key") == contact_key) & (pl.col("method") == "per_spot"))
     assert len(row) == 1
     assert spots["mu_s"] == pytest.approx(row["mu_s_computed"][0], rel=1e-12)
-    assert spots["spot_count"] == len(spots["spot_load_N"]) > 0
-    assert sum(spots["spot_load_N"]) == pytest.approx(spots["total_normal_force_N"])
+    assert spots["spot_count"] == len(spots["spot_normal_force_N"]) > 0
+    assert sum(spots["spot_normal_force_N"]) == pytest.approx(spots["normal_load_N"])
     shear = asperity.per_spot_friction(c, heights, dx, dy, model="junction_shear", material=C["material"])
     assert shear["mu_s"] > 0
     with pytest.raises(ValueError, match="parameters"):
@@ -109,7 +109,7 @@ def test_per_summit_friction_equals_the_cli_per_summit_node(asperity_bin, tmp_pa
     assert summits["mu_s"] == pytest.approx(row["mu_s"][0], rel=1e-12, abs=0.0)
     assert summits["mu_s_floored"] == row["mu_s_floored"][0]
     assert summits["summit_count"] == len(summits["summit_radius_m"]) > 0
-    assert sum(summits["summit_normal_force_N"]) == pytest.approx(summits["total_normal_force_N"])
+    assert sum(summits["summit_normal_force_N"]) == pytest.approx(summits["normal_load_N"])
     with pytest.raises(ValueError, match="single-asperity"):
         asperity.per_summit_friction(c, heights, dx, dy, model="junction_shear", material=C["material"])
     with pytest.raises(TypeError, match="deformation_lower"):

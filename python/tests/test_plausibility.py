@@ -69,7 +69,7 @@ def test_a_pressure_in_mpa_given_as_pa():
     said, rows = sentences(lambda: asperity.static_friction(model="full_stick", surface=T, nominal_pressures=20, material="s235jr"))
     assert any("fewer than one" in s for s in said), said
     said, rows = sentences(lambda: asperity.static_friction(model="full_stick", surface=T, nominal_pressures="20 MPa", material="s235jr"))
-    assert said == [] and rows[0]["contacting_summits"] > 1
+    assert said == [] and rows[0]["contacts"] > 1
 
 
 def test_a_hardness_in_gpa():

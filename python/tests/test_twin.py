@@ -33,15 +33,15 @@ def test_spectrum_twin_reproduces_the_measured_periodogram_at_every_mode():
     twin, tdx, tdy, info = asperity.synthetic_twin([(z, dx, dy)], sq="measured", spectrum="measured", seed=3)
     assert twin.shape == z.shape and (tdx, tdy) == (dx, dy)
     sq = float(np.sqrt(np.mean((z - z.mean()) ** 2)))
-    assert info["sq_m"] == pytest.approx(sq, rel=1e-12)
+    assert info["twin_sq_m"] == pytest.approx(sq, rel=1e-12)
     assert np.sqrt(np.mean(twin**2)) == pytest.approx(sq, rel=1e-12)
-    assert info["spectrum"] == "measured" and info["extrapolation"] == "zero"
-    assert info["grid_power_share"] == pytest.approx(1.0, rel=1e-9)  # the map's own grid
+    assert info["twin_spectrum"] == "measured" and info["twin_extrapolation"] == "zero"
+    assert info["twin_grid_power_share"] == pytest.approx(1.0, rel=1e-9)  # the map's own grid
     measured = hann_periodogram(z, dx, dy)
     measured[0, 0] = 0.0
     area = z.size * dx * dy
     periodic = np.abs(np.fft.fft2(twin)) ** 2 * area / z.size**2
-    scale = (info["sq_m"] / info["spectrum_sq_m"]) ** 2
+    scale = (info["twin_sq_m"] / info["twin_spectrum_sq_m"]) ** 2
     np.testing.assert_allclose(periodic, scale * measured, rtol=1e-6, atol=1e-9 * measured.max())
 
 
@@ -55,7 +55,7 @@ def test_the_seed_decides_the_bytes_and_the_grid_is_the_twins():
     )
     assert bigger.shape == (160, 192) and tdx == pytest.approx(dx)
     assert np.sqrt(np.mean(bigger**2)) == pytest.approx(0.5e-6, rel=1e-12)
-    assert info["modes_longer_than_measured"] > 0
+    assert info["twin_modes_longer_than_measured"] > 0
 
 
 def test_bad_spectrum_twin_input_names_the_parameter_and_the_fix():

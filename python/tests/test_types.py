@@ -1,6 +1,7 @@
 """Every result's keys are those of its TypedDict (asperity/_results.py, the one place they are
 spelled): each key returned is declared, each required key is returned, so a type checker sees
-what the functions return."""
+what the functions return; and every key of a computed result is a column name of the one
+vocabulary (src/vocabulary.rs with its unit suffix), the names the study tables use (#41)."""
 
 import inspect
 import typing
@@ -9,6 +10,7 @@ import numpy as np
 import pytest
 
 import asperity
+from asperity import _native
 
 T = asperity.synthetic_surface(64, 64e-6, sq=0.05e-6, hurst=0.8, correlation_length=20e-6)
 MISSING = np.array(T.heights)
@@ -24,6 +26,16 @@ def check(result, typed, name):
     assert not absent, f"{name}: required keys of {typed.__name__} not returned: {absent}"
 
 
+def speaks_the_vocabulary(result, name):
+    unknown = sorted(k for k in result if not _native.is_column_name(k))
+    assert not unknown, f"{name}: keys outside the vocabulary (src/vocabulary.rs): {unknown}"
+
+
+def test_the_vocabulary_check_refuses_an_unknown_name():
+    assert _native.is_column_name("real_area_m2") and not _native.is_column_name("real_area_m^2")
+    assert not _native.is_column_name("total_friction_force_N")
+
+
 def test_surface_results():
     check(T.statistics(), asperity.SurfaceStatistics, "statistics (complete map)")
     check(asperity.surface_statistics(MISSING, T.dx), asperity.SurfaceStatistics, "surface_statistics (missing points)")
@@ -31,6 +43,8 @@ def test_surface_results():
     check(T.acf(), asperity.Acf, "acf")
     check(T.material_ratio(), asperity.MaterialRatio, "material_ratio")
     check(T.summits(), asperity.Summits, "summits")
+    for result in (T.statistics(), asperity.surface_statistics(MISSING, T.dx), T.psd(), T.acf(), T.material_ratio(), T.summits()):
+        speaks_the_vocabulary(result, "surface results")
     # Every optional key is returned for some map: the declarations are not stale.
     optional = set(typing.get_type_hints(asperity.SurfaceStatistics)) - set(asperity.SurfaceStatistics.__required_keys__)
     assert optional <= set(T.statistics()), sorted(optional - set(T.statistics()))
@@ -50,8 +64,20 @@ def test_contact_and_friction_results():
             check(p, asperity.FrictionLawParameter, f"friction_laws {law['name']} parameter")
     for row in asperity.static_friction(model="full_stick", surface=T, nominal_pressures=[5e6, 20e6], material="s235jr"):
         check(row, asperity.StaticFrictionRow, "static_friction")
-    check(asperity.per_spot_friction(c, T, model="full_stick", material="s235jr"), asperity.PerSpotResult, "per_spot_friction")
-    check(asperity.per_summit_friction(c, T, material="s235jr"), asperity.PerSummitResult, "per_summit_friction")
+    spots = asperity.per_spot_friction(c, T, model="full_stick", material="s235jr")
+    check(spots, asperity.PerSpotResult, "per_spot_friction")
+    summits = asperity.per_summit_friction(c, T, material="s235jr")
+    check(summits, asperity.PerSummitResult, "per_summit_friction")
+    rows = asperity.static_friction(model="full_stick", surface=T, nominal_pressures=[5e6, 20e6], material="s235jr")
+    for result in [c, two, *c["load_curve"], *rows, spots, summits]:
+        speaks_the_vocabulary(result, "contact and friction results")
+
+
+def test_twin_results_speak_the_vocabulary():
+    other = asperity.synthetic_surface(64, 64e-6, sq=0.08e-6, hurst=0.8, correlation_length=20e-6, seed=2)
+    for spectrum in ("self_affine", "measured"):
+        _, _, _, info = asperity.synthetic_twin([T, other], sq="measured", spectrum=spectrum, grid=(64, 64), size=(64e-6, 64e-6), seed=1)
+        speaks_the_vocabulary(info, f"synthetic_twin spectrum={spectrum}")
 
 
 def test_study_counts(contact_study):

@@ -18,6 +18,8 @@ use asperity::surface::{
     FunctionalParameters, HeightMap,
 };
 use asperity::units::Dimension;
+use asperity::vocabulary::metrics::{DX, DY, SQ};
+use asperity::vocabulary::surface_metrics::{SA, SDQ, SDR_PERCENT, SKU, SP, SSK, SV, SZ};
 
 /// Arguments of `asperity inspect`.
 #[derive(Debug, clap::Args)]
@@ -186,16 +188,16 @@ fn check_values(
 ) -> Result<()> {
     let len = |name: &'static str, v: f64| Field::float(name, v, Dimension::Length);
     let mut fields = vec![
-        len("sq", a.sq),
-        len("sa", a.sa),
-        len("sp", a.sp),
-        len("sv", a.sv),
-        len("sz", a.sz),
+        len(SQ, a.sq),
+        len(SA, a.sa),
+        len(SP, a.sp),
+        len(SV, a.sv),
+        len(SZ, a.sz),
     ];
-    let optional = [("ssk", a.ssk), ("sku", a.sku)];
+    let optional = [(SSK, a.ssk), (SKU, a.sku)];
     if spacing == ScaleSource::File {
-        fields.extend([len("dx", map.dx()), len("dy", map.dy())]);
-        let slopes = [("sdq", a.sdq), ("sdr_percent", a.sdr_percent)];
+        fields.extend([len(DX, map.dx()), len(DY, map.dy())]);
+        let slopes = [(SDQ, a.sdq), (SDR_PERCENT, a.sdr_percent)];
         fields.extend(
             slopes
                 .into_iter()
@@ -234,7 +236,7 @@ fn describe_line(line: &LineScan, source: &str) -> Result<()> {
         let mean = valid.iter().sum::<f64>() / valid.len() as f64;
         let rq =
             (valid.iter().map(|z| (z - mean).powi(2)).sum::<f64>() / valid.len() as f64).sqrt();
-        let field = [Field::float("sq", rq, Dimension::Length)];
+        let field = [Field::float(SQ, rq, Dimension::Length)];
         validity::check_fields(validity::SURFACE, &field).map_err(|e| {
             anyhow::anyhow!(
                 "{source}: {} (its Rq as Sq): {e}",

@@ -7,6 +7,7 @@
 mod contact;
 pub(crate) mod contact_view;
 mod friction;
+mod known_columns;
 mod material_spec;
 mod surface;
 pub(crate) mod surface_view;
@@ -24,9 +25,10 @@ use crate::units::format_number;
 pub use contact::{final_step_metrics, ContactSpec, ContactTask, CONTACT_KIND_VERSION};
 pub use contact_view::{ContactView, StepMaps};
 pub use friction::{
-    coefficient_fields, friction_models_markdown, FrictionSpec, FrictionTask,
-    DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE, FRICTION_KIND_VERSION,
+    beyond_fit_field, coefficient_fields, friction_models_markdown, share, FrictionSpec,
+    FrictionTask, DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE, FRICTION_KIND_VERSION,
 };
+pub use known_columns::is_known_column;
 pub use material_spec::{MaterialMapping, MaterialSpec};
 pub use surface::{
     apply_height_unit, apply_lateral_calibration, height_unit_rule, scale_checks, surface_artifact,

@@ -15,9 +15,7 @@ pub(crate) use crate::vocabulary::arrays::HEIGHTS;
 pub(crate) use crate::vocabulary::metrics::{DX, DY, GRID_NX, GRID_NY};
 /// Isotropic profile spectral moments m0 (m²), m2, m4 (m⁻²); with the suffix `_x` or `_y`
 /// the moments along one axis.
-pub(crate) const M0: &str = "m0";
-pub(crate) const M2: &str = "m2";
-pub(crate) const M4: &str = "m4";
+pub(crate) use crate::vocabulary::surface_metrics::{M0, M2, M4};
 
 /// A surface node's grid, heights (when loaded) and isotropic spectral moments (when defined:
 /// a map with missing points has none).

@@ -1,6 +1,7 @@
 //! How quantities are shown: SI values from the tables are scaled to readable units (µm, mm,
 //! MPa, …) and columns get readable names with the tribology symbols (A_t,rel, θ, μ_s).
 
+use crate::units::Dimension;
 use crate::vocabulary::metrics;
 
 /// A display unit: multiply an SI value by `factor` to get it in `symbol`.
@@ -74,13 +75,19 @@ impl DisplayUnit {
 /// The column name without its unit suffix (`sq_m` → `sq`, `nominal_pressure_Pa` →
 /// `nominal_pressure`).
 pub fn base_name<'a>(column: &'a str, unit: &str) -> &'a str {
-    if unit.is_empty() {
+    // The unit metadata holds the SI symbol (`m^2`); the name ends in its column suffix (`m2`).
+    let suffix: &str = match Dimension::ALL.into_iter().find(|d| d.si_symbol() == unit) {
+        Some(dimension) => dimension.column_suffix(),
+        None => unit,
+    };
+    if suffix.is_empty() {
         return column;
     }
-    column
-        .strip_suffix(unit)
-        .and_then(|c| c.strip_suffix('_'))
-        .unwrap_or(column)
+    let base = column.len().saturating_sub(suffix.len() + 1);
+    match column.split_at_checked(base) {
+        Some((name, tail)) if tail.strip_prefix('_') == Some(suffix) => name,
+        _ => column,
+    }
 }
 
 /// A readable name for a column base name, with the symbol used in the literature where there
@@ -122,5 +129,10 @@ mod tests {
         assert_eq!(u.axis_label("nominal pressure"), "nominal pressure (MPa)");
         assert_eq!(base_name("nominal_pressure_Pa", "Pa"), "nominal_pressure");
         assert_eq!(base_name("seed", ""), "seed");
+        assert_eq!(base_name("real_area_m2", "m^2"), "real_area");
+        assert_eq!(
+            base_name("adhesion_energy_N_per_m", "N/m"),
+            "adhesion_energy"
+        );
     }
 }

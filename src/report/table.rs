@@ -9,9 +9,7 @@ use std::path::{Path, PathBuf};
 use polars::prelude::{DataType, ParquetReader, SerReader};
 
 use super::error::ReportError;
-
-/// Unit suffixes recognised when a table has no `asperity.units` metadata.
-const SUFFIX_UNITS: [&str; 8] = ["m", "m^2", "m^-1", "m^-2", "Pa", "N", "N/m", "rad"];
+use crate::units::Dimension;
 
 /// The values of one column.
 #[derive(Debug, Clone, PartialEq)]
@@ -129,15 +127,17 @@ impl ResultTable {
         if let Some(unit) = self.units.get(column) {
             return unit;
         }
-        SUFFIX_UNITS
-            .iter()
-            .find(|u| {
-                column
-                    .strip_suffix(**u)
-                    .is_some_and(|rest| rest.len() > 1 && rest.ends_with('_'))
+        // Without the metadata: the unit whose column suffix ends the name.
+        Dimension::ALL
+            .into_iter()
+            .find(|d| {
+                let suffix = d.column_suffix();
+                !suffix.is_empty()
+                    && column
+                        .strip_suffix(suffix)
+                        .is_some_and(|rest| rest.len() > 1 && rest.ends_with('_'))
             })
-            .copied()
-            .unwrap_or("")
+            .map_or("", Dimension::si_symbol)
     }
 
     /// Names of the numeric columns.

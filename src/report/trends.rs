@@ -4,6 +4,8 @@
 
 use std::collections::BTreeMap;
 
+use crate::engine::value::column_name;
+use crate::units::Dimension;
 use crate::vocabulary::metrics;
 
 use super::figure::{Figure, ValueTable};
@@ -304,7 +306,7 @@ pub fn load_curve_figures(
     contacts: &NodeTable,
     curve: &super::table::ResultTable,
 ) -> Vec<Figure> {
-    let pressure_column = format!("{}_Pa", metrics::NOMINAL_PRESSURE);
+    let pressure_column = column_name(metrics::NOMINAL_PRESSURE, Dimension::Pressure);
     let (Some(keys), Some(pressure)) = (curve.texts("key"), curve.numbers(&pressure_column)) else {
         return Vec::new();
     };

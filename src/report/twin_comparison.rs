@@ -7,6 +7,9 @@
 //! sample standard deviation over the replicates (seeds) against the measured value, one point
 //! per group of the other swept parameters (e.g. per file), with the line of equality.
 
+use crate::engine::value::column_name;
+use crate::units::Dimension;
+use crate::vocabulary::surface_parameters::{twin_of_blake3, FILE_BLAKE3, SOURCE};
 use crate::vocabulary::{kinds, metrics, roles};
 
 use super::axis::format_number;
@@ -39,7 +42,7 @@ pub fn twin_comparison(scenarios: &ScenarioSet, tables: &[NodeTable]) -> Option<
             table: surfaces,
             measured,
             twin,
-            column: format!("{}_m", metrics::SUMMIT_MEAN_RADIUS),
+            column: column_name(metrics::SUMMIT_MEAN_RADIUS, Dimension::Length),
         });
         let contacts = of_kind(kinds::CONTACT).and_then(|c| {
             let on = |surface| {
@@ -166,17 +169,16 @@ fn twin_pairs<'a>(
         let Some(row) = first_row(surfaces, twin) else {
             continue;
         };
-        if text("source", row).as_deref() != Some("twin") || text("twin_of_1_blake3", row).is_some()
-        {
+        if text(SOURCE, row).as_deref() != Some("twin") || text(&twin_of_blake3(1), row).is_some() {
             continue;
         }
-        let Some(of) = text("twin_of_0_blake3", row) else {
+        let Some(of) = text(&twin_of_blake3(0), row) else {
             continue;
         };
         let measured = links.iter().find(|m| {
             first_row(surfaces, m).is_some_and(|r| {
-                text("source", r).as_deref() == Some("file")
-                    && text("file_blake3", r).as_deref() == Some(of.as_str())
+                text(SOURCE, r).as_deref() == Some("file")
+                    && text(FILE_BLAKE3, r).as_deref() == Some(of.as_str())
             })
         });
         if let Some(m) = measured {

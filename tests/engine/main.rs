@@ -4,6 +4,7 @@ mod architecture;
 mod cache_policy;
 mod cancellation;
 mod code_shape;
+mod column_literals;
 mod engine_end_to_end;
 mod flagged_status;
 mod import_graph;

@@ -5,6 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use asperity::engine::output::PARAMETER_PREFIX;
+use asperity::engine::study::SCENARIOS_TABLE;
+use asperity::nodes::is_known_column;
 use polars::prelude::{ParquetReader, SerReader};
 
 fn studies_dir() -> PathBuf {
@@ -93,8 +96,37 @@ fn every_shipped_study_runs_on_its_reduced_grid() {
             "{name}: scenario statuses {scenarios:?}"
         );
         check_friction(&name, &dir.join("out/friction.parquet"));
+        check_vocabulary(&name, &dir.join("out"));
         let _ = std::fs::remove_dir_all(&dir);
     }
+}
+
+/// Every column of every table of a run is a name of the one vocabulary with its unit suffix
+/// (`asperity::nodes::is_known_column`, #41), but the names the study itself chooses: the
+/// parameters and node names of `scenarios` and the summaries, the `param_` columns of the
+/// per-scenario views.
+fn check_vocabulary(name: &str, out: &Path) {
+    let mut unknown = Vec::new();
+    for entry in std::fs::read_dir(out).unwrap() {
+        let path = entry.unwrap().path();
+        let table = path.file_stem().unwrap().to_string_lossy().to_string();
+        let study_named = table == SCENARIOS_TABLE || table.starts_with("summary_");
+        if path.extension().is_none_or(|e| e != "parquet") || study_named {
+            continue;
+        }
+        let df = ParquetReader::new(std::fs::File::open(&path).unwrap())
+            .finish()
+            .unwrap();
+        for column in df.get_column_names() {
+            if !column.starts_with(PARAMETER_PREFIX) && !is_known_column(column) {
+                unknown.push(format!("{table}.{column}"));
+            }
+        }
+    }
+    assert!(
+        unknown.is_empty(),
+        "{name}: columns outside the vocabulary (src/vocabulary.rs): {unknown:?}"
+    );
 }
 
 /// No friction row of a shipped study has μ_s < 0 or a negative local-μ quantile; on the

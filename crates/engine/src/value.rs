@@ -168,15 +168,17 @@ impl Field {
         }
     }
 
-    /// The table column name: the name plus `_<SI unit>` (`sq_m`, `load_Pa`, `gamma_N/m`).
+    /// The table column name: the name plus `_<unit suffix>` (`sq_m`, `load_Pa`,
+    /// `gamma_N_per_m`).
     pub fn column_name(&self) -> String {
         column_name(&self.name, self.dimension)
     }
 }
 
-/// Column name convention: `<name>_<SI symbol>`, or `<name>` when dimensionless.
+/// Column name convention: `<name>_<unit suffix>` ([`Dimension::column_suffix`]), or `<name>`
+/// when dimensionless.
 pub fn column_name(name: &str, dimension: Dimension) -> String {
-    match dimension.si_symbol() {
+    match dimension.column_suffix() {
         "" => name.to_string(),
         unit => format!("{name}_{unit}"),
     }

@@ -34,7 +34,10 @@ use crate::engine::value::{Field, Value};
 use crate::materials::{bounds, MaterialPair};
 use crate::surface::HeightMap;
 use crate::units::{format_number, Dimension, Pressure, Quantity};
-use crate::vocabulary::metrics::APPROACH;
+use crate::vocabulary::contact_parameters::{
+    of_side, FIELDS, FLOW_PRESSURE, PERIODIC, TOLERANCE, YOUNGS_MODULUS,
+};
+use crate::vocabulary::metrics::{APPROACH, NOMINAL_PRESSURES_PA, POISSON_RATIO};
 use crate::vocabulary::{roles, tables};
 
 mod results;
@@ -300,12 +303,12 @@ impl ContactTask {
             if let Some(body) = body {
                 key.extend([
                     Field::float(
-                        format!("{side}_youngs_modulus"),
+                        of_side(side, YOUNGS_MODULUS),
                         body.youngs_modulus(),
                         Dimension::Pressure,
                     ),
                     Field::float(
-                        format!("{side}_poisson_ratio"),
+                        of_side(side, POISSON_RATIO),
                         body.poisson_ratio(),
                         Dimension::Dimensionless,
                     ),
@@ -314,16 +317,16 @@ impl ContactTask {
         }
         if material.flow_pressure().is_finite() {
             key.push(Field::float(
-                "flow_pressure",
+                FLOW_PRESSURE,
                 material.flow_pressure(),
                 Dimension::Pressure,
             ));
         }
         key.extend([
-            super::number_list("nominal_pressures_Pa", pressures),
-            Field::bool("periodic", *periodic),
-            Field::float("tolerance", *tolerance, Dimension::Dimensionless),
-            Field::bool("fields", *fields),
+            super::number_list(NOMINAL_PRESSURES_PA, pressures),
+            Field::bool(PERIODIC, *periodic),
+            Field::float(TOLERANCE, *tolerance, Dimension::Dimensionless),
+            Field::bool(FIELDS, *fields),
         ]);
         key
     }

@@ -7,9 +7,16 @@ use super::super::contact_view::{
 };
 use crate::contact::{LoadCurve, LoadStep};
 use crate::engine::artifact::{Artifact, Table};
+use crate::engine::columns::STEP;
 use crate::engine::value::Field;
 use crate::units::Dimension;
-use crate::vocabulary::metrics::{APPROACH, MEAN_CONTACT_PRESSURE, STRESS_RATIO};
+use crate::vocabulary::contact_metrics::{
+    COARSE_ITERATIONS, FREE_SET_ITERATIONS, MAX_ELASTIC_DEFORMATION, MEAN_SEPARATION,
+    PLASTIC_AREA_SHARE,
+};
+use crate::vocabulary::metrics::{
+    APPROACH, COMPOSITE_MODULUS, ITERATIONS, MEAN_CONTACT_PRESSURE, RESIDUAL, STRESS_RATIO,
+};
 
 /// The `contacts` row: the final load step, the composite modulus and the grid (also the
 /// scalars of the Python package's `contact`).
@@ -19,7 +26,7 @@ pub fn final_step_metrics(
     (dx, dy): (f64, f64),
 ) -> Vec<Field> {
     vec![
-        Field::float("composite_modulus", composite_modulus, Dimension::Pressure),
+        Field::float(COMPOSITE_MODULUS, composite_modulus, Dimension::Pressure),
         Field::float(NOMINAL_PRESSURE, last.nominal_pressure, Dimension::Pressure),
         Field::float(AREA_FRACTION, last.area_fraction, Dimension::Dimensionless),
         Field::float(
@@ -29,23 +36,23 @@ pub fn final_step_metrics(
         ),
         Field::float(STRESS_RATIO, last.stress_ratio, Dimension::Dimensionless),
         Field::float(
-            "plastic_area_share",
+            PLASTIC_AREA_SHARE,
             last.plastic_area_share,
             Dimension::Dimensionless,
         ),
-        Field::float("mean_separation", last.mean_separation, Dimension::Length),
+        Field::float(MEAN_SEPARATION, last.mean_separation, Dimension::Length),
         Field::float(
-            "max_elastic_deformation",
+            MAX_ELASTIC_DEFORMATION,
             last.max_elastic_deformation,
             Dimension::Length,
         ),
         Field::float(APPROACH, last.approach, Dimension::Length),
         Field::float(DX, dx, Dimension::Length),
         Field::float(DY, dy, Dimension::Length),
-        Field::int("iterations", last.iterations as i64),
-        Field::int("coarse_iterations", last.coarse_iterations as i64),
-        Field::int("free_set_iterations", last.free_set_iterations as i64),
-        Field::float("residual", last.residuals.max(), Dimension::Dimensionless),
+        Field::int(ITERATIONS, last.iterations as i64),
+        Field::int(COARSE_ITERATIONS, last.coarse_iterations as i64),
+        Field::int(FREE_SET_ITERATIONS, last.free_set_iterations as i64),
+        Field::float(RESIDUAL, last.residuals.max(), Dimension::Dimensionless),
     ]
 }
 
@@ -64,26 +71,26 @@ pub(super) fn load_curve_table(curve: &LoadCurve) -> Table {
             s.mean_contact_pressure
         }),
         (STRESS_RATIO, Dimension::Dimensionless, |s| s.stress_ratio),
-        ("plastic_area_share", Dimension::Dimensionless, |s| {
+        (PLASTIC_AREA_SHARE, Dimension::Dimensionless, |s| {
             s.plastic_area_share
         }),
-        ("mean_separation", Dimension::Length, |s| s.mean_separation),
-        ("max_elastic_deformation", Dimension::Length, |s| {
+        (MEAN_SEPARATION, Dimension::Length, |s| s.mean_separation),
+        (MAX_ELASTIC_DEFORMATION, Dimension::Length, |s| {
             s.max_elastic_deformation
         }),
         (APPROACH, Dimension::Length, |s| s.approach),
     ];
     let mut t = Table::default();
-    t.push_int("step", (0..curve.steps.len() as i64).collect());
+    t.push_int(STEP, (0..curve.steps.len() as i64).collect());
     for (name, dimension, get) in steps {
         t.push_float(name, dimension, column(get));
     }
     t.push_int(
-        "iterations",
+        ITERATIONS,
         curve.steps.iter().map(|s| s.iterations as i64).collect(),
     );
     t.push_int(
-        "coarse_iterations",
+        COARSE_ITERATIONS,
         curve
             .steps
             .iter()
@@ -91,7 +98,7 @@ pub(super) fn load_curve_table(curve: &LoadCurve) -> Table {
             .collect(),
     );
     t.push_int(
-        "free_set_iterations",
+        FREE_SET_ITERATIONS,
         curve
             .steps
             .iter()
@@ -99,7 +106,7 @@ pub(super) fn load_curve_table(curve: &LoadCurve) -> Table {
             .collect(),
     );
     t.push_float(
-        "residual",
+        RESIDUAL,
         Dimension::Dimensionless,
         column(|s| s.residuals.max()),
     );

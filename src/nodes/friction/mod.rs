@@ -402,7 +402,7 @@ pub fn coefficient_fields(mu_computed: f64) -> [Field; 3] {
 
 /// `load_share_beyond_fit`: the share of the normal load carried outside the validated range of
 /// the law used (0 when there is no load).
-pub(crate) fn beyond_fit_field(load_beyond_fit: f64, normal_load: f64) -> Field {
+pub fn beyond_fit_field(load_beyond_fit: f64, normal_load: f64) -> Field {
     let share = share(load_beyond_fit, normal_load).clamp(0.0, 1.0);
     Field::float(
         names::LOAD_SHARE_BEYOND_FIT,
@@ -422,7 +422,7 @@ pub(crate) fn adhesion_share_field(adhesion_force: f64, normal_load: f64) -> Fie
 }
 
 /// `part / whole`, 0 when `whole` is not positive.
-pub(crate) fn share(part: f64, whole: f64) -> f64 {
+pub fn share(part: f64, whole: f64) -> f64 {
     if whole > 0.0 {
         part / whole
     } else {

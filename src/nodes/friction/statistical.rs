@@ -2,7 +2,7 @@
 //! summit statistics.
 //!
 //! Roughness: explicit, or Nayak/McCool summit statistics from the isotropic profile moments
-//! m0, m2, m4 of the upstream surface(s) (`surfaces` metrics `m0_m^2`, `m2`, `m4_1/m^2`); two
+//! m0, m2, m4 of the upstream surface(s) (`surfaces` metrics `m0_m2`, `m2`, `m4_per_m2`); two
 //! surfaces are combined by adding moments (the equivalent sum surface). Nominal area: explicit or
 //! the lower surface's `nx·dx · ny·dy`. Loads: each nominal pressure times A_n, each force, or the
 //! upstream contact's final nominal pressure times A_n. With several loads the solves share one

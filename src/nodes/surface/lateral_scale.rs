@@ -135,14 +135,15 @@ pub fn apply_lateral_calibration(
 /// The key fields of a stated calibration (`pixel_size_x_m`, … or `size_x_m`, …).
 pub(crate) fn calibration_fields(given: LateralCalibration) -> [crate::engine::value::Field; 2] {
     use crate::engine::value::Field;
+    use crate::vocabulary::surface_parameters::{PIXEL_SIZE_X, PIXEL_SIZE_Y, SIZE_X, SIZE_Y};
     match given {
         LateralCalibration::PixelSize([dx, dy]) => [
-            Field::float("pixel_size_x", dx, Dimension::Length),
-            Field::float("pixel_size_y", dy, Dimension::Length),
+            Field::float(PIXEL_SIZE_X, dx, Dimension::Length),
+            Field::float(PIXEL_SIZE_Y, dy, Dimension::Length),
         ],
         LateralCalibration::Size([lx, ly]) => [
-            Field::float("size_x", lx, Dimension::Length),
-            Field::float("size_y", ly, Dimension::Length),
+            Field::float(SIZE_X, lx, Dimension::Length),
+            Field::float(SIZE_Y, ly, Dimension::Length),
         ],
     }
 }

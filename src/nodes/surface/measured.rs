@@ -21,6 +21,7 @@ use super::preprocess::{
 };
 use super::{SurfaceSource, SurfaceTask};
 use crate::units::{Length, Quantity};
+use crate::vocabulary::surface_parameters::{CHANNEL, FILE_BLAKE3, SOURCE};
 
 with_preprocessing_fields! {
     /// `surface: {file: {...}}`.
@@ -165,11 +166,11 @@ impl MeasuredSource {
             preprocessing,
         } = self;
         let mut fields = vec![
-            Field::text("source", "file"),
-            Field::text("file_blake3", content_hash.clone()),
+            Field::text(SOURCE, "file"),
+            Field::text(FILE_BLAKE3, content_hash.clone()),
         ];
         if let Some(channel) = channel {
-            fields.push(Field::text("channel", channel.clone()));
+            fields.push(Field::text(CHANNEL, channel.clone()));
         }
         fields.extend(preprocessing.key_fields());
         fields

@@ -34,6 +34,17 @@ use crate::surface::{
     HeightMap, MaterialRatioCurve, SummitOptions,
 };
 use crate::units::Dimension;
+use crate::vocabulary::metrics::{
+    GW_BETA, GW_SIGMA_S, GW_SUMMIT_DENSITY, GW_SUMMIT_RADIUS, SQ, SUMMIT_COUNT, SUMMIT_DENSITY,
+    SUMMIT_MEAN_RADIUS,
+};
+use crate::vocabulary::surface_metrics::{
+    CORRELATION_LENGTH_X, CORRELATION_LENGTH_Y, GW_ALPHA, GW_Y_S, HURST_FIT, HURST_FIT_Q_MAX,
+    HURST_FIT_Q_MIN, HURST_FIT_R_SQUARED, MISSING_POINTS, SA, SAL, SDQ, SDR_PERCENT, SK, SKU,
+    SMR1_PERCENT, SMR2_PERCENT, SP, SPK, SSK, STD, STR, SUMMIT_HEIGHT_STD, SV, SVK, SXP, SZ, VMC,
+    VMP, VVC, VVV, X_SUFFIX, Y_SUFFIX,
+};
+use crate::vocabulary::{acf_columns, material_ratio_columns, psd_columns, summit_columns, tables};
 
 /// The long table of the material ratio curve (`surfaces_material_ratio`).
 pub(crate) use crate::vocabulary::tables::MATERIAL_RATIO as MATERIAL_RATIO_TABLE;
@@ -79,19 +90,19 @@ pub(super) fn surface_report(
         Field::int(GRID_NY, map.ny() as i64),
         len(DX, map.dx()),
         len(DY, map.dy()),
-        Field::int("missing_points", a.missing_count as i64),
-        len("sq", a.sq),
-        len("sa", a.sa),
-        len("sp", a.sp),
-        len("sv", a.sv),
-        len("sz", a.sz),
+        Field::int(MISSING_POINTS, a.missing_count as i64),
+        len(SQ, a.sq),
+        len(SA, a.sa),
+        len(SP, a.sp),
+        len(SV, a.sv),
+        len(SZ, a.sz),
     ];
     // Undefined statistics (a flat map has no skewness) are left out: the cell is null.
     let optional = [
-        ("ssk", a.ssk),
-        ("sku", a.sku),
-        ("sdq", a.sdq),
-        ("sdr_percent", a.sdr_percent),
+        (SSK, a.ssk),
+        (SKU, a.sku),
+        (SDQ, a.sdq),
+        (SDR_PERCENT, a.sdr_percent),
     ];
     metrics.extend(
         optional
@@ -147,7 +158,7 @@ fn spectral_metrics(
     acf_metrics(&acf, metrics);
     if let Ok(direction) = texture_direction_of(&p, map) {
         metrics.push(Field::float(
-            "std",
+            STD,
             direction.std_deg.to_radians(),
             Dimension::Angle,
         ));
@@ -155,20 +166,20 @@ fn spectral_metrics(
     hurst_metrics(&psd, map, window, metrics);
     let radial = acf.radial();
     let mut acf_table = Table::default();
-    acf_table.push_float("r", Dimension::Length, radial.r);
-    acf_table.push_float("acf", Dimension::Dimensionless, radial.acf);
-    tables.insert(String::from("acf"), acf_table);
+    acf_table.push_float(acf_columns::R, Dimension::Length, radial.r);
+    acf_table.push_float(acf_columns::ACF, Dimension::Dimensionless, radial.acf);
+    tables.insert(String::from(tables::ACF), acf_table);
     let mut psd_table = Table::default();
-    psd_table.push_float("q_rad_per_m", Dimension::Dimensionless, psd.q);
-    psd_table.push_float("c_m4", Dimension::Dimensionless, psd.c);
-    tables.insert(String::from("psd"), psd_table);
+    psd_table.push_float(psd_columns::Q, Dimension::Dimensionless, psd.q);
+    psd_table.push_float(psd_columns::C, Dimension::Dimensionless, psd.c);
+    tables.insert(String::from(tables::PSD), psd_table);
     Ok(())
 }
 
 /// The spectral moments m0, m2, m4 (isotropic, along x and y) and the Greenwood–Williamson
 /// summit statistics they imply.
 fn moment_metrics(m: &SpectralMoments, metrics: &mut Vec<Field>) {
-    for (suffix, p) in [("", m.isotropic), ("_x", m.x), ("_y", m.y)] {
+    for (suffix, p) in [("", m.isotropic), (X_SUFFIX, m.x), (Y_SUFFIX, m.y)] {
         metrics.push(Field::float(format!("{M0}{suffix}"), p.m0, Dimension::Area));
         metrics.push(num(format!("{M2}{suffix}"), p.m2));
         metrics.push(Field::float(
@@ -179,12 +190,12 @@ fn moment_metrics(m: &SpectralMoments, metrics: &mut Vec<Field>) {
     }
     if let Ok(gw) = GwSummits::from_moments(m.isotropic.m0, m.isotropic.m2, m.isotropic.m4) {
         metrics.extend([
-            Field::float("gw_summit_density", gw.density, Dimension::InverseArea),
-            len("gw_summit_radius", gw.radius),
-            len("gw_sigma_s", gw.sigma_s),
-            len("gw_y_s", gw.y_s),
-            num("gw_beta", gw.beta),
-            num("gw_alpha", gw.alpha),
+            Field::float(GW_SUMMIT_DENSITY, gw.density, Dimension::InverseArea),
+            len(GW_SUMMIT_RADIUS, gw.radius),
+            len(GW_SIGMA_S, gw.sigma_s),
+            len(GW_Y_S, gw.y_s),
+            num(GW_BETA, gw.beta),
+            num(GW_ALPHA, gw.alpha),
         ]);
     }
 }
@@ -192,14 +203,14 @@ fn moment_metrics(m: &SpectralMoments, metrics: &mut Vec<Field>) {
 /// The ISO 25178-2 texture parameters Sal and Str and the correlation lengths of `acf`.
 fn acf_metrics(acf: &Autocorrelation, metrics: &mut Vec<Field>) {
     if let Ok(texture) = acf.texture(ISO_ACF_THRESHOLD) {
-        metrics.push(len("sal", texture.sal));
+        metrics.push(len(SAL, texture.sal));
         if let Some(str_ratio) = texture.str_ratio {
-            metrics.push(num("str", str_ratio));
+            metrics.push(num(STR, str_ratio));
         }
     }
     if let Ok(lengths) = acf.correlation_lengths(ISO_ACF_THRESHOLD) {
-        metrics.extend(lengths.x.map(|x| len("correlation_length_x", x)));
-        metrics.extend(lengths.y.map(|y| len("correlation_length_y", y)));
+        metrics.extend(lengths.x.map(|x| len(CORRELATION_LENGTH_X, x)));
+        metrics.extend(lengths.y.map(|y| len(CORRELATION_LENGTH_Y, y)));
     }
 }
 
@@ -218,10 +229,10 @@ fn hurst_metrics(psd: &PsdTable, map: &HeightMap, window: Window, metrics: &mut 
     ) {
         if fit.hurst > 0.0 && fit.hurst <= 1.0 && fit.r_squared >= MIN_HURST_FIT_R_SQUARED {
             metrics.extend([
-                num("hurst_fit", fit.hurst),
-                num("hurst_fit_q_min_rad_per_m", fit.q_min),
-                num("hurst_fit_q_max_rad_per_m", fit.q_max),
-                num("hurst_fit_r_squared", fit.r_squared),
+                num(HURST_FIT, fit.hurst),
+                num(HURST_FIT_Q_MIN, fit.q_min),
+                num(HURST_FIT_Q_MAX, fit.q_max),
+                num(HURST_FIT_R_SQUARED, fit.r_squared),
             ]);
         }
     }
@@ -241,28 +252,28 @@ fn functional_metrics(
     let curve = MaterialRatioCurve::of(map).map_err(|e| fail(&e))?;
     let f = functional_parameters_of(&curve, FunctionalOptions::default()).map_err(|e| fail(&e))?;
     metrics.extend([
-        len("sk", f.sk),
-        len("spk", f.spk),
-        len("svk", f.svk),
-        num("smr1_percent", 100.0 * f.smr1),
-        num("smr2_percent", 100.0 * f.smr2),
-        len("sxp", f.sxp),
+        len(SK, f.sk),
+        len(SPK, f.spk),
+        len(SVK, f.svk),
+        num(SMR1_PERCENT, 100.0 * f.smr1),
+        num(SMR2_PERCENT, 100.0 * f.smr2),
+        len(SXP, f.sxp),
     ]);
     // Volumes per unit area, m³/m²: named with their unit, as ISO writes them (ml/m² = µm).
     metrics.extend([
-        num("vmp_m3_per_m2", f.vmp),
-        num("vmc_m3_per_m2", f.vmc),
-        num("vvc_m3_per_m2", f.vvc),
-        num("vvv_m3_per_m2", f.vvv),
+        num(VMP, f.vmp),
+        num(VMC, f.vmc),
+        num(VVC, f.vvc),
+        num(VVV, f.vvv),
     ]);
     let (mr, height) = curve.sampled(MATERIAL_RATIO_SAMPLES);
     let mut t = Table::default();
     t.push_float(
-        "material_ratio_percent",
+        material_ratio_columns::MATERIAL_RATIO_PERCENT,
         Dimension::Dimensionless,
         mr.iter().map(|r| 100.0 * r).collect(),
     );
-    t.push_float("height", Dimension::Length, height);
+    t.push_float(material_ratio_columns::HEIGHT, Dimension::Length, height);
     tables.insert(String::from(MATERIAL_RATIO_TABLE), t);
     Ok(())
 }
@@ -283,42 +294,48 @@ fn summit_metrics(
     )
     .map_err(|e| NodeError::new(format!("summits: {e}")))?;
     let s = &found.statistics;
-    metrics.push(Field::int("summit_count", s.count as i64));
+    metrics.push(Field::int(SUMMIT_COUNT, s.count as i64));
     metrics.push(Field::float(
-        "summit_density",
+        SUMMIT_DENSITY,
         s.density,
         Dimension::InverseArea,
     ));
-    metrics.extend(s.mean_radius.map(|r| len("summit_mean_radius", r)));
-    metrics.extend(s.height_std.map(|h| len("summit_height_std", h)));
+    metrics.extend(s.mean_radius.map(|r| len(SUMMIT_MEAN_RADIUS, r)));
+    metrics.extend(s.height_std.map(|h| len(SUMMIT_HEIGHT_STD, h)));
     let mut t = Table::default();
-    t.push_int("ix", found.summits.iter().map(|x| x.ix as i64).collect());
-    t.push_int("iy", found.summits.iter().map(|x| x.iy as i64).collect());
+    t.push_int(
+        summit_columns::IX,
+        found.summits.iter().map(|x| x.ix as i64).collect(),
+    );
+    t.push_int(
+        summit_columns::IY,
+        found.summits.iter().map(|x| x.iy as i64).collect(),
+    );
     t.push_float(
-        "x",
+        summit_columns::X,
         Dimension::Length,
         found.summits.iter().map(|x| x.x).collect(),
     );
     t.push_float(
-        "y",
+        summit_columns::Y,
         Dimension::Length,
         found.summits.iter().map(|x| x.y).collect(),
     );
     t.push_float(
-        "height",
+        summit_columns::HEIGHT,
         Dimension::Length,
         found.summits.iter().map(|x| x.height).collect(),
     );
     t.push_float(
-        "slope",
+        summit_columns::SLOPE,
         Dimension::Dimensionless,
         found.summits.iter().map(|x| x.slope).collect(),
     );
     t.push_float(
-        "radius",
+        summit_columns::RADIUS,
         Dimension::Length,
         found.summits.iter().map(|x| x.radius).collect(),
     );
-    tables.insert(String::from("summits"), t);
+    tables.insert(String::from(tables::SUMMITS), t);
     Ok(())
 }

@@ -14,6 +14,7 @@ use crate::surface::synthetic::{
     generate_synthetic_surface_with_periodogram, SyntheticSurfaceSpec,
 };
 use crate::surface::{amplitude_statistics, Boundary, HeightMap};
+use crate::vocabulary::surface_metrics::LATERAL_SCALE_WARNING;
 
 mod height_unit;
 mod lateral_scale;
@@ -38,10 +39,10 @@ use measured::MeasuredSource;
 use twin_source::TwinSource;
 
 pub(crate) use crate::vocabulary::kinds::SURFACE as KIND;
-pub(crate) use crate::vocabulary::tables::SURFACES as TABLE;
 /// The column that says where a file surface's height unit came from (`file`, `study`,
 /// `assumed`).
-pub(crate) const HEIGHT_UNIT_SOURCE: &str = "height_unit_source";
+pub(crate) use crate::vocabulary::surface_parameters::HEIGHT_UNIT_SOURCE;
+pub(crate) use crate::vocabulary::tables::SURFACES as TABLE;
 
 /// Implementation version of the `surface` kind. Bump whenever the generated heights or the
 /// computed statistics change, so stale cache entries are never reused (8: the validity rules
@@ -255,7 +256,7 @@ impl NodeTask for SurfaceTask {
         if let SurfaceSource::Measured(_) = self.source {
             artifact
                 .metrics
-                .push(Field::text("lateral_scale_warning", warning));
+                .push(Field::text(LATERAL_SCALE_WARNING, warning));
         }
         artifact.flags = source_flags.into_iter().chain(artifact.flags).collect();
         let heights = map.into_heights().into_dyn();

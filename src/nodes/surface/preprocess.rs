@@ -24,6 +24,10 @@ use crate::surface::{
     FillOptions, HeightMap, MAX_FORM_DEGREE,
 };
 use crate::units::{Dimension, Length, Quantity};
+use crate::vocabulary::surface_parameters::{
+    CROP, DECIMATE_X, DECIMATE_Y, FILL_MISSING, FORM_DEGREE, HEIGHT_UNIT, L_FILTER,
+    OVERRIDE_FILE_SPACING, S_FILTER,
+};
 
 use super::height_unit::{apply_height_unit, HeightUnit, HeightUnitSource};
 use super::lateral_scale::{
@@ -351,29 +355,29 @@ impl Preprocessing {
         let mut fields = Vec::new();
         if let Some(given) = lateral {
             fields.extend(calibration_fields(given));
-            fields.push(Field::bool("override_file_spacing", override_file_spacing));
+            fields.push(Field::bool(OVERRIDE_FILE_SPACING, override_file_spacing));
         }
         if let Some(unit) = height_unit {
-            fields.push(Field::float("height_unit", unit, Dimension::Length));
+            fields.push(Field::float(HEIGHT_UNIT, unit, Dimension::Length));
         }
         if let Some(c) = crop {
-            for (name, x) in ["crop_ix0", "crop_iy0", "crop_nx", "crop_ny"].iter().zip(c) {
+            for (name, x) in CROP.iter().zip(c) {
                 fields.push(Field::int(*name, x as i64));
             }
         }
         if let Some([sx, sy]) = decimate {
-            fields.push(Field::int("decimate_x", sx as i64));
-            fields.push(Field::int("decimate_y", sy as i64));
+            fields.push(Field::int(DECIMATE_X, sx as i64));
+            fields.push(Field::int(DECIMATE_Y, sy as i64));
         }
         if let Some(d) = form_degree {
-            fields.push(Field::int("form_degree", d as i64));
+            fields.push(Field::int(FORM_DEGREE, d as i64));
         }
-        for (name, v) in [("s_filter", s_filter), ("l_filter", l_filter)] {
+        for (name, v) in [(S_FILTER, s_filter), (L_FILTER, l_filter)] {
             if let Some(v) = v {
                 fields.push(Field::float(name, v, Dimension::Length));
             }
         }
-        fields.push(Field::bool("fill_missing", fill));
+        fields.push(Field::bool(FILL_MISSING, fill));
         fields
     }
 

@@ -6,6 +6,11 @@ use crate::engine::study::{Param, ResolveContext, SpecError};
 use crate::engine::value::Field;
 use crate::surface::synthetic::{Anisotropy, SyntheticError, SyntheticSurfaceSpec};
 use crate::units::{Angle, Dimension, Length, Quantity};
+use crate::vocabulary::metrics::HURST;
+use crate::vocabulary::surface_parameters::{
+    ANISOTROPY_ANGLE, ANISOTROPY_RATIO, CORRELATION_LENGTH, LX, LY, NX, NY, SEED,
+    SHORT_WAVELENGTH_CUTOFF, SOURCE, SQ_TARGET,
+};
 
 use super::{SurfaceSource, SurfaceTask};
 
@@ -199,20 +204,16 @@ pub(super) fn key_fields(spec: &SyntheticSurfaceSpec) -> Vec<Field> {
         seed,
     } = *spec;
     let mut fields = vec![
-        Field::int("nx", nx as i64),
-        Field::int("ny", ny as i64),
-        Field::float("lx", lx, Dimension::Length),
-        Field::float("ly", ly, Dimension::Length),
-        Field::float("sq_target", sq, Dimension::Length),
-        Field::float("hurst", hurst, Dimension::Dimensionless),
-        Field::float("correlation_length", correlation_length, Dimension::Length),
+        Field::int(NX, nx as i64),
+        Field::int(NY, ny as i64),
+        Field::float(LX, lx, Dimension::Length),
+        Field::float(LY, ly, Dimension::Length),
+        Field::float(SQ_TARGET, sq, Dimension::Length),
+        Field::float(HURST, hurst, Dimension::Dimensionless),
+        Field::float(CORRELATION_LENGTH, correlation_length, Dimension::Length),
     ];
     if let Some(c) = short_wavelength_cutoff {
-        fields.push(Field::float(
-            "short_wavelength_cutoff",
-            c,
-            Dimension::Length,
-        ));
+        fields.push(Field::float(SHORT_WAVELENGTH_CUTOFF, c, Dimension::Length));
     }
     if let Some(Anisotropy {
         aspect_ratio,
@@ -220,13 +221,13 @@ pub(super) fn key_fields(spec: &SyntheticSurfaceSpec) -> Vec<Field> {
     }) = anisotropy
     {
         fields.push(Field::float(
-            "anisotropy_ratio",
+            ANISOTROPY_RATIO,
             aspect_ratio,
             Dimension::Dimensionless,
         ));
-        fields.push(Field::float("anisotropy_angle", angle, Dimension::Angle));
+        fields.push(Field::float(ANISOTROPY_ANGLE, angle, Dimension::Angle));
     }
-    fields.push(Field::int("seed", seed as i64));
-    fields.push(Field::text("source", "synthetic"));
+    fields.push(Field::int(SEED, seed as i64));
+    fields.push(Field::text(SOURCE, "synthetic"));
     fields
 }

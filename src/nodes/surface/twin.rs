@@ -27,6 +27,10 @@ use crate::surface::synthetic::MIN_SQ;
 use crate::surface::twins::{format_micrometres, Extrapolation, TwinGrid};
 use crate::surface::HeightMap;
 use crate::units::{Dimension, Length, Quantity};
+use crate::vocabulary::surface_parameters::{
+    twin_of_blake3, EXTRAPOLATION, HURST_BAND_LONG, HURST_BAND_SHORT, LX, LY, NX, NY, SEED,
+    SHORT_WAVELENGTH_CUTOFF, SOURCE, SPECTRUM, SQ_TARGET, TWIN_GRID,
+};
 
 use super::measured::MeasuredFile;
 use super::preprocess::{PreprocessDefaults, PreprocessSpec};
@@ -276,39 +280,35 @@ impl TwinSource {
             short_wavelength_cutoff,
             seed,
         } = self;
-        let mut fields = vec![Field::text("source", "twin")];
+        let mut fields = vec![Field::text(SOURCE, "twin")];
         if let Some(extrapolation) = spectrum {
-            fields.push(Field::text("spectrum", "measured"));
-            fields.push(Field::text("extrapolation", extrapolation.name()));
+            fields.push(Field::text(SPECTRUM, "measured"));
+            fields.push(Field::text(EXTRAPOLATION, extrapolation.name()));
         }
         fields.extend(preprocessing.key_fields());
         for (i, m) in measured.iter().enumerate() {
-            fields.push(Field::text(format!("twin_of_{i}_blake3"), m.content_hash()));
+            fields.push(Field::text(twin_of_blake3(i), m.content_hash()));
         }
         if let Some([short, long]) = hurst_band {
-            fields.push(Field::float("hurst_band_short", *short, Dimension::Length));
-            fields.push(Field::float("hurst_band_long", *long, Dimension::Length));
+            fields.push(Field::float(HURST_BAND_SHORT, *short, Dimension::Length));
+            fields.push(Field::float(HURST_BAND_LONG, *long, Dimension::Length));
         }
         fields.push(match sq {
-            TwinSq::Given(v) => Field::float("sq_target", *v, Dimension::Length),
-            TwinSq::Measured => Field::text("sq_target", "measured"),
+            TwinSq::Given(v) => Field::float(SQ_TARGET, *v, Dimension::Length),
+            TwinSq::Measured => Field::text(SQ_TARGET, "measured"),
         });
         match size {
             Some(TwinSize { nx, ny, lx, ly }) => fields.extend([
-                Field::int("nx", *nx as i64),
-                Field::int("ny", *ny as i64),
-                Field::float("lx", *lx, Dimension::Length),
-                Field::float("ly", *ly, Dimension::Length),
+                Field::int(NX, *nx as i64),
+                Field::int(NY, *ny as i64),
+                Field::float(LX, *lx, Dimension::Length),
+                Field::float(LY, *ly, Dimension::Length),
             ]),
-            None => fields.push(Field::text("twin_grid", "measured")),
+            None => fields.push(Field::text(TWIN_GRID, "measured")),
         }
-        fields.push(Field::int("seed", *seed as i64));
+        fields.push(Field::int(SEED, *seed as i64));
         if let Some(c) = short_wavelength_cutoff {
-            fields.push(Field::float(
-                "short_wavelength_cutoff",
-                *c,
-                Dimension::Length,
-            ));
+            fields.push(Field::float(SHORT_WAVELENGTH_CUTOFF, *c, Dimension::Length));
         }
         fields
     }

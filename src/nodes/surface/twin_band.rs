@@ -26,6 +26,9 @@ use crate::surface::spectral::{
 use crate::surface::twins::format_micrometres;
 use crate::surface::HeightMap;
 use crate::units::{Dimension, Length, Quantity};
+use crate::vocabulary::twin_metrics::{
+    TWIN_HURST_BANDS, TWIN_HURST_BAND_LONG, TWIN_HURST_BAND_SHORT, TWIN_HURST_BAND_SOURCE,
+};
 
 use super::preprocess::Preprocessing;
 
@@ -184,20 +187,20 @@ pub(crate) fn band_fields(bands: &[FileBand], given: bool, names: &[String]) -> 
         .join("; ");
     let mut fields = vec![
         Field::text(
-            "twin_hurst_band_source",
+            TWIN_HURST_BAND_SOURCE,
             if given { "study" } else { "found" },
         ),
-        Field::text("twin_hurst_bands", text),
+        Field::text(TWIN_HURST_BANDS, text),
     ];
     if let Some(first) = bands.first() {
         if bands.iter().all(|b| b.band == first.band) {
             fields.push(Field::float(
-                "twin_hurst_band_short",
+                TWIN_HURST_BAND_SHORT,
                 first.band[0],
                 Dimension::Length,
             ));
             fields.push(Field::float(
-                "twin_hurst_band_long",
+                TWIN_HURST_BAND_LONG,
                 first.band[1],
                 Dimension::Length,
             ));

@@ -14,6 +14,15 @@ use crate::surface::twins::{
 };
 use crate::surface::HeightMap;
 use crate::units::Dimension;
+use crate::vocabulary::metrics::HURST;
+use crate::vocabulary::surface_metrics::{CORRELATION_LENGTH_X, CORRELATION_LENGTH_Y};
+use crate::vocabulary::twin_metrics::{
+    twin_fit_r2, twin_fit_rms, TWIN_CALIBRATION_ITERATIONS, TWIN_CALIBRATION_RESIDUAL,
+    TWIN_CORRELATION_LENGTH_X, TWIN_CORRELATION_LENGTH_Y, TWIN_CORRELATION_X_METHODS,
+    TWIN_CORRELATION_Y_METHODS, TWIN_EXTRAPOLATED, TWIN_HURST, TWIN_HURST_CLAMPED,
+    TWIN_HURST_PREDICTED, TWIN_MEASURED_FILES, TWIN_MEASURED_SQ_MAX, TWIN_MEASURED_SQ_MIN,
+    TWIN_MIN_HURST_FIT_R2, TWIN_SQ, TWIN_WARNINGS,
+};
 
 use super::measured::{MeasuredFile, MeasuredSource};
 use super::twin_band::{band_fields, band_of};
@@ -173,27 +182,27 @@ fn twin_metrics(
         .any(|w| matches!(w, TwinWarning::HurstClamped { .. }));
     let sentences: Vec<String> = p.warnings.iter().map(ToString::to_string).collect();
     let mut fields = vec![
-        length("twin_sq", p.sq),
-        length("twin_correlation_length_x", p.correlation_length_x),
-        length("twin_correlation_length_y", p.correlation_length_y),
-        n("twin_hurst", p.hurst),
-        n("twin_hurst_predicted", p.hurst_predicted),
-        Field::bool("twin_extrapolated", extrapolated),
-        Field::bool("twin_hurst_clamped", clamped),
-        Field::text("twin_warnings", sentences.join("; ")),
-        length("twin_measured_sq_min", model.sq_range.0),
-        length("twin_measured_sq_max", model.sq_range.1),
-        Field::int("twin_measured_files", model.surfaces as i64),
+        length(TWIN_SQ, p.sq),
+        length(TWIN_CORRELATION_LENGTH_X, p.correlation_length_x),
+        length(TWIN_CORRELATION_LENGTH_Y, p.correlation_length_y),
+        n(TWIN_HURST, p.hurst),
+        n(TWIN_HURST_PREDICTED, p.hurst_predicted),
+        Field::bool(TWIN_EXTRAPOLATED, extrapolated),
+        Field::bool(TWIN_HURST_CLAMPED, clamped),
+        Field::text(TWIN_WARNINGS, sentences.join("; ")),
+        length(TWIN_MEASURED_SQ_MIN, model.sq_range.0),
+        length(TWIN_MEASURED_SQ_MAX, model.sq_range.1),
+        Field::int(TWIN_MEASURED_FILES, model.surfaces as i64),
         Field::text(
-            "twin_correlation_x_methods",
+            TWIN_CORRELATION_X_METHODS,
             methods(textures, |t| t.method_x),
         ),
         Field::text(
-            "twin_correlation_y_methods",
+            TWIN_CORRELATION_Y_METHODS,
             methods(textures, |t| t.method_y),
         ),
         n(
-            "twin_min_hurst_fit_r2",
+            TWIN_MIN_HURST_FIT_R2,
             textures
                 .iter()
                 .map(|t| t.hurst_r_squared)
@@ -201,29 +210,29 @@ fn twin_metrics(
         ),
     ];
     for (name, fit) in [
-        ("correlation_length_x", model.correlation_length_x.fit),
-        ("correlation_length_y", model.correlation_length_y.fit),
-        ("hurst", model.hurst.fit),
+        (CORRELATION_LENGTH_X, model.correlation_length_x.fit),
+        (CORRELATION_LENGTH_Y, model.correlation_length_y.fit),
+        (HURST, model.hurst.fit),
     ] {
         fields.push(Field::float(
-            format!("twin_fit_rms_{name}"),
+            twin_fit_rms(name),
             fit.rms_residual,
             Dimension::Dimensionless,
         ));
         // R² needs three or more files: the column is empty otherwise.
         if let Some(r2) = fit.r_squared {
             fields.push(Field::float(
-                format!("twin_fit_r2_{name}"),
+                twin_fit_r2(name),
                 r2,
                 Dimension::Dimensionless,
             ));
         }
     }
     fields.push(Field::int(
-        "twin_calibration_iterations",
+        TWIN_CALIBRATION_ITERATIONS,
         twin.iterations as i64,
     ));
-    fields.push(n("twin_calibration_residual", twin.residual));
+    fields.push(n(TWIN_CALIBRATION_RESIDUAL, twin.residual));
     fields
 }
 

@@ -22,6 +22,12 @@ use crate::surface::twins::{
 };
 use crate::surface::HeightMap;
 use crate::units::Dimension;
+use crate::vocabulary::twin_metrics::{
+    TWIN_EXTRAPOLATED_POWER_SHARE, TWIN_EXTRAPOLATION, TWIN_GRID_POWER_SHARE, TWIN_MEASURED_BANDS,
+    TWIN_MEASURED_FILES, TWIN_MEASURED_SPECTRUM_SQ, TWIN_MEASURED_SQ, TWIN_MODES_CUT,
+    TWIN_MODES_EXTRAPOLATED, TWIN_MODES_LONGER_THAN_MEASURED, TWIN_MODES_MEASURED, TWIN_SPECTRUM,
+    TWIN_SPECTRUM_SCALE, TWIN_SPECTRUM_SQ, TWIN_SQ,
+};
 
 use super::measured::{MeasuredFile, MeasuredSource};
 use super::twin_band::{band_fields, band_of, FileBand};
@@ -269,30 +275,30 @@ fn spectrum_metrics(
         .collect::<Vec<_>>()
         .join("; ");
     vec![
-        Field::text("twin_spectrum", "measured"),
-        Field::text("twin_extrapolation", extrapolation.name()),
-        length("twin_sq", twin.sq),
-        length("twin_measured_sq", twin.measured_sq),
-        length("twin_measured_spectrum_sq", twin.measured_spectrum_sq),
-        length("twin_spectrum_sq", twin.spectrum_sq),
+        Field::text(TWIN_SPECTRUM, "measured"),
+        Field::text(TWIN_EXTRAPOLATION, extrapolation.name()),
+        length(TWIN_SQ, twin.sq),
+        length(TWIN_MEASURED_SQ, twin.measured_sq),
+        length(TWIN_MEASURED_SPECTRUM_SQ, twin.measured_spectrum_sq),
+        length(TWIN_SPECTRUM_SQ, twin.spectrum_sq),
         Field::float(
-            "twin_grid_power_share",
+            TWIN_GRID_POWER_SHARE,
             grid_power_share(twin),
             Dimension::Dimensionless,
         ),
         Field::float(
-            "twin_spectrum_scale",
+            TWIN_SPECTRUM_SCALE,
             twin.sq / twin.spectrum_sq,
             Dimension::Dimensionless,
         ),
-        count("twin_measured_files", spectra.len()),
-        Field::text("twin_measured_bands", bands),
-        count("twin_modes_measured", twin.modes.measured),
-        count("twin_modes_extrapolated", twin.modes.shorter),
-        count("twin_modes_longer_than_measured", twin.modes.longer),
-        count("twin_modes_cut", twin.modes.cut),
+        count(TWIN_MEASURED_FILES, spectra.len()),
+        Field::text(TWIN_MEASURED_BANDS, bands),
+        count(TWIN_MODES_MEASURED, twin.modes.measured),
+        count(TWIN_MODES_EXTRAPOLATED, twin.modes.shorter),
+        count(TWIN_MODES_LONGER_THAN_MEASURED, twin.modes.longer),
+        count(TWIN_MODES_CUT, twin.modes.cut),
         Field::float(
-            "twin_extrapolated_power_share",
+            TWIN_EXTRAPOLATED_POWER_SHARE,
             twin.modes.extrapolated_power_share,
             Dimension::Dimensionless,
         ),

@@ -19,6 +19,7 @@ use crate::engine::artifact::{Artifact, ColumnData};
 use crate::engine::node::NodeError;
 use crate::engine::value::{column_name, Field, Value};
 use crate::units::{format_number, Dimension};
+use crate::vocabulary::{contact_metrics as c, metrics as m, surface_metrics as s};
 
 /// What happens when a value is outside a rule's range.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -112,7 +113,7 @@ pub const MAX_UNTRUSTED_LOAD_SHARE: f64 = 0.5;
 pub const RULES: &[ColumnRule] = &[
     ColumnRule {
         kind: SURFACE,
-        columns: &["dx", "dy"],
+        columns: &[m::DX, m::DY],
         range: Range::Positive,
         severity: Severity::Fail,
         why: "a grid spacing is a positive length; a file whose spacing is 0 or negative is \
@@ -120,7 +121,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: SURFACE,
-        columns: &["dx", "dy"],
+        columns: &[m::DX, m::DY],
         range: Range::AtMost(MAX_SPACING),
         severity: Severity::Fail,
         why: "no topography is sampled coarser than a metre: the file's spacing (e.g. an x3p \
@@ -129,7 +130,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: SURFACE,
-        columns: &["sq"],
+        columns: &[m::SQ],
         range: Range::AtLeast(MIN_SQ),
         severity: Severity::Fail,
         why: "an Sq below a picometre (an atom is about 1e-10 m) is no measurable roughness and \
@@ -137,7 +138,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: SURFACE,
-        columns: &["sq", "sa", "sp", "sv", "sz"],
+        columns: &[m::SQ, s::SA, s::SP, s::SV, s::SZ],
         range: Range::AtMost(MAX_HEIGHT),
         severity: Severity::Fail,
         why: "no surface topography spans a kilometre in height: the file is damaged (e.g. \
@@ -145,7 +146,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: SURFACE,
-        columns: &["sa", "sp", "sv", "sz", "sdq", "sdr_percent", "sal"],
+        columns: &[s::SA, s::SP, s::SV, s::SZ, s::SDQ, s::SDR_PERCENT, s::SAL],
         range: Range::AtLeast(0.0),
         severity: Severity::Fail,
         why: "an amplitude, slope or length is never negative",
@@ -153,14 +154,14 @@ pub const RULES: &[ColumnRule] = &[
     ColumnRule {
         kind: SURFACE,
         columns: &[
-            "sk",
-            "spk",
-            "svk",
-            "sxp",
-            "vmp_m3_per_m2",
-            "vmc_m3_per_m2",
-            "vvc_m3_per_m2",
-            "vvv_m3_per_m2",
+            s::SK,
+            s::SPK,
+            s::SVK,
+            s::SXP,
+            s::VMP,
+            s::VMC,
+            s::VVC,
+            s::VVV,
         ],
         range: Range::AtLeast(0.0),
         severity: Severity::Fail,
@@ -169,28 +170,28 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: SURFACE,
-        columns: &["smr1_percent", "smr2_percent"],
+        columns: &[s::SMR1_PERCENT, s::SMR2_PERCENT],
         range: Range::Between(0.0, 100.0),
         severity: Severity::Fail,
         why: "a material ratio is a share of the valid points",
     },
     ColumnRule {
         kind: SURFACE,
-        columns: &["str", "hurst_fit_r_squared"],
+        columns: &[s::STR, s::HURST_FIT_R_SQUARED],
         range: Range::Between(0.0, 1.0),
         severity: Severity::Fail,
         why: "a ratio of lengths or a coefficient of determination lies in [0, 1]",
     },
     ColumnRule {
         kind: CONTACT,
-        columns: &["area_fraction"],
+        columns: &[m::AREA_FRACTION],
         range: Range::Between(0.0, 1.0),
         severity: Severity::Fail,
         why: "the real contact area is a part of the nominal area",
     },
     ColumnRule {
         kind: CONTACT,
-        columns: &["stress_ratio"],
+        columns: &[m::STRESS_RATIO],
         range: Range::Between(0.0, 1.0),
         severity: Severity::Fail,
         why: "the mean contact pressure cannot exceed the flow pressure that caps every local \
@@ -198,14 +199,14 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: CONTACT,
-        columns: &["plastic_area_share"],
+        columns: &[c::PLASTIC_AREA_SHARE],
         range: Range::Between(0.0, 1.0),
         severity: Severity::Fail,
         why: "the plastic area is a part of the contact area",
     },
     ColumnRule {
         kind: CONTACT,
-        columns: &["composite_modulus", "nominal_pressure", "dx", "dy"],
+        columns: &[m::COMPOSITE_MODULUS, m::NOMINAL_PRESSURE, m::DX, m::DY],
         range: Range::Positive,
         severity: Severity::Fail,
         why: "a modulus, a compressive load and a grid spacing are positive",
@@ -213,9 +214,9 @@ pub const RULES: &[ColumnRule] = &[
     ColumnRule {
         kind: CONTACT,
         columns: &[
-            "mean_contact_pressure",
-            "max_elastic_deformation",
-            "residual",
+            m::MEAN_CONTACT_PRESSURE,
+            c::MAX_ELASTIC_DEFORMATION,
+            m::RESIDUAL,
         ],
         range: Range::AtLeast(0.0),
         severity: Severity::Fail,
@@ -224,7 +225,12 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &["mu_s", "local_mu_p10", "local_mu_median", "local_mu_p90"],
+        columns: &[
+            m::MU_S,
+            m::LOCAL_MU_P10,
+            m::LOCAL_MU_MEDIAN,
+            m::LOCAL_MU_P90,
+        ],
         range: Range::AtLeast(0.0),
         severity: Severity::Fail,
         why: "a static friction coefficient is never negative (a negative model value is kept in \
@@ -232,7 +238,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &["area_fraction"],
+        columns: &[m::AREA_FRACTION],
         range: Range::Between(0.0, 1.0),
         severity: Severity::Fail,
         why: "the real contact area cannot exceed the nominal area; statistically, the \
@@ -244,11 +250,11 @@ pub const RULES: &[ColumnRule] = &[
     ColumnRule {
         kind: FRICTION,
         columns: &[
-            "load_share_beyond_fit",
-            "load_share_one_pixel",
-            "load_share_without_radius",
-            "load_share_merged",
-            "load_share_outside_regime",
+            m::LOAD_SHARE_BEYOND_FIT,
+            m::LOAD_SHARE_ONE_PIXEL,
+            m::LOAD_SHARE_WITHOUT_RADIUS,
+            m::LOAD_SHARE_MERGED,
+            m::LOAD_SHARE_OUTSIDE_REGIME,
         ],
         range: Range::Between(0.0, 1.0),
         severity: Severity::Fail,
@@ -256,7 +262,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &["load_share_beyond_fit"],
+        columns: &[m::LOAD_SHARE_BEYOND_FIT],
         range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
         severity: Severity::Flag,
         why: "more than half the load lies beyond the validated range of the friction law (KE \
@@ -267,7 +273,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &["load_share_without_radius"],
+        columns: &[m::LOAD_SHARE_WITHOUT_RADIUS],
         range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
         severity: Severity::Flag,
         why: "more than half the load sits on spots whose topography gives no convex radius, \
@@ -276,7 +282,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &["load_share_merged"],
+        columns: &[m::LOAD_SHARE_MERGED],
         range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
         severity: Severity::Flag,
         why: "more than half the load sits on merged spots (two or more summits of the composite \
@@ -285,7 +291,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &["load_share_outside_regime"],
+        columns: &[m::LOAD_SHARE_OUTSIDE_REGIME],
         range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
         severity: Severity::Flag,
         why: "more than half the load sits on spots whose degree of penetration is beyond the \
@@ -294,14 +300,14 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &["adhesion_share"],
+        columns: &[m::ADHESION_SHARE],
         range: Range::AtLeast(0.0),
         severity: Severity::Fail,
         why: "an attractive adhesion force over a compressive contact load is never negative",
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &["adhesion_share"],
+        columns: &[m::ADHESION_SHARE],
         range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
         severity: Severity::Flag,
         why: "adhesion carries more than half the contact load: μ_s = Q/(F_n − F_a) is governed \
@@ -310,7 +316,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &["load_share_one_pixel"],
+        columns: &[m::LOAD_SHARE_ONE_PIXEL],
         range: Range::AtMost(0.5),
         severity: Severity::Flag,
         why: "most of the load sits on one-pixel spots, whose size and radius the grid does not \
@@ -319,16 +325,16 @@ pub const RULES: &[ColumnRule] = &[
     ColumnRule {
         kind: FRICTION,
         columns: &[
-            "normal_load",
-            "friction_force",
-            "adhesion_force",
-            "real_area",
-            "contacts",
-            "plasticity_index",
-            "shear_strength",
-            "spot_area_p10",
-            "spot_area_median",
-            "spot_area_p90",
+            m::NORMAL_LOAD,
+            m::FRICTION_FORCE,
+            m::ADHESION_FORCE,
+            m::REAL_AREA,
+            m::CONTACTS,
+            m::PLASTICITY_INDEX,
+            m::SHEAR_STRENGTH,
+            m::SPOT_AREA_P10,
+            m::SPOT_AREA_MEDIAN,
+            m::SPOT_AREA_P90,
         ],
         range: Range::AtLeast(0.0),
         severity: Severity::Fail,
@@ -337,7 +343,7 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &["apparent_area", "section_area"],
+        columns: &[m::APPARENT_AREA, m::SECTION_AREA],
         range: Range::Positive,
         severity: Severity::Fail,
         why: "a nominal area is positive",

@@ -94,7 +94,11 @@ pub(super) fn decode(bytes: &[u8], schema: &Table, rows: usize) -> Result<Table,
     for (read, expected) in frame.columns().iter().zip(&schema.columns) {
         let name = expected.column_name();
         let series = read.as_materialized_series();
-        if series.name().as_str() != name || series.null_count() > 0 {
+        // Entries written before the unit suffixes became identifiers (`area_m^2`, now
+        // `area_m2`) name the column with the SI symbol: the same column.
+        let legacy = format!("{}_{}", expected.name, expected.dimension.si_symbol());
+        let named = series.name().as_str() == name || series.name().as_str() == legacy;
+        if !named || series.null_count() > 0 {
             return Err(format!(
                 "column '{}' where the summary says '{name}' without nulls",
                 series.name()
@@ -212,5 +216,18 @@ mod tests {
         assert!(decode(&bytes, &retyped, 50).is_err());
         assert!(decode(&bytes[..bytes.len() - 9], &schema_of(&table), 50).is_err());
         assert!(file_name("summits").is_ok() && file_name("../x").is_err());
+    }
+
+    /// An entry written when the area suffix was `m^2` reads under the name `area_m2`.
+    #[test]
+    fn a_column_named_with_the_si_symbol_reads_as_its_identifier_name() {
+        let mut old = Table::default();
+        old.push_float("area_m^2", Dimension::Dimensionless, vec![1e-12, 2e-12]);
+        let bytes = encode(&old).unwrap();
+        let mut now = Table::default();
+        now.push_float("area", Dimension::Area, Vec::new());
+        let read = decode(&bytes, &now, 2).unwrap();
+        assert_eq!(read.columns[0].column_name(), "area_m2");
+        assert_eq!(read.columns[0].data, ColumnData::Float(vec![1e-12, 2e-12]));
     }
 }

@@ -62,7 +62,8 @@ impl Dimension {
         Self::ALL.into_iter().find(|d| d.name().as_bytes() == name)
     }
 
-    /// The SI unit symbol written in column names ("m", "Pa", …); empty when dimensionless.
+    /// The SI unit symbol written in messages and in the tables' unit metadata ("m", "m^2",
+    /// "N/m", …); empty when dimensionless. Column names use [`Dimension::column_suffix`].
     pub fn si_symbol(self) -> &'static str {
         match self {
             Dimension::Dimensionless => "",
@@ -73,6 +74,23 @@ impl Dimension {
             Dimension::SurfaceEnergy => "N/m",
             Dimension::Angle => "rad",
             Dimension::InverseArea => "m^-2",
+        }
+    }
+
+    /// The unit as a column name ends: `<name>_<suffix>` (`sq_m`, `real_area_m2`,
+    /// `summit_density_per_m2`, `adhesion_energy_N_per_m`); empty when dimensionless. Letters,
+    /// digits and `_` only, so every column is a Python identifier (pandas `.query`, attribute
+    /// access) and the unit is still read off the name: `per_` divides, a digit is a power.
+    pub fn column_suffix(self) -> &'static str {
+        match self {
+            Dimension::Dimensionless => "",
+            Dimension::Length => "m",
+            Dimension::Area => "m2",
+            Dimension::Pressure => "Pa",
+            Dimension::Force => "N",
+            Dimension::SurfaceEnergy => "N_per_m",
+            Dimension::Angle => "rad",
+            Dimension::InverseArea => "per_m2",
         }
     }
 
