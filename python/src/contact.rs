@@ -166,26 +166,32 @@ fn contact<'py>(
     let steps = curve.steps.iter().map(step_dict).collect::<Vec<_>>();
     d.set_item("load_curve", steps.into_pyobject(py)?)?;
     if all_steps {
-        let steps = PyList::empty(py);
-        for (step, f) in curve
-            .steps
-            .iter()
-            .zip(earlier.into_iter().map(Some).chain([fields.clone()]))
-        {
-            let s = PyDict::new(py);
-            s.set_item("nominal_pressure_Pa", step.nominal_pressure)?;
-            s.set_item("area_fraction", step.area_fraction)?;
-            if let Some(f) = f {
-                set_maps(&s, f)?;
-            }
-            steps.append(s)?;
-        }
-        d.set_item("steps", steps)?;
+        let maps = earlier.into_iter().map(Some).chain([fields.clone()]);
+        d.set_item("steps", step_dicts(py, &curve, maps)?)?;
     }
     if let Some(f) = fields {
         set_maps(&d, f)?;
     }
     Ok((d, artifact.flags))
+}
+
+/// One dict per load step: its nominal pressure, contact area share and `maps`.
+fn step_dicts<'py>(
+    py: Python<'py>,
+    curve: &LoadCurve,
+    maps: impl Iterator<Item = Option<ContactFields>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let steps = PyList::empty(py);
+    for (step, f) in curve.steps.iter().zip(maps) {
+        let s = PyDict::new(py);
+        s.set_item("nominal_pressure_Pa", step.nominal_pressure)?;
+        s.set_item("area_fraction", step.area_fraction)?;
+        if let Some(f) = f {
+            set_maps(&s, f)?;
+        }
+        steps.append(s)?;
+    }
+    Ok(steps)
 }
 
 /// The maps of a step under the names of a study's contact fields.
