@@ -42,7 +42,8 @@ pub mod tables {
     /// A friction node's own table of its summits (`friction_summits`); a surface's own table of
     /// its identified summits (`surfaces_summits`).
     pub const SUMMITS: &str = "summits";
-    /// A statistical friction node's own table of its μ(F) curve (`friction_curve`).
+    /// A friction node's own table of its load steps (`friction_curve`): one row per load of a
+    /// statistical node, per load step of the contact a per-summit or per-spot node reads.
     pub const CURVE: &str = "curve";
     /// One row per scenario, with its parameters and the `<node>_key` of each node.
     pub const SCENARIOS: &str = "scenarios";
@@ -405,10 +406,15 @@ pub mod summit_columns {
     pub const FRICTION_FORCE: &str = "friction_force";
 }
 
-/// Columns of a statistical friction node's `curve` table beyond the row's metrics.
+/// Columns of a friction node's `curve` table (`friction_curve`, one row per load step) beyond
+/// the row's metrics.
 pub mod curve_columns {
-    /// Index of the load.
-    pub const POINT: &str = "point";
+    /// Index of the load step (0 for the first), the engine's step column.
+    pub use crate::engine::columns::STEP;
+    /// `ok` or `flagged`: the validity of the step's own values (the final step's is the row's).
+    pub const STEP_STATUS: &str = "step_status";
+    /// The sentences that flag the step, joined by "; " (empty when `ok`).
+    pub const STEP_MESSAGE: &str = "step_message";
 }
 
 /// Upstream roles: the input a node names (`lower: surface_node`).

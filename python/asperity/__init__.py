@@ -18,7 +18,7 @@ SI units throughout (metres, pascals); a quantity may also be a string with its 
 takes a :class:`Topography` or ``(heights, dx, dy)``. Results are dicts typed by the
 ``TypedDict`` classes of this module, so a type checker sees their keys:
 :class:`SurfaceStatistics`, :class:`Psd`, :class:`Acf`, :class:`MaterialRatio`, :class:`Summits`,
-:class:`MaterialConstants`, :class:`ContactResult` (with :class:`LoadStep`),
+:class:`MaterialConstants`, :class:`ContactResult` (with :class:`LoadStep` and :class:`ContactStep`),
 :class:`FrictionLaw` (with :class:`FrictionLawParameter`), :class:`StaticFrictionRow`,
 :class:`PerSpotResult`, :class:`PerSummitResult` and :class:`StudyCounts`. A bad argument raises ``TypeError`` or ``ValueError`` naming the parameter, the value and
 its expected unit or range; a value that is possible but probably in the wrong unit, or that a
@@ -39,6 +39,7 @@ from ._native import StudyError
 from ._results import (
     Acf,
     ContactResult,
+    ContactStep,
     FrictionLaw,
     FrictionLawParameter,
     LoadStep,
@@ -92,6 +93,7 @@ __all__ = [
     "per_summit_friction",
     "Acf",
     "ContactResult",
+    "ContactStep",
     "FrictionLaw",
     "FrictionLawParameter",
     "LoadStep",

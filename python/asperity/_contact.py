@@ -99,6 +99,7 @@ def contact(
     flow_pressure: Optional[Union[float, str]] = None,
     periodic: bool = True,
     tolerance: Optional[float] = None,
+    fields: str = "final",
 ) -> ContactResult:
     """Elastic–perfectly-plastic FFT boundary-element contact, as a study's ``contact`` node.
 
@@ -121,7 +122,17 @@ def contact(
     out of contact, 0 in elastic contact and < 0 where the surfaces interpenetrate by plastic
     flow (p = p_lim; −gap is the plastic penetration there); deformations are positive into
     each body.
+
+    ``fields="all"`` also returns ``steps``, one dict per load step (the last is the final
+    step): ``nominal_pressure_Pa``, ``area_fraction`` and the step's maps under the same names,
+    derived for the earlier steps from the step's pressure as a study's contact node derives
+    them for its friction nodes (equal to the solver's maps to round-off). Pass a step to
+    :func:`per_spot_friction` or :func:`per_summit_friction` with ``step=i`` (or the step's dict
+    as ``result``) for the friction at that load, the row of the study's ``friction_curve``.
+    ``fields="final"`` (the default) keeps the final step's maps only.
     """
+    if fields not in ("final", "all"):
+        raise ValueError(f"fields: {fields!r} is not one of 'final', 'all' (the maps of the final load step, or of every step)")
     lo, up = _pair_topographies(lower, dx, dy, upper)
     slopes = [s for s in (_checked_slope("lower", lo), None if up is None else _checked_slope("upper", up)) if s is not None]
     lower_body = body("lower_material", lower_material)
@@ -145,6 +156,7 @@ def contact(
         _args.boolean("periodic", periodic),
         tol,
         slopes,
+        fields == "all",
     )
     warn(flags)
     warn(contact_sentences(result["area_fraction"], lo.nx * lo.ny, pressures[-1]))

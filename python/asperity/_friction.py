@@ -188,6 +188,21 @@ def static_friction(
     return cast(List[StaticFrictionRow], rows)
 
 
+def _at_step(result: Any, step: Optional[int]) -> Any:
+    """``result`` itself (``step=None``), or its load step ``step`` (0 for the first, negative
+    from the last) of a :func:`contact` result computed with ``fields="all"``."""
+    if step is None:
+        return result
+    if not isinstance(result, Mapping) or "steps" not in result:
+        raise ValueError(f"step: {step!r} needs the maps of every load step: run asperity.contact(..., fields='all')")
+    steps = result["steps"]
+    if isinstance(step, bool) or not isinstance(step, int):
+        raise TypeError(f"step: expected a load step index (int), got {_args.show(step)}")
+    if not -len(steps) <= step < len(steps):
+        raise ValueError(f"step: {step} is out of range: the result has {len(steps)} load steps (0 to {len(steps) - 1})")
+    return steps[step]
+
+
 def _contact_fields(result: Any, keys: Sequence[str]) -> Dict[str, F64]:
     if not isinstance(result, Mapping):
         raise TypeError(f"result: expected the dict asperity.contact returns, got {_args.show(result)}")
@@ -227,6 +242,7 @@ def per_spot_friction(
     parameters: Optional[LawParameters] = None,
     yield_strength: Optional[Quantity] = None,
     shear_strength: Optional[Quantity] = None,
+    step: Optional[int] = None,
 ) -> PerSpotResult:
     """Static friction of a :func:`contact` result spot by spot, in the one call a study's
     ``per_spot`` friction node makes: the connected contact spots of ``result["pressure"]``
@@ -254,7 +270,12 @@ def per_spot_friction(
     ``load_share_outside_regime``), for ploughing ``ploughing_body`` and ``mu_deformation_slope_baseline``, and per spot
     ``spot_normal_force_N``, ``spot_area_m2``, ``spot_radius_m`` (None without a convex fit),
     ``spot_summits``, ``spot_friction_force_N`` and ``spot_deformation_force_N``.
+
+    ``step=i``: the friction at load step ``i`` of a result of ``contact(..., fields="all")``
+    (negative counts from the last), the row ``i`` of a study's ``friction_curve``; by default
+    the final step's maps (or those of the step dict given as ``result``).
     """
+    result = _at_step(result, step)
     fields = _contact_fields(result, ("pressure", "gap", "deformation_lower", "plastic_penetration"))
     t, _ = as_topography("composite_height", composite_height, dx, dy)
     if t.heights.shape != fields["pressure"].shape:
@@ -313,6 +334,7 @@ def per_summit_friction(
     equilibrium_distance: Optional[Quantity] = None,
     parameters: Optional[LawParameters] = None,
     yield_strength: Optional[Quantity] = None,
+    step: Optional[int] = None,
 ) -> PerSummitResult:
     """Static friction of a :func:`contact` result summit by summit, as a study's ``per_summit``
     friction node: the summits (8-neighbour maxima, periodic when ``periodic``) of
@@ -329,7 +351,12 @@ def per_summit_friction(
     the share of the load beyond the laws' validated range ``load_share_beyond_fit`` and per summit
     ``summit_radius_m``, ``summit_interference_m`` (m, < 0: a gap), ``summit_normal_force_N``,
     ``summit_friction_force_N`` and ``summit_adhesion_force_N``.
+
+    ``step=i``: the friction at load step ``i`` of a result of ``contact(..., fields="all")``
+    (negative counts from the last), the row ``i`` of a study's ``friction_curve``; by default
+    the final step's maps (or those of the step dict given as ``result``).
     """
+    result = _at_step(result, step)
     fields = _contact_fields(result, ("pressure", "gap", "deformation_lower", "plastic_penetration"))
     deformation = fields["deformation_lower"]
     if result.get("deformation_upper") is not None:

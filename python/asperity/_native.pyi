@@ -94,6 +94,7 @@ def contact(
     periodic: bool = ...,
     tolerance: Optional[float] = ...,
     slopes: Sequence[float] = ...,
+    all_steps: bool = ...,
 ) -> Tuple[Dict[str, Any], List[str]]: ...
 def friction_laws() -> List[Dict[str, Any]]: ...
 def static_friction(

@@ -181,9 +181,27 @@ class _UpperDeformation(TypedDict, total=False):
     deformation_upper: F64
 
 
-class ContactResult(_UpperDeformation):
+class ContactStep(_UpperDeformation):
+    """One load step of :class:`ContactResult` ``["steps"]`` (``fields="all"``): its nominal
+    pressure, contact area share and maps, as a study's contact node gives them to its friction
+    nodes at that step."""
+
+    nominal_pressure_Pa: float
+    area_fraction: float
+    pressure: F64
+    gap: F64
+    deformation_lower: F64
+    plastic_penetration: F64
+
+
+class _Steps(TypedDict, total=False):
+    steps: List[ContactStep]
+
+
+class ContactResult(_UpperDeformation, _Steps):
     """:func:`asperity.contact`: the ``contacts`` row of the final step, the load curve and the
-    final step's fields (``deformation_upper`` with an upper surface only)."""
+    final step's fields (``deformation_upper`` with an upper surface only); with
+    ``fields="all"`` also ``steps``, one :class:`ContactStep` per load step."""
 
     composite_modulus_Pa: float
     nominal_pressure_Pa: float

@@ -5,8 +5,8 @@
 //! the node's numbers bit for bit.
 
 use asperity::contact::{
-    Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver, FieldRequest, LoadStep,
-    SolverOptions,
+    fields_from_pressure, Boundary, CompositeGap, ContactFields, ContactMaterial, ContactProblem,
+    ContactSolver, FieldRequest, LoadCurve, LoadStep, SolverOptions,
 };
 use asperity::engine::artifact::Artifact;
 use asperity::materials::{find_material, BodyMaterial, MaterialPair};
@@ -15,7 +15,7 @@ use asperity::nodes::validity::cross::{contact_grid, contact_slope};
 use asperity::nodes::validity::{check_artifact, CONTACT};
 use numpy::{IntoPyArray, PyReadonlyArray2};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 
 use crate::guard::{compute, value_error};
 use crate::row::set_fields;
@@ -93,7 +93,7 @@ fn setup(
 /// a composite slope beyond the half-space theory. Returns the result and the sentences that
 /// would flag the node's row.
 #[pyfunction]
-#[pyo3(signature = (lower, dx, dy, lower_body, nominal_pressures, flow_pressure, upper=None, upper_body=None, periodic=true, tolerance=None, slopes=Vec::new()))]
+#[pyo3(signature = (lower, dx, dy, lower_body, nominal_pressures, flow_pressure, upper=None, upper_body=None, periodic=true, tolerance=None, slopes=Vec::new(), all_steps=false))]
 #[allow(clippy::too_many_arguments)]
 fn contact<'py>(
     py: Python<'py>,
@@ -108,6 +108,7 @@ fn contact<'py>(
     periodic: bool,
     tolerance: Option<f64>,
     slopes: Vec<f64>,
+    all_steps: bool,
 ) -> PyResult<(Bound<'py, PyDict>, Vec<String>)> {
     let lower = height_map("lower", &lower, dx, dy)?;
     let upper = match (upper, upper_body) {
@@ -123,12 +124,18 @@ fn contact<'py>(
     check_pressures(&nominal_pressures, flow_pressure)?;
     let options = SolverOptions {
         tolerance: tolerance.unwrap_or(SolverOptions::default().tolerance),
+        // Every step's pressure, for the maps of the earlier steps (`all_steps`).
+        fields: FieldRequest {
+            pressure: all_steps,
+            ..FieldRequest::NONE
+        },
         ..SolverOptions::default()
     };
     let grid_flag = contact_grid(lower.nx(), lower.ny());
-    let (artifact, curve, fields) = compute(py, || {
+    let (artifact, curve, fields, earlier) = compute(py, || {
         let s = setup(lower, upper, lower_body, flow_pressure, periodic)?;
         check_strain(&nominal_pressures, s.composite_modulus)?;
+        let problem = all_steps.then(|| s.problem.clone());
         let mut solver =
             ContactSolver::new(s.problem, options).map_err(|e| value_error("tolerance", e))?;
         let curve = solver
@@ -148,27 +155,91 @@ fn contact<'py>(
         };
         check_artifact(CONTACT, &mut artifact).map_err(|e| value_error("contact", e.message))?;
         let fields = solver.last_fields(FieldRequest::ALL);
-        Ok((artifact, curve, fields))
+        let earlier = match &problem {
+            Some(problem) => earlier_step_fields(problem, &curve)?,
+            None => Vec::new(),
+        };
+        Ok((artifact, curve, fields, earlier))
     })?;
     let d = PyDict::new(py);
     set_fields(&d, artifact.metrics)?;
     let steps = curve.steps.iter().map(step_dict).collect::<Vec<_>>();
     d.set_item("load_curve", steps.into_pyobject(py)?)?;
+    if all_steps {
+        let maps = earlier.into_iter().map(Some).chain([fields.clone()]);
+        d.set_item("steps", step_dicts(py, &curve, maps)?)?;
+    }
     if let Some(f) = fields {
-        let named = [
-            ("pressure", f.pressure),
-            ("gap", f.gap),
-            ("deformation_lower", f.deformation_first),
-            ("deformation_upper", f.deformation_second),
-            ("plastic_penetration", f.plastic_penetration),
-        ];
-        for (name, array) in named {
-            if let Some(a) = array {
-                d.set_item(name, a.into_pyarray(py))?;
-            }
-        }
+        set_maps(&d, f)?;
     }
     Ok((d, artifact.flags))
+}
+
+/// One dict per load step: its nominal pressure, contact area share and `maps`.
+fn step_dicts<'py>(
+    py: Python<'py>,
+    curve: &LoadCurve,
+    maps: impl Iterator<Item = Option<ContactFields>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let steps = PyList::empty(py);
+    for (step, f) in curve.steps.iter().zip(maps) {
+        let s = PyDict::new(py);
+        s.set_item("nominal_pressure_Pa", step.nominal_pressure)?;
+        s.set_item("area_fraction", step.area_fraction)?;
+        if let Some(f) = f {
+            set_maps(&s, f)?;
+        }
+        steps.append(s)?;
+    }
+    Ok(steps)
+}
+
+/// The maps of a step under the names of a study's contact fields.
+fn set_maps(d: &Bound<'_, PyDict>, f: ContactFields) -> PyResult<()> {
+    let py = d.py();
+    let named = [
+        ("pressure", f.pressure),
+        ("gap", f.gap),
+        ("deformation_lower", f.deformation_first),
+        ("deformation_upper", f.deformation_second),
+        ("plastic_penetration", f.plastic_penetration),
+    ];
+    for (name, array) in named {
+        if let Some(a) = array {
+            d.set_item(name, a.into_pyarray(py))?;
+        }
+    }
+    Ok(())
+}
+
+/// The maps of every step before the final one, as a study's contact node derives them for
+/// its consumers (`ContactTask::step_maps`): the step's pressure as solved, the other maps from
+/// it and the step's approach by the solver's influence operator
+/// ([`fields_from_pressure`]).
+fn earlier_step_fields(
+    problem: &ContactProblem,
+    curve: &LoadCurve,
+) -> PyResult<Vec<ContactFields>> {
+    let derived = FieldRequest {
+        pressure: false,
+        ..FieldRequest::ALL
+    };
+    let earlier = curve.steps.len().saturating_sub(1);
+    curve.steps[..earlier]
+        .iter()
+        .enumerate()
+        .map(|(i, step)| {
+            let pressure = step
+                .fields
+                .as_ref()
+                .and_then(|f| f.pressure.clone())
+                .ok_or_else(|| value_error("fields", format!("load step {i} kept no pressure")))?;
+            let mut f = fields_from_pressure(problem, pressure.view(), step.approach, derived)
+                .map_err(|e| value_error("fields", format!("maps of load step {i}: {e}")))?;
+            f.pressure = Some(pressure);
+            Ok(f)
+        })
+        .collect()
 }
 
 /// Largest nominal pressure as a share of the composite modulus E*: a mean elastic strain p̄/E*

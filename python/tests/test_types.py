@@ -55,6 +55,10 @@ def test_contact_and_friction_results():
     check(c, asperity.ContactResult, "contact")
     for step in c["load_curve"]:
         check(step, asperity.LoadStep, "contact load_curve")
+    every = asperity.contact(T, nominal_pressures=[5e6, 20e6], lower_material="s235jr", fields="all")
+    check(every, asperity.ContactResult, "contact, fields='all'")
+    for step in every["steps"]:
+        check(step, asperity.ContactStep, "contact steps")
     two = asperity.contact(T, upper=T, nominal_pressures=1e6, lower_material="s235jr", upper_material="s235jr")
     check(two, asperity.ContactResult, "contact of two surfaces")
     check(asperity.material("s235jr"), asperity.MaterialConstants, "material")

@@ -9,7 +9,7 @@
 
 use ndarray::{Array2, ArrayD, ArrayView2, Ix2};
 
-use crate::engine::artifact::Artifact;
+use crate::engine::artifact::{Artifact, ColumnData};
 use crate::engine::node::NodeError;
 use crate::engine::value::Value;
 
@@ -29,6 +29,22 @@ pub(crate) use crate::vocabulary::metrics::{AREA_FRACTION, DX, DY, NOMINAL_PRESS
 /// [`PRESSURE`]).
 pub(crate) fn step_pressure_name(step: usize) -> String {
     format!("{}{step}", crate::vocabulary::arrays::PRESSURE_STEP_PREFIX)
+}
+
+/// The nominal pressure (Pa) of each load step a contact solved, first to last (its load-curve
+/// table; the last is the final step's, [`NOMINAL_PRESSURE`] among its metrics).
+pub(crate) fn step_nominal_pressures(contact: &Artifact) -> Result<Vec<f64>, NodeError> {
+    let column = contact
+        .tables
+        .get(crate::vocabulary::tables::LOAD_CURVE)
+        .and_then(|t| t.columns.iter().find(|c| c.name == NOMINAL_PRESSURE))
+        .map(|c| &c.data);
+    match column {
+        Some(ColumnData::Float(p)) if !p.is_empty() => Ok(p.clone()),
+        _ => Err(NodeError::new(
+            "the contact node has no load curve with its nominal pressures",
+        )),
+    }
 }
 
 /// The contact points of a pressure map as stored for an earlier load step: a `2 × m` array, row

@@ -55,7 +55,8 @@ fn statistical_from_explicit_roughness_equals_the_library() {
     let summits = SummitStatistics::from_explicit(0.1e-6, 100e-6, 4e9).unwrap();
     // Same inputs, same deterministic solve: bit-identical.
     assert_eq!(float(row, "mu_s"), library_mu(summits, 1e-6, 20.0));
-    assert!(row.tables.is_empty(), "one load: no curve table");
+    // One load: a curve of one step, the row.
+    assert_eq!(column(row, "curve", "mu_s"), vec![float(row, "mu_s")]);
 }
 
 #[test]
@@ -168,7 +169,10 @@ fn per_summit_on_a_small_contact_gives_a_sane_coefficient() {
     let forces = column(per, "summits", "normal_force");
     assert!(forces.iter().all(|f| *f >= 0.0));
     // The statistical node takes the contact's final nominal pressure as its load.
-    let ke = rows.iter().find(|o| o.tables.is_empty()).unwrap();
+    let ke = rows
+        .iter()
+        .find(|o| text(o, "method") == "statistical")
+        .unwrap();
     assert_eq!(float(ke, "nominal_pressure"), 20e6);
 }
 

@@ -8,6 +8,7 @@ mod contact_node;
 mod friction_high_plasticity;
 mod friction_node;
 mod friction_ploughing;
+mod friction_steps;
 mod friction_trust;
 #[path = "../nodes_common/mod.rs"]
 mod nodes_common;

@@ -8,15 +8,15 @@ use crate::units::format_number;
 
 use super::material_pair::MaterialPair;
 use super::spec_fields::spec_error;
-use super::FrictionSpec;
+use super::{ContactInput, FrictionSpec};
 use crate::nodes::contact::ContactTask;
 use crate::nodes::validity;
 
 /// The checks of a method that reads a contact solution (`per_summit`, `per_spot`): no
 /// surfaces, roughness or loads of its own, an upstream contact node with `fields: true` and the
 /// same composite modulus, and a flow pressure within a factor of 10 of the friction laws' H
-/// ([`validity::cross::flow_pressure_match`]). Returns the contact's input index, whether it was
-/// periodic and the flag of a flow pressure that differs by more than 1 %.
+/// ([`validity::cross::flow_pressure_match`]). Returns the contact (its input index and task)
+/// and the flag of a flow pressure that differs by more than 1 %.
 pub(super) fn contact_solution(
     spec: &FrictionSpec,
     ctx: &ResolveContext<'_>,
@@ -24,7 +24,7 @@ pub(super) fn contact_solution(
     contact: Option<usize>,
     pair: &MaterialPair,
     method: Method,
-) -> Result<(usize, bool, Option<String>), SpecError> {
+) -> Result<(ContactInput, Option<String>), SpecError> {
     let not_here = |field: &str, what: &str| {
         Err(spec_error(
             location,
@@ -90,7 +90,11 @@ pub(super) fn contact_solution(
         pair.material.hardness,
     )
     .map_err(|message| spec_error(name.location, "contact", message))?;
-    Ok((index, contact_task.periodic(), flag))
+    let contact = ContactInput {
+        index,
+        task: std::sync::Arc::new(contact_task.clone()),
+    };
+    Ok((contact, flag))
 }
 
 /// The contact solution was computed with the contact's materials: the friction node's must

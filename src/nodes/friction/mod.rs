@@ -6,8 +6,7 @@
 //!   (`friction::static_friction`): roughness from one or two upstream surface nodes (isotropic
 //!   spectral moments, two surfaces combined by adding moments) or explicit
 //!   `{sigma, radius, density}`; load as nominal pressures or forces, or the final nominal pressure
-//!   of an upstream contact node. Several loads give a μ(F) curve (long table `friction_curve`);
-//!   the row is at the last load.
+//!   of each load step of an upstream contact node.
 //! * `method: per_summit` — the single-asperity laws applied to each summit of the composite
 //!   topography an upstream contact node solved (`fields: true`), with each summit's interference
 //!   from the contact's deformation there (`friction::per_summit_friction`); optional long table
@@ -19,6 +18,10 @@
 //! Every row says how far to trust it: `model_basis`, `load_share_beyond_fit`, the adhesion
 //! share, the flags of its inputs (`trust`), a flag above the law's μ_s bound, and `mu_s` is
 //! never negative (`mu_s_computed`, `mu_s_floored` keep what the model gave).
+//!
+//! Every method gives the friction at every load step (each load, or each step of the upstream
+//! contact): long table `friction_curve` ([`steps`]), one row per step with every column of the
+//! row; the row is the final step.
 //!
 //! Table `friction`, one row per node instance (see `docs/study-format.md`).
 
@@ -34,6 +37,7 @@ use crate::engine::study::Located;
 use crate::friction::{AdhesionParameters, FrictionLaw, Material, Method, SummitStatistics};
 use crate::units::{Area, Dimension, Force, Length, Pressure, Quantity, SurfaceEnergy};
 
+use super::contact::ContactTask;
 use super::contact_view::ContactView;
 use super::material_spec::MaterialSpec;
 use super::validity;
@@ -51,17 +55,21 @@ mod per_summit;
 mod setup;
 mod spec_fields;
 mod statistical;
+mod steps;
 mod trust;
 
 pub(crate) use crate::vocabulary::kinds::FRICTION as KIND;
+use crate::vocabulary::tables::CURVE as TABLES_CURVE;
 pub(crate) use crate::vocabulary::tables::FRICTION as TABLE;
 use crate::vocabulary::{metrics as names, roles};
 
 /// Implementation version of the `friction` kind; bump whenever its numerics change (4: keys
 /// derived from the law registry; the values are those of version 3; 5: ploughing on the
 /// harder body's deformed surface at each spot's loaded front, `tilted_junction` removed, merged
-/// spots and the adhesion share reported, flags inherited from the inputs).
-pub const FRICTION_KIND_VERSION: u32 = 5;
+/// spots and the adhesion share reported, flags inherited from the inputs; 6: friction at
+/// every load step, the `curve` table for every method with every column of the row and the
+/// step's validity, per spot with `nominal_pressure`; the final step's values are those of 5).
+pub const FRICTION_KIND_VERSION: u32 = 6;
 
 /// Default adhesion energy Δγ (N/m): "somewhat clean" metal surfaces, the value of the static
 /// friction experiments on 17-4PH compared with the KE model (reference workflow; the range
@@ -200,15 +208,23 @@ pub(crate) enum MethodSetup {
         loads: Loads,
     },
     PerSummit {
-        contact: usize,
+        contact: ContactInput,
         nominal_area: Option<f64>,
         periodic: bool,
         summits_table: bool,
     },
     PerSpot {
-        contact: usize,
+        contact: ContactInput,
         section: per_spot::Section,
     },
+}
+
+/// The upstream contact a per-summit or per-spot node reads: its input index and its task,
+/// which derives the maps of the contact's earlier load steps (`ContactTask::step_maps`).
+#[derive(Debug, Clone)]
+pub(crate) struct ContactInput {
+    pub index: usize,
+    pub task: Arc<ContactTask>,
 }
 
 /// A resolved friction node.
@@ -223,14 +239,6 @@ pub struct FrictionTask {
     input_roles: Vec<&'static str>,
     adhesion: AdhesionParameters,
     setup: MethodSetup,
-}
-
-/// A float metric of an upstream artifact.
-pub(crate) fn float_metric(input: &Artifact, name: &str, role: &str) -> Result<f64, NodeError> {
-    match input.metric(name).map(|f| &f.value) {
-        Some(Value::Float(v)) => Ok(*v),
-        _ => Err(NodeError::new(format!("{role} node: no {name}"))),
-    }
 }
 
 /// `input` at `index`, or an error naming the role.
@@ -268,6 +276,11 @@ impl NodeTask for FrictionTask {
         TABLE
     }
 
+    /// `curve` (`friction_curve`): one row per load step, every method ([`steps`]).
+    fn step_table(&self) -> Option<&'static str> {
+        Some(TABLES_CURVE)
+    }
+
     fn params(&self) -> Vec<Field> {
         self.key_fields()
     }
@@ -276,22 +289,62 @@ impl NodeTask for FrictionTask {
         match self.setup {
             // The net-load grid and a few result rows.
             MethodSetup::Statistical { .. } => 1 << 20,
-            // Copies of the contact's maps (a 2048² map is 32 MiB) plus per-summit rows.
+            // Copies of the contact's maps (a 2048² map is 32 MiB) plus per-summit rows, and
+            // the maps of one earlier load step at a time.
             MethodSetup::PerSummit { .. } => 1 << 28,
-            // Spot labels (4 B per point) and the spots; the maps are read in place.
-            MethodSetup::PerSpot { .. } => 1 << 27,
+            // Spot labels (4 B per point) and the spots (the final step's maps are read in
+            // place), and the maps of one earlier load step at a time.
+            MethodSetup::PerSpot { .. } => 1 << 28,
         }
     }
 
+    /// Every load step's row (`steps`), then the `friction` row: the final step's, with the
+    /// method's long tables of the final step and the `curve` table of every step.
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
         let law = self.law.descriptor();
-        let mut metrics = vec![
+        let head = [
             Field::text(names::METHOD, self.setup.method().name()),
             Field::text(names::MODEL, law.name),
             Field::text(names::MODEL_BASIS, law.basis.name()),
         ];
         let mut tables = std::collections::BTreeMap::<String, Table>::new();
-        self.compute_method(inputs, &mut metrics, &mut tables)?;
+        let rows = self.compute_method(inputs, &mut tables)?;
+        let n = rows.len();
+        let mut checked = Vec::with_capacity(n);
+        for (i, row) in rows.into_iter().enumerate() {
+            let metrics = head.iter().cloned().chain(row).collect();
+            let artifact = if i + 1 == n {
+                self.checked(inputs, metrics, std::mem::take(&mut tables))?
+            } else {
+                self.checked(inputs, metrics, Default::default())
+                    .map_err(|e| steps::at_step(e, i, n))?
+            };
+            checked.push(artifact);
+        }
+        let curve = steps::step_table(
+            &checked
+                .iter()
+                .map(|a| (a.metrics.clone(), a.flags.clone()))
+                .collect::<Vec<_>>(),
+        )?;
+        let mut artifact = checked
+            .pop()
+            .ok_or_else(|| NodeError::new("no load step was computed"))?;
+        artifact.tables.insert(String::from(TABLES_CURVE), curve);
+        Ok(artifact)
+    }
+}
+
+impl FrictionTask {
+    /// The row of `metrics` (with the long `tables` of its step) and its validity: the input
+    /// flags, the nominal pressure against the flow pressure, the law's μ_s bound and the
+    /// column rules ([`validity::check_artifact`]).
+    fn checked(
+        &self,
+        inputs: &[&Artifact],
+        metrics: Vec<Field>,
+        tables: std::collections::BTreeMap<String, Table>,
+    ) -> Result<Artifact, NodeError> {
         let mut artifact = Artifact {
             metrics,
             arrays: Default::default(),
@@ -303,24 +356,22 @@ impl NodeTask for FrictionTask {
                 .map_err(NodeError::new)?;
         }
         trust::inherit_flags(&self.input_roles, inputs, &mut artifact.flags);
-        trust::flag_mu_s_beyond_law(law, &mut artifact);
+        trust::flag_mu_s_beyond_law(self.law.descriptor(), &mut artifact);
         validity::check_artifact(KIND, &mut artifact)?;
         Ok(artifact)
     }
-}
 
-impl FrictionTask {
-    /// The method's columns and tables.
+    /// The method's metrics at each load step (the last the final step) and its long tables
+    /// of the final step.
     fn compute_method(
         &self,
         inputs: &[&Artifact],
-        metrics: &mut Vec<Field>,
         tables: &mut std::collections::BTreeMap<String, Table>,
-    ) -> Result<(), NodeError> {
+    ) -> Result<Vec<Vec<Field>>, NodeError> {
         if let MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } =
             &self.setup
         {
-            let (ny, nx) = ContactView::of(input(inputs, *contact, roles::CONTACT)?)?
+            let (ny, nx) = ContactView::of(input(inputs, contact.index, roles::CONTACT)?)?
                 .pressure
                 .dim();
             validity::cross::friction_grid(nx, ny).map_err(NodeError::new)?;
@@ -330,15 +381,7 @@ impl FrictionTask {
                 roughness,
                 nominal_area,
                 loads,
-            } => statistical::compute(
-                self,
-                inputs,
-                roughness,
-                *nominal_area,
-                loads,
-                metrics,
-                tables,
-            ),
+            } => statistical::compute(self, inputs, roughness, *nominal_area, loads),
             MethodSetup::PerSummit {
                 contact,
                 nominal_area,
@@ -346,18 +389,18 @@ impl FrictionTask {
                 summits_table,
             } => per_summit::compute(
                 self,
-                input(inputs, *contact, roles::CONTACT)?,
+                contact,
+                input(inputs, contact.index, roles::CONTACT)?,
                 *nominal_area,
                 *periodic,
                 *summits_table,
-                metrics,
                 tables,
             ),
             MethodSetup::PerSpot { contact, section } => per_spot::compute(
                 self,
-                input(inputs, *contact, roles::CONTACT)?,
+                contact,
+                input(inputs, contact.index, roles::CONTACT)?,
                 section,
-                metrics,
                 tables,
             ),
         }

@@ -13,6 +13,10 @@
 //!   contact's `gap` (`adhesion_from_gap`), 0 with `adhesion_energy: 0`.
 //! * **Coefficient**: μ_s = Σ Q_i/(Σ P_i − F_a) of the section; forces are scaled to
 //!   `nominal_area` like the per-summit method (μ_s is invariant under that scaling).
+//! * **Load steps**: every step of the contact (`friction_curve`, one row each); the earlier
+//!   steps' maps are derived from their stored pressure by one convolution each
+//!   (`ContactTask::step_maps`), the final step's read as the contact stores them. The row and
+//!   the spots table are the final step's.
 //! * **Trust**: the load shares beyond the law's fit, without a radius, on merged spots under a
 //!   radius-based law, on one-pixel spots, the adhesion share F_a/F_n, spot-area and local-μ
 //!   quantiles over the spots (the validity rules flag the shares above their bounds).
@@ -32,8 +36,11 @@ use crate::units::Dimension;
 use crate::vocabulary::{self, metrics as names, spot_columns};
 
 use super::deformation_part::{extend_spots_table, push_parts};
-use super::{adhesion_share_field, beyond_fit_field, coefficient_fields, share, FrictionTask};
-use crate::nodes::contact_view::ContactView;
+use super::steps::at_step;
+use super::{
+    adhesion_share_field, beyond_fit_field, coefficient_fields, share, ContactInput, FrictionTask,
+};
+use crate::nodes::contact_view::{step_nominal_pressures, ContactView};
 
 /// How the section is read.
 #[derive(Debug, Clone)]
@@ -70,15 +77,46 @@ fn contact_section<'a>(
     })
 }
 
+/// The metrics at each load step of the contact (the earlier steps' maps derived from their
+/// pressure, `ContactTask::step_maps`; the final step's read as stored) and the spots table of
+/// the final step.
 pub(super) fn compute(
     task: &FrictionTask,
-    contact: &Artifact,
+    contact: &ContactInput,
+    artifact: &Artifact,
     section: &Section,
-    metrics: &mut Vec<Field>,
     tables: &mut BTreeMap<String, Table>,
-) -> Result<(), NodeError> {
-    let fields = ContactView::of(contact)?;
-    let found = contact_section(task, &fields, section)
+) -> Result<Vec<Vec<Field>>, NodeError> {
+    let n = step_nominal_pressures(artifact)?.len();
+    let mut rows = Vec::with_capacity(n);
+    for step in 0..n - 1 {
+        let row = contact
+            .task
+            .step_maps(artifact, step)
+            .and_then(|maps| step_row(task, &maps.view(artifact)?, section))
+            .map_err(|e| at_step(e, step, n))?;
+        rows.push(row.0);
+    }
+    let fields = ContactView::of(artifact)?;
+    let (metrics, found) = step_row(task, &fields, section)?;
+    rows.push(metrics);
+    if section.spots_table {
+        let mut table = spots_table(&found.spots, &found.result, (fields.dx, fields.dy));
+        if let Some(geometry) = &found.geometry {
+            extend_spots_table(&mut table, geometry, &found.result);
+        }
+        tables.insert(String::from(vocabulary::tables::SPOTS), table);
+    }
+    Ok(rows)
+}
+
+/// The metrics of the section `fields` (one load step) and what the numerics found there.
+fn step_row(
+    task: &FrictionTask,
+    fields: &ContactView<'_>,
+    section: &Section,
+) -> Result<(Vec<Field>, SectionFriction), NodeError> {
+    let found = contact_section(task, fields, section)
         .and_then(|s| per_spot_friction(&s, task.law.as_ref()))
         .map_err(|e| NodeError::new(format!("per-spot friction: {e}")))?;
     let SectionFriction {
@@ -95,37 +133,33 @@ pub(super) fn compute(
     let (ny, nx) = fields.pressure.dim();
     let section_area = nx as f64 * fields.dx * ny as f64 * fields.dy;
     let area = section.nominal_area.unwrap_or(section_area);
-    metrics.extend(coefficient_fields(mu_s));
+    let mut metrics = coefficient_fields(mu_s).to_vec();
     metrics.push(beyond_fit_field(
         result.load_beyond_fit,
         result.total_normal_force,
     ));
     push_forces(
-        metrics,
+        &mut metrics,
         result,
         area / section_area,
-        fields.nominal_pressure * area,
+        fields.nominal_pressure,
+        area,
     );
-    push_spot_statistics(metrics, spots, result, section_area, area);
+    push_spot_statistics(&mut metrics, spots, result, section_area, area);
     if let Some(geometry) = geometry {
-        push_parts(metrics, spots, geometry, result);
+        push_parts(&mut metrics, spots, geometry, result);
     }
-    if section.spots_table {
-        let mut table = spots_table(spots, result, (fields.dx, fields.dy));
-        if let Some(geometry) = geometry {
-            extend_spots_table(&mut table, geometry, result);
-        }
-        tables.insert(String::from(vocabulary::tables::SPOTS), table);
-    }
-    Ok(())
+    Ok((metrics, found))
 }
 
-/// The force columns, scaled from the section to the nominal area, and the adhesion share.
+/// The force columns, scaled from the section to the nominal area, the contact's nominal
+/// pressure (Pa) and its load over the nominal area `area`, and the adhesion share.
 fn push_forces(
     metrics: &mut Vec<Field>,
     result: &PerSpotResult,
     scale: f64,
-    contact_normal_load: f64,
+    nominal_pressure: f64,
+    area: f64,
 ) {
     let force = |name: &'static str, v: f64| Field::float(name, scale * v, Dimension::Force);
     metrics.extend([
@@ -138,8 +172,13 @@ fn push_forces(
         force(names::FRICTION_FORCE, result.total_friction_force.max(0.0)),
         Field::float(
             names::CONTACT_NORMAL_LOAD,
-            contact_normal_load,
+            nominal_pressure * area,
             Dimension::Force,
+        ),
+        Field::float(
+            names::NOMINAL_PRESSURE,
+            nominal_pressure,
+            Dimension::Pressure,
         ),
         adhesion_share_field(result.adhesion_force, result.total_normal_force),
     ]);

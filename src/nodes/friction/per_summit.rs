@@ -19,6 +19,10 @@
 //!   force columns are the section sums times A_n/A_section (`nominal_area`, default the section);
 //!   μ_s is invariant under that scaling and is the whole-surface estimate.
 //! * **Area**: `real_area`/`area_fraction` are the contact node's (points with p > 0), scaled to A_n.
+//! * **Load steps**: every step of the contact (`friction_curve`, one row each) on the same
+//!   summits; the earlier steps' maps are derived from their stored pressure by one
+//!   convolution each (`ContactTask::step_maps`), the final step's read as the contact stores
+//!   them. The row and the summits table are the final step's.
 //! * **ψ**: the plasticity index of the identified summits, (2E/(πKH))·√(σ_s/R̄) with σ_s the std
 //!   of their heights and R̄ their mean radius.
 
@@ -39,8 +43,11 @@ use crate::surface::{find_summits, Boundary, HeightMap, Summit, SummitOptions, S
 use crate::units::Dimension;
 use crate::vocabulary::{metrics as names, summit_columns, tables};
 
-use super::{adhesion_share_field, beyond_fit_field, coefficient_fields, FrictionTask};
-use crate::nodes::contact_view::ContactView;
+use super::steps::at_step;
+use super::{
+    adhesion_share_field, beyond_fit_field, coefficient_fields, ContactInput, FrictionTask,
+};
+use crate::nodes::contact_view::{step_nominal_pressures, ContactView};
 
 /// The interference ω (m) of the summit at (iy, ix); see the module docs.
 fn interference(fields: &ContactView, iy: usize, ix: usize) -> Result<f64, NodeError> {
@@ -70,30 +77,76 @@ fn state_name(state: DeformationState) -> &'static str {
     }
 }
 
+/// The metrics at each load step of the contact (the earlier steps' maps derived from their
+/// pressure, `ContactTask::step_maps`; the final step's read as stored) on the summits of the
+/// composite height (the same at every step), and the summits table of the final step.
 pub(super) fn compute(
     task: &FrictionTask,
-    contact: &Artifact,
+    contact: &ContactInput,
+    artifact: &Artifact,
     nominal_area: Option<f64>,
     periodic: bool,
     summits_table: bool,
-    metrics: &mut Vec<Field>,
     tables: &mut BTreeMap<String, Table>,
-) -> Result<(), NodeError> {
-    let maps = ContactView::of(contact)?;
-    let (ny, nx) = maps.composite_height.dim();
-    let section_area = nx as f64 * maps.dx * ny as f64 * maps.dy;
+) -> Result<Vec<Vec<Field>>, NodeError> {
+    let maps = ContactView::of(artifact)?;
     let found = composite_summits(&maps, periodic)?;
     let summits: Vec<&Summit> = found
         .summits
         .iter()
         .filter(|s| s.radius.is_finite() && s.radius > 0.0)
         .collect();
-    let contacts = summits
+    let on = SummitSet {
+        summits: &summits,
+        statistics: &found,
+        nominal_area,
+    };
+    let n = step_nominal_pressures(artifact)?.len();
+    let mut rows = Vec::with_capacity(n);
+    for step in 0..n - 1 {
+        let row = contact
+            .task
+            .step_maps(artifact, step)
+            .and_then(|m| step_row(task, &m.view(artifact)?, &on))
+            .map_err(|e| at_step(e, step, n))?;
+        rows.push(row.0);
+    }
+    let (metrics, contacts, result) = step_row(task, &maps, &on)?;
+    rows.push(metrics);
+    if summits_table {
+        tables.insert(
+            String::from(tables::SUMMITS),
+            summits_table_of(&summits, &contacts, &result.summits),
+        );
+    }
+    Ok(rows)
+}
+
+/// The summits a per-summit node reads at every load step.
+struct SummitSet<'a> {
+    /// The summits with a finite positive radius.
+    summits: &'a [&'a Summit],
+    /// All summits found, with their statistics.
+    statistics: &'a Summits,
+    nominal_area: Option<f64>,
+}
+
+/// The metrics of one load step (`maps`) on the summits, with each summit's contact and
+/// forces.
+fn step_row(
+    task: &FrictionTask,
+    maps: &ContactView<'_>,
+    on: &SummitSet<'_>,
+) -> Result<(Vec<Field>, Vec<SummitContact>, PerSummitResult), NodeError> {
+    let (ny, nx) = maps.composite_height.dim();
+    let section_area = nx as f64 * maps.dx * ny as f64 * maps.dy;
+    let contacts = on
+        .summits
         .iter()
         .map(|s| {
             Ok(SummitContact {
                 radius: s.radius,
-                interference: interference(&maps, s.iy, s.ix)?,
+                interference: interference(maps, s.iy, s.ix)?,
             })
         })
         .collect::<Result<Vec<_>, NodeError>>()?;
@@ -111,39 +164,34 @@ pub(super) fn compute(
             result.total_normal_force, result.total_adhesion_force
         ))
     })?;
-    let area = nominal_area.unwrap_or(section_area);
-    metrics.extend(coefficient_fields(mu_s));
+    let area = on.nominal_area.unwrap_or(section_area);
+    let mut metrics = coefficient_fields(mu_s).to_vec();
     push_forces(
-        metrics,
+        &mut metrics,
         &result,
         area / section_area,
         maps.nominal_pressure * area,
         maps.nominal_pressure,
     );
-    if let (Some(sigma_s), Some(radius)) =
-        (found.statistics.height_std, found.statistics.mean_radius)
-    {
+    if let (Some(sigma_s), Some(radius)) = (
+        on.statistics.statistics.height_std,
+        on.statistics.statistics.mean_radius,
+    ) {
         metrics.push(dimensionless(
             names::PLASTICITY_INDEX,
             task.material.plasticity_index(sigma_s, radius),
         ));
     }
     push_counts(
-        metrics,
+        &mut metrics,
         &result,
         maps.area_fraction,
         area,
         section_area,
-        summits.len(),
+        on.summits.len(),
     );
-    push_local_mu(metrics, &result);
-    if summits_table {
-        tables.insert(
-            String::from(tables::SUMMITS),
-            summits_table_of(&summits, &contacts, &result.summits),
-        );
-    }
-    Ok(())
+    push_local_mu(&mut metrics, &result);
+    Ok((metrics, contacts, result))
 }
 
 fn dimensionless(name: &'static str, v: f64) -> Field {

@@ -242,8 +242,9 @@ fn method_setup(
             }
         }
         Method::PerSummit => {
-            let (contact, periodic, mismatch) =
+            let (contact, mismatch) =
                 contact_input::contact_solution(spec, ctx, location, contact, pair, method)?;
+            let periodic = contact.task.periodic();
             let summits_table = match &spec.summits_table {
                 Some(p) => ctx.resolve(p, "summits_table")?,
                 None => false,
@@ -257,8 +258,9 @@ fn method_setup(
             }
         }
         Method::PerSpot => {
-            let (contact, periodic, mismatch) =
+            let (contact, mismatch) =
                 contact_input::contact_solution(spec, ctx, location, contact, pair, method)?;
+            let periodic = contact.task.periodic();
             let (connectivity, spots_table) = contact_input::spot_options(spec, ctx)?;
             flag = mismatch;
             MethodSetup::PerSpot {

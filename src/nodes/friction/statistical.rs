@@ -5,28 +5,28 @@
 //! m0, m2, m4 of the upstream surface(s) (`surfaces` metrics `m0_m2`, `m2`, `m4_per_m2`); two
 //! surfaces are combined by adding moments (the equivalent sum surface). Nominal area: explicit or
 //! the lower surface's `nx·dx · ny·dy`. Loads: each nominal pressure times A_n, each force, or the
-//! upstream contact's final nominal pressure times A_n. With several loads the solves share one
-//! net-load grid (`friction::static_friction_curve`); the row is at the **last** load (as the
-//! contact node's row is at its last step) and `friction_curve` has one row per load. A load
-//! the model cannot carry fails the node with the library's message naming the load.
+//! nominal pressure of each load step of the upstream contact times A_n. Listed loads share one
+//! net-load grid (`friction::static_friction_curve`); a contact's steps are solved each on its
+//! own (the final one as when it was the only load). The row is at the **last** load (as the
+//! contact node's row is at its last step) and `friction_curve` has one row per load
+//! (`steps`). A load the model cannot carry fails the node with the library's message naming
+//! the load.
 
-use std::collections::BTreeMap;
-
-use crate::engine::artifact::{Artifact, Table};
+use crate::engine::artifact::Artifact;
 use crate::engine::node::NodeError;
 use crate::engine::value::Field;
 use crate::friction::{
     static_friction_curve, AdhesionBeyondFits, SolveSettings, SpectralMoments,
     StaticFrictionResult, StatisticalModel, SummitStatistics,
 };
-use crate::nodes::contact_view::NOMINAL_PRESSURE;
+use crate::nodes::contact_view::step_nominal_pressures;
 use crate::nodes::surface_view::SurfaceView;
 use crate::units::Dimension;
-use crate::vocabulary::{curve_columns, metrics as names, roles, tables};
+use crate::vocabulary::{metrics as names, roles};
 
 use super::{
-    adhesion_share_field, beyond_fit_field, coefficient_fields, float_metric, input, FrictionTask,
-    Loads, Roughness,
+    adhesion_share_field, beyond_fit_field, coefficient_fields, input, FrictionTask, Loads,
+    Roughness,
 };
 
 fn moments(surface: &Artifact, role: &str) -> Result<SpectralMoments, NodeError> {
@@ -75,15 +75,14 @@ fn roughness_and_area(
     }
 }
 
+/// The metrics at each load (the last the row's).
 pub(super) fn compute(
     task: &FrictionTask,
     inputs: &[&Artifact],
     roughness: &Roughness,
     nominal_area: Option<f64>,
     loads: &Loads,
-    metrics: &mut Vec<Field>,
-    tables: &mut BTreeMap<String, Table>,
-) -> Result<(), NodeError> {
+) -> Result<Vec<Vec<Field>>, NodeError> {
     let (summits, area) = roughness_and_area(inputs, roughness, nominal_area)?;
     let model = StatisticalModel::new(
         task.asperity_laws()?,
@@ -94,35 +93,36 @@ pub(super) fn compute(
         AdhesionBeyondFits::default(),
     )
     .map_err(|e| NodeError::new(format!("friction model: {e}")))?;
-    let forces: Vec<f64> = match loads {
-        Loads::Pressures(p) => p.iter().map(|p| p * area).collect(),
-        Loads::Forces(f) => f.clone(),
+    let results = match loads {
+        Loads::Pressures(p) => {
+            let forces: Vec<f64> = p.iter().map(|p| p * area).collect();
+            solve_each_load(&model, &forces, area)?
+        }
+        Loads::Forces(f) => solve_each_load(&model, f, area)?,
+        // Each step of the contact alone: the final one as when it was the only load.
         Loads::FromContact(c) => {
-            vec![
-                float_metric(
-                    input(inputs, *c, roles::CONTACT)?,
-                    NOMINAL_PRESSURE,
-                    roles::CONTACT,
-                )? * area,
-            ]
+            let pressures = step_nominal_pressures(input(inputs, *c, roles::CONTACT)?)?;
+            let mut results = Vec::with_capacity(pressures.len());
+            for p in pressures {
+                results.extend(solve_each_load(&model, &[p * area], area)?);
+            }
+            results
         }
     };
-    let results = solve_each_load(&model, &forces, area)?;
-    let last = results
-        .last()
-        .ok_or_else(|| NodeError::new("no load to solve"))?;
-    let mu_s = last.mu_s.ok_or_else(|| {
-        NodeError::new(format!(
-            "no static friction coefficient at the non-compressive load {} N",
-            last.external_load
-        ))
-    })?;
-    metrics.extend(coefficient_fields(mu_s));
-    metrics.extend(result_fields(last, &summits, area));
-    if results.len() > 1 {
-        tables.insert(String::from(tables::CURVE), curve_table(&results, area)?);
-    }
-    Ok(())
+    results
+        .iter()
+        .map(|r| {
+            let mu_s = r.mu_s.ok_or_else(|| {
+                NodeError::new(format!(
+                    "no static friction coefficient at the non-compressive load {} N",
+                    r.external_load
+                ))
+            })?;
+            let mut metrics = coefficient_fields(mu_s).to_vec();
+            metrics.extend(result_fields(r, &summits, area));
+            Ok(metrics)
+        })
+        .collect()
 }
 
 /// The static friction at each external load (N), with an error naming the load that failed.
@@ -193,106 +193,6 @@ fn result_fields(last: &StaticFrictionResult, summits: &SummitStatistics, area: 
         n(
             names::INTEGRAL_ERROR,
             last.status.max_integral_relative_error,
-        ),
-    ]
-}
-
-fn curve_table(results: &[StaticFrictionResult], area: f64) -> Result<Table, NodeError> {
-    let mu: Option<Vec<f64>> = results.iter().map(|r| r.mu_s).collect();
-    let mu = mu.ok_or_else(|| NodeError::new("a curve load is not compressive"))?;
-    let mut t = Table::default();
-    t.push_int(curve_columns::POINT, (0..results.len() as i64).collect());
-    let columns = curve_float_columns(area);
-    let (before_mu, after_mu) = columns.split_at(2);
-    let push = |t: &mut Table, columns: &[CurveColumn]| {
-        for (name, dimension, value) in columns {
-            t.push_float(*name, *dimension, results.iter().map(value).collect());
-        }
-    };
-    push(&mut t, before_mu);
-    t.push_float(
-        names::MU_S,
-        Dimension::Dimensionless,
-        mu.iter().map(|m| m.max(0.0)).collect(),
-    );
-    t.push_float(names::MU_S_COMPUTED, Dimension::Dimensionless, mu);
-    push(&mut t, after_mu);
-    let iterations = results.iter().map(|r| r.status.brent_iterations as i64);
-    t.push_int(names::ITERATIONS, iterations.collect());
-    t.push_float(
-        names::RESIDUAL,
-        Dimension::Dimensionless,
-        results.iter().map(|r| r.status.relative_residual).collect(),
-    );
-    Ok(t)
-}
-
-/// A float column of the curve table: its name, dimension and value per load.
-type CurveColumn = (
-    &'static str,
-    Dimension,
-    Box<dyn Fn(&StaticFrictionResult) -> f64>,
-);
-
-/// The curve table's float columns in their order, μ_s going after the first two.
-fn curve_float_columns(area: f64) -> Vec<CurveColumn> {
-    let share_beyond_fit = |r: &StaticFrictionResult| {
-        if r.contact_load > 0.0 {
-            (r.load_beyond_fit / r.contact_load).clamp(0.0, 1.0)
-        } else {
-            0.0
-        }
-    };
-    vec![
-        (
-            names::EXTERNAL_LOAD,
-            Dimension::Force,
-            Box::new(|r| r.external_load),
-        ),
-        (
-            names::NOMINAL_PRESSURE,
-            Dimension::Pressure,
-            Box::new(move |r| r.external_load / area),
-        ),
-        (
-            names::NORMAL_LOAD,
-            Dimension::Force,
-            Box::new(|r| r.contact_load),
-        ),
-        (
-            names::ADHESION_FORCE,
-            Dimension::Force,
-            Box::new(|r| r.adhesion_force),
-        ),
-        (
-            names::FRICTION_FORCE,
-            Dimension::Force,
-            Box::new(|r| r.static_friction_force.max(0.0)),
-        ),
-        (
-            names::LOAD_SHARE_BEYOND_FIT,
-            Dimension::Dimensionless,
-            Box::new(share_beyond_fit),
-        ),
-        (
-            names::SEPARATION,
-            Dimension::Length,
-            Box::new(|r| r.separation_from_heights),
-        ),
-        (
-            names::CONTACTS,
-            Dimension::Dimensionless,
-            Box::new(|r| r.contacting_summits),
-        ),
-        (
-            names::REAL_AREA,
-            Dimension::Area,
-            Box::new(|r| r.real_contact_area),
-        ),
-        (
-            names::AREA_FRACTION,
-            Dimension::Dimensionless,
-            Box::new(move |r| r.real_contact_area / area),
         ),
     ]
 }
