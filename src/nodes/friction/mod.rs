@@ -44,6 +44,7 @@ mod contact_input;
 mod deformation_part;
 mod key;
 mod material_pair;
+mod memory;
 mod model_spec;
 mod models_doc;
 mod per_spot;
@@ -223,6 +224,8 @@ pub struct FrictionTask {
     input_roles: Vec<&'static str>,
     adhesion: AdhesionParameters,
     setup: MethodSetup,
+    /// Peak memory in bytes, from the method and the contact's grid ([`memory::estimate`]).
+    memory_estimate: u64,
 }
 
 /// A float metric of an upstream artifact.
@@ -273,14 +276,7 @@ impl NodeTask for FrictionTask {
     }
 
     fn memory_estimate(&self) -> u64 {
-        match self.setup {
-            // The net-load grid and a few result rows.
-            MethodSetup::Statistical { .. } => 1 << 20,
-            // Copies of the contact's maps (a 2048² map is 32 MiB) plus per-summit rows.
-            MethodSetup::PerSummit { .. } => 1 << 28,
-            // Spot labels (4 B per point) and the spots; the maps are read in place.
-            MethodSetup::PerSpot { .. } => 1 << 27,
-        }
+        self.memory_estimate
     }
 
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
