@@ -62,7 +62,10 @@ struct Measured {
 /// Runs `asperity run STUDY -q --jobs 4 --cache <fresh> --out <fresh> [extra]` and measures the
 /// child's peak resident set (`ru_maxrss`, KiB on Linux) from `wait4`.
 fn run_measured(dir: &Path, study: &Path, tag: &str, extra: &[&str]) -> Measured {
-    let (stdout, stderr) = (dir.join(format!("{tag}.out")), dir.join(format!("{tag}.err")));
+    let (stdout, stderr) = (
+        dir.join(format!("{tag}.out")),
+        dir.join(format!("{tag}.err")),
+    );
     let child = asperity(&["run", "-q", "--jobs", "4"])
         .arg(study)
         .arg("--cache")
@@ -135,6 +138,10 @@ fn a_node_that_cannot_fit_the_budget_fails_naming_itself_its_estimate_and_the_fl
     ] {
         assert!(small.stderr.contains(needed), "stderr: {}", small.stderr);
     }
-    assert!(small.peak_mib <= 70 + ALLOWANCE_MIB, "peak {} MiB", small.peak_mib);
+    assert!(
+        small.peak_mib <= 70 + ALLOWANCE_MIB,
+        "peak {} MiB",
+        small.peak_mib
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
