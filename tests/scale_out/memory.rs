@@ -66,6 +66,8 @@ fn run_measured(dir: &Path, study: &Path, tag: &str, extra: &[&str]) -> Measured
         dir.join(format!("{tag}.out")),
         dir.join(format!("{tag}.err")),
     );
+    // Reaped by `wait4` below, which also gives its resource usage.
+    #[allow(clippy::zombie_processes)]
     let child = asperity(&["run", "-q", "--jobs", "4"])
         .arg(study)
         .arg("--cache")
