@@ -237,10 +237,12 @@ pub mod metrics {
     pub const SUMMIT_RADIUS: &str = "summit_radius";
     /// Explicit summit density (1/m²).
     pub const SUMMIT_DENSITY: &str = "summit_density";
-    /// The nominal pressures of a statistical node, with their unit.
-    pub const NOMINAL_PRESSURES_PA: &str = "nominal_pressures_Pa";
-    /// The loads of a statistical node, with their unit.
-    pub const LOADS_N: &str = "loads_N";
+    /// The nominal pressures of a contact's load steps or of a statistical node (Pa), a list
+    /// (`nominal_pressures_Pa`, `List(Float64)`).
+    pub const NOMINAL_PRESSURES: &str = "nominal_pressures";
+    /// The external normal loads of a statistical node (N), a list (`loads_N`,
+    /// `List(Float64)`).
+    pub const LOADS: &str = "loads";
     /// Whether the per-summit table is written.
     pub const SUMMITS_TABLE: &str = "summits_table";
     /// Spot connectivity, 4 or 8.

@@ -19,8 +19,6 @@ use serde::Deserialize;
 
 use crate::engine::node::{NodeSpec, NodeTask, UpstreamRef};
 use crate::engine::study::{ResolveContext, SpecError};
-use crate::engine::value::Field;
-use crate::units::format_number;
 
 pub use contact::{final_step_metrics, ContactSpec, ContactTask, CONTACT_KIND_VERSION};
 pub use contact_view::{ContactView, StepMaps};
@@ -95,15 +93,3 @@ pub fn study_schema_json() -> String {
     text
 }
 
-/// A list of numbers (SI) as one text field, `"1e+07,2e+07"`: how load steps enter a key and a
-/// table row.
-pub(crate) fn number_list(name: &'static str, values: &[f64]) -> Field {
-    let mut text = String::new();
-    for (i, v) in values.iter().enumerate() {
-        if i > 0 {
-            text.push(',');
-        }
-        text.push_str(&format_number(*v));
-    }
-    Field::text(name, text)
-}

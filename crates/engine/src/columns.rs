@@ -8,7 +8,8 @@ pub const SCENARIO: &str = "scenario";
 pub const SCENARIOS: &str = "scenarios";
 /// A node instance's content key (hex).
 pub const KEY: &str = "key";
-/// The study node names that resolve to an instance, comma-separated (kind tables, timings).
+/// The study node names that resolve to an instance, a list (`List(String)`; kind tables,
+/// timings).
 pub const NODES: &str = "nodes";
 /// The study node name of a row (the tidy views).
 pub const NODE: &str = "node";

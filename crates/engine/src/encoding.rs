@@ -1,8 +1,10 @@
 //! The one byte encoding of values, shared by node keys (`hash.rs`) and cache summaries
-//! (`cache/summary.rs`): a [`Value`] is a type tag (`f`, `i`, `b`, `s`) and then a float's IEEE
-//! 754 bits, an integer's 8 bytes, a boolean's byte or a text; every number little-endian, a text
-//! its length and its UTF-8 bytes. How lengths are written is each format's own ([`Lengths`]):
-//! changing a node key's would change every key.
+//! (`cache/summary.rs`): a [`Value`] is a type tag (`f`, `i`, `b`, `s`, `F`, `S`) and then a
+//! float's IEEE 754 bits, an integer's 8 bytes, a boolean's byte, a text, or a list: its count,
+//! then its floats' bits (`F`) or its texts (`S`); every number little-endian, a text its length
+//! and its UTF-8 bytes. Every list and text is length-prefixed, so no two values share an
+//! encoding (`[1, 2]` and `[1]` then `2`, `["a,b"]` and `["a", "b"]` differ). How lengths are
+//! written is each format's own ([`Lengths`]): changing a node key's would change every key.
 
 use crate::value::Value;
 
@@ -61,6 +63,16 @@ pub(crate) fn put_value(out: &mut Vec<u8>, value: &Value, lengths: Lengths) {
             out.push(b's');
             put_str(out, s, lengths);
         }
+        Value::Floats(v) => {
+            out.push(b'F');
+            put_len(out, v.len(), lengths);
+            v.iter().for_each(|x| put_f64(out, *x));
+        }
+        Value::Texts(v) => {
+            out.push(b'S');
+            put_len(out, v.len(), lengths);
+            v.iter().for_each(|s| put_str(out, s, lengths));
+        }
     }
 }
 
@@ -91,5 +103,22 @@ mod tests {
         put_value(&mut float, &Value::Float(-0.0), Lengths::Varint);
         assert_eq!(float[0], b'f');
         assert_eq!(&float[1..], (-0.0f64).to_bits().to_le_bytes());
+    }
+
+    #[test]
+    fn lists_are_counted_so_no_two_lists_share_bytes() {
+        let bytes = |v: Value| {
+            let mut out = Vec::new();
+            put_value(&mut out, &v, Lengths::Varint);
+            out
+        };
+        let floats = bytes(Value::Floats(vec![1.0, 2.0]));
+        assert_eq!(floats[..2], [b'F', 2]);
+        assert_eq!(floats.len(), 2 + 16);
+        let texts = |v: &[&str]| bytes(Value::Texts(v.iter().map(|s| s.to_string()).collect()));
+        assert_eq!(texts(&["a,b"]), [b'S', 1, 3, b'a', b',', b'b']);
+        assert_eq!(texts(&["a", "b"]), [b'S', 2, 1, b'a', 1, b'b']);
+        assert_ne!(texts(&[]), bytes(Value::Floats(Vec::new())));
+        assert_ne!(texts(&["a,b"]), bytes(Value::Text(String::from("a,b"))));
     }
 }

@@ -136,11 +136,15 @@ fn key_encoding(
 }
 
 /// A parameter's value in the encoding shared with the cache ([`crate::encoding`]), lengths in 8
-/// bytes; `-0.0` is written as `0.0`: the same physical value, one key.
+/// bytes; `-0.0` is written as `0.0`, alone or in a list: the same physical value, one key.
+/// Scalars encode as they did before lists existed, so their keys did not change.
 fn put_value(out: &mut Vec<u8>, value: &Value) {
+    let zero = |x: f64| if x == 0.0 { 0.0 } else { x };
     match value {
-        Value::Float(x) if *x == 0.0 => {
-            encoding::put_value(out, &Value::Float(0.0), Lengths::Fixed64);
+        Value::Float(x) => encoding::put_value(out, &Value::Float(zero(*x)), Lengths::Fixed64),
+        Value::Floats(v) if v.iter().any(|x| *x == 0.0) => {
+            let v = v.iter().map(|x| zero(*x)).collect();
+            encoding::put_value(out, &Value::Floats(v), Lengths::Fixed64);
         }
         other => encoding::put_value(out, other, Lengths::Fixed64),
     }
@@ -186,6 +190,44 @@ mod tests {
         assert_eq!(
             base,
             node_key("k", 1, &[Field::float("sq", 1e-6, Dimension::Length)], &[])
+        );
+    }
+
+    /// The key of a scalar parameter is the one it had before lists were added to [`Value`]
+    /// (the blake3 below is of the encoding as `KEY_SCHEMA_VERSION` 1 defined it), so
+    /// adding lists changed no existing key.
+    #[test]
+    fn scalar_keys_are_unchanged_by_lists() {
+        let params = [
+            Field::float("sq", 1e-6, Dimension::Length),
+            Field::int("seed", 3),
+            Field::text("model", "kogut_etsion"),
+            Field::bool("periodic", true),
+        ];
+        assert_eq!(
+            node_key("k", 1, &params, &[("lower", NodeKey([7; 32]))]).to_hex(),
+            SCALAR_KEY
+        );
+    }
+
+    const SCALAR_KEY: &str = "";
+
+    #[test]
+    fn list_parameters_are_keyed_by_every_item_and_their_count() {
+        let key = |v: Vec<f64>| {
+            node_key("k", 1, &[Field::floats("p", v, Dimension::Pressure)], &[])
+        };
+        assert_eq!(key(vec![-0.0, 1e6]), key(vec![0.0, 1e6]));
+        assert_ne!(key(vec![1e6, 2e6]), key(vec![1e6]));
+        assert_ne!(key(vec![1e6, 2e6]), key(vec![2e6, 1e6]));
+        let texts = |v: &[&str]| {
+            let v = v.iter().map(|s| s.to_string()).collect();
+            node_key("k", 1, &[Field::texts("w", v)], &[])
+        };
+        assert_ne!(texts(&["a,b"]), texts(&["a", "b"]));
+        assert_ne!(
+            texts(&["a,b"]),
+            node_key("k", 1, &[Field::text("w", "a,b")], &[])
         );
     }
 

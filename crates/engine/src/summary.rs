@@ -85,10 +85,10 @@ fn group_columns(plan: &Plan, by: &[usize], groups: &Groups) -> Vec<SummaryColum
         let param = &plan.scenarios.names[c];
         let dim = groups
             .first()
-            .map_or(Dimension::Dimensionless, |g| g.0[k].dimension());
+            .map_or(Dimension::Dimensionless, |g| param_cell(&g.0[k]).1);
         let cells = groups
             .iter()
-            .map(|(values, _)| Some(param_cell(&values[k])))
+            .map(|(values, _)| Some(param_cell(&values[k]).0))
             .collect();
         columns.push((column_name(param, dim), dim, cells));
     }
@@ -182,15 +182,21 @@ fn push_statistics(
     columns.push((column_name(&std_name, dim), dim, std));
 }
 
-fn param_cell(value: &ParamValue) -> Value {
-    match value {
+/// A group's parameter value as a cell (a list as a list: [`ParamValue::list_cell`]) and the
+/// dimension of its column.
+fn param_cell(value: &ParamValue) -> (Value, Dimension) {
+    if let Some(list) = value.list_cell() {
+        return list;
+    }
+    let cell = match value {
         ParamValue::Int(i) => Value::Int(*i),
         ParamValue::Bool(b) => Value::Bool(*b),
         ParamValue::Text(s) => Value::Text(s.clone()),
         other => other
             .as_dimensioned()
             .map_or_else(|| Value::Text(other.to_string()), |d| Value::Float(d.si)),
-    }
+    };
+    (cell, value.dimension())
 }
 
 fn mean(x: &[f64]) -> Option<f64> {

@@ -62,6 +62,38 @@ impl ParamValue {
         }
     }
 
+    /// A list as a table cell, with the column's dimension: a list of numbers or quantities of
+    /// one dimension is [`Value::Floats`] in SI units (`[5 MPa, 10 MPa]`: `[5e6, 1e7]`, pressure),
+    /// any other list [`Value::Texts`] of its items as written (text without quotes); `None` for
+    /// a value that is no list.
+    pub fn list_cell(&self) -> Option<(Value, Dimension)> {
+        let ParamValue::List(items) = self else {
+            return None;
+        };
+        let dimension = items.first().map_or(Dimension::Dimensionless, Self::dimension);
+        let floats: Option<Vec<f64>> = items
+            .iter()
+            .map(|item| {
+                item.as_dimensioned()
+                    .filter(|d| d.dimension == dimension)
+                    .map(|d| d.si)
+            })
+            .collect();
+        Some(match floats {
+            Some(values) => (Value::Floats(values), dimension),
+            None => {
+                let texts = items
+                    .iter()
+                    .map(|item| match item {
+                        ParamValue::Text(s) => s.clone(),
+                        other => other.to_string(),
+                    })
+                    .collect();
+                (Value::Texts(texts), Dimension::Dimensionless)
+            }
+        })
+    }
+
     /// The dimension of the value (dimensionless for non-quantities).
     pub fn dimension(&self) -> Dimension {
         match self {
@@ -79,16 +111,7 @@ impl fmt::Display for ParamValue {
             ParamValue::Quantity(q) => f.write_str(&format_si(q.si, q.dimension)),
             ParamValue::Text(s) => write!(f, "'{s}'"),
             ParamValue::Bool(b) => write!(f, "{b}"),
-            ParamValue::List(items) => {
-                f.write_str("[")?;
-                for (i, item) in items.iter().enumerate() {
-                    if i > 0 {
-                        f.write_str(", ")?;
-                    }
-                    write!(f, "{item}")?;
-                }
-                f.write_str("]")
-            }
+            ParamValue::List(items) => write_list(f, items),
         }
     }
 }
@@ -103,6 +126,10 @@ pub enum Value {
     Int(i64),
     Bool(bool),
     Text(String),
+    /// A list of floats in SI units (a `List(Float64)` column: `nominal_pressures_Pa`).
+    Floats(Vec<f64>),
+    /// A list of texts (a `List(String)` column: `twin_warnings`); empty when there are none.
+    Texts(Vec<String>),
 }
 
 fn float_or_null<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<f64, D::Error> {
@@ -116,8 +143,22 @@ impl fmt::Display for Value {
             Value::Int(i) => write!(f, "{i}"),
             Value::Bool(b) => write!(f, "{b}"),
             Value::Text(s) => f.write_str(s),
+            Value::Floats(v) => write_list(f, v),
+            Value::Texts(v) => write_list(f, v),
         }
     }
+}
+
+/// `[a, b, c]`, for messages.
+fn write_list<T: fmt::Display>(f: &mut fmt::Formatter<'_>, items: &[T]) -> fmt::Result {
+    f.write_str("[")?;
+    for (i, item) in items.iter().enumerate() {
+        if i > 0 {
+            f.write_str(", ")?;
+        }
+        write!(f, "{item}")?;
+    }
+    f.write_str("]")
 }
 
 /// A named, dimensioned value: one resolved parameter or one metric of a node.
@@ -155,6 +196,25 @@ impl Field {
         Self {
             name: name.into(),
             value: Value::Text(value.into()),
+            dimension: Dimension::Dimensionless,
+        }
+    }
+
+    /// A list of floats in SI units, one dimension for all (`nominal_pressures` of dimension
+    /// pressure: the column `nominal_pressures_Pa`, of type `List(Float64)`).
+    pub fn floats(name: impl Into<Cow<'static, str>>, values: Vec<f64>, dimension: Dimension) -> Self {
+        Self {
+            name: name.into(),
+            value: Value::Floats(values),
+            dimension,
+        }
+    }
+
+    /// A list of texts (a `List(String)` column; an empty list when there is nothing to say).
+    pub fn texts(name: impl Into<Cow<'static, str>>, values: Vec<String>) -> Self {
+        Self {
+            name: name.into(),
+            value: Value::Texts(values),
             dimension: Dimension::Dimensionless,
         }
     }

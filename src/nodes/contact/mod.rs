@@ -37,7 +37,7 @@ use crate::units::{format_number, Dimension, Pressure, Quantity};
 use crate::vocabulary::contact_parameters::{
     of_side, FIELDS, FLOW_PRESSURE, PERIODIC, TOLERANCE, YOUNGS_MODULUS,
 };
-use crate::vocabulary::metrics::{APPROACH, NOMINAL_PRESSURES_PA, POISSON_RATIO};
+use crate::vocabulary::metrics::{APPROACH, NOMINAL_PRESSURES, POISSON_RATIO};
 use crate::vocabulary::{roles, tables};
 
 mod results;
@@ -323,7 +323,7 @@ impl ContactTask {
             ));
         }
         key.extend([
-            super::number_list(NOMINAL_PRESSURES_PA, pressures),
+            Field::floats(NOMINAL_PRESSURES, pressures.to_vec(), Dimension::Pressure),
             Field::bool(PERIODIC, *periodic),
             Field::float(TOLERANCE, *tolerance, Dimension::Dimensionless),
             Field::bool(FIELDS, *fields),

@@ -6,7 +6,6 @@
 use crate::engine::value::Field;
 use crate::friction::laws::{ParameterValue, ReportedValue, Unit};
 use crate::friction::{Connectivity, FrictionLaw, Material, SummitStatistics};
-use crate::nodes::number_list;
 use crate::units::Dimension;
 use crate::vocabulary::metrics as names;
 
@@ -170,8 +169,12 @@ fn explicit_roughness_fields(summits: &SummitStatistics) -> [Field; 3] {
 
 fn load_fields(loads: &Loads) -> Option<Field> {
     match loads {
-        Loads::Pressures(p) => Some(number_list(names::NOMINAL_PRESSURES_PA, p)),
-        Loads::Forces(f) => Some(number_list(names::LOADS_N, f)),
+        Loads::Pressures(p) => Some(Field::floats(
+            names::NOMINAL_PRESSURES,
+            p.clone(),
+            Dimension::Pressure,
+        )),
+        Loads::Forces(f) => Some(Field::floats(names::LOADS, f.clone(), Dimension::Force)),
         Loads::FromContact(_) => None,
     }
 }

@@ -70,7 +70,8 @@ pub(super) fn step_table(steps: &[(Vec<Field>, Vec<String>)]) -> Result<Table, N
     Ok(t)
 }
 
-/// One column from the values of a metric at each step (all of the first one's type).
+/// One column from the values of a metric at each step (all of the first one's type; a long
+/// table holds no lists).
 fn column(
     name: Cow<'static, str>,
     dimension: Dimension,
@@ -105,6 +106,11 @@ fn column(
                 })
                 .collect::<Result<_, _>>()?,
         ),
+        Some(Value::Floats(_) | Value::Texts(_)) => {
+            return Err(NodeError::new(format!(
+                "metric `{name}` is a list, which a load step's row cannot hold"
+            )))
+        }
         Some(Value::Text(_)) | None => ColumnData::Text(
             values
                 .iter()

@@ -52,8 +52,9 @@ pub(crate) use crate::vocabulary::tables::SURFACES as TABLE;
 /// `hurst_band` finds its band per file and reports it; 10: an MNT file's mask image, not a
 /// count of 0, marks its missing points; 11: a synthetic surface's spectra come from its
 /// synthesized modes, not a transform of its heights, and the Hurst fit leaves out PSD points at
-/// round-off level).
-pub const SURFACE_KIND_VERSION: u32 = 11;
+/// round-off level; 12: a twin's `twin_warnings`, `twin_hurst_bands`, `twin_measured_bands` and
+/// `twin_correlation_x/y_methods` are lists of texts, no longer texts joined by "; ").
+pub const SURFACE_KIND_VERSION: u32 = 12;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
 /// cache but regenerated when a dependant needs their heights.

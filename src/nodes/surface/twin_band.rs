@@ -159,10 +159,10 @@ fn describe(e: &BandSearchError) -> String {
 }
 
 /// The twin's band columns: `twin_hurst_band_source` (`study` or `found`), the band of every
-/// file in `twin_hurst_bands` (with the fit when found), and `twin_hurst_band_short`/`_long`
+/// file in the list `twin_hurst_bands` (with the fit when found), and `twin_hurst_band_short`/`_long`
 /// when every file has the same band (one file, or `hurst_band`).
 pub(crate) fn band_fields(bands: &[FileBand], given: bool, names: &[String]) -> Vec<Field> {
-    let text = bands
+    let per_file = bands
         .iter()
         .zip(names)
         .map(|(b, name)| {
@@ -183,14 +183,13 @@ pub(crate) fn band_fields(bands: &[FileBand], given: bool, names: &[String]) -> 
                 None => format!("{name}: {range}"),
             }
         })
-        .collect::<Vec<_>>()
-        .join("; ");
+        .collect();
     let mut fields = vec![
         Field::text(
             TWIN_HURST_BAND_SOURCE,
             if given { "study" } else { "found" },
         ),
-        Field::text(TWIN_HURST_BANDS, text),
+        Field::texts(TWIN_HURST_BANDS, per_file),
     ];
     if let Some(first) = bands.first() {
         if bands.iter().all(|b| b.band == first.band) {

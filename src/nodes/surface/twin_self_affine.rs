@@ -189,15 +189,15 @@ fn twin_metrics(
         n(TWIN_HURST_PREDICTED, p.hurst_predicted),
         Field::bool(TWIN_EXTRAPOLATED, extrapolated),
         Field::bool(TWIN_HURST_CLAMPED, clamped),
-        Field::text(TWIN_WARNINGS, sentences.join("; ")),
+        Field::texts(TWIN_WARNINGS, sentences),
         length(TWIN_MEASURED_SQ_MIN, model.sq_range.0),
         length(TWIN_MEASURED_SQ_MAX, model.sq_range.1),
         Field::int(TWIN_MEASURED_FILES, model.surfaces as i64),
-        Field::text(
+        Field::texts(
             TWIN_CORRELATION_X_METHODS,
             methods(textures, |t| t.method_x),
         ),
-        Field::text(
+        Field::texts(
             TWIN_CORRELATION_Y_METHODS,
             methods(textures, |t| t.method_y),
         ),
@@ -236,12 +236,12 @@ fn twin_metrics(
     fields
 }
 
-/// How the files' correlation lengths along one axis were obtained, e.g.
-/// `acf_crossing: 2; stretched_exponential_fit: 1 (ACF down to 0.31)`.
+/// How the files' correlation lengths along one axis were obtained, one entry per method used,
+/// e.g. `["acf_crossing: 2", "stretched_exponential_fit: 1 (ACF down to 0.31 at most)"]`.
 fn methods(
     textures: &[MeasuredTexture],
     axis: fn(&MeasuredTexture) -> CorrelationMethod,
-) -> String {
+) -> Vec<String> {
     let crossing = textures
         .iter()
         .filter(|t| axis(t) == CorrelationMethod::AcfCrossing)
@@ -253,13 +253,13 @@ fn methods(
             CorrelationMethod::AcfCrossing => None,
         })
         .collect();
-    let mut text = format!("acf_crossing: {crossing}");
+    let mut methods = vec![format!("acf_crossing: {crossing}")];
     if !reached.is_empty() {
         let highest = reached.iter().copied().fold(0.0, f64::max);
-        text.push_str(&format!(
-            "; stretched_exponential_fit: {} (ACF down to {highest:.2} at most)",
+        methods.push(format!(
+            "stretched_exponential_fit: {} (ACF down to {highest:.2} at most)",
             reached.len()
         ));
     }
-    text
+    methods
 }

@@ -272,8 +272,7 @@ fn spectrum_metrics(
                 format_micrometres(long)
             )
         })
-        .collect::<Vec<_>>()
-        .join("; ");
+        .collect();
     vec![
         Field::text(TWIN_SPECTRUM, "measured"),
         Field::text(TWIN_EXTRAPOLATION, extrapolation.name()),
@@ -292,7 +291,7 @@ fn spectrum_metrics(
             Dimension::Dimensionless,
         ),
         count(TWIN_MEASURED_FILES, spectra.len()),
-        Field::text(TWIN_MEASURED_BANDS, bands),
+        Field::texts(TWIN_MEASURED_BANDS, bands),
         count(TWIN_MODES_MEASURED, twin.modes.measured),
         count(TWIN_MODES_EXTRAPOLATED, twin.modes.shorter),
         count(TWIN_MODES_LONGER_THAN_MEASURED, twin.modes.longer),

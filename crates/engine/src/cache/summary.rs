@@ -8,7 +8,7 @@
 //! length is an unsigned LEB128 varint and values are written as node keys write them
 //! ([`crate::encoding`]): a string is its length and its UTF-8 bytes, an integer 8 bytes, a float
 //! its IEEE 754 bits (so values read back exactly as computed, NaN and infinities included), a
-//! dimension its name. A long table is either inside the summary, column after column, or, when
+//! dimension its name, a list its count and its items. A long table is either inside the summary, column after column, or, when
 //! large, a Parquet payload of its own (`table_file.rs`) of which the summary keeps the schema,
 //! the row count and the file's size and checksum. The array payload list comes last: a read that
 //! leaves the arrays unread does not decode it (the checksum still covers it).
@@ -356,6 +356,8 @@ impl<'a> Reader<'a> {
             b'i' => Value::Int(self.u64()? as i64),
             b'b' => Value::Bool(self.u8()? != 0),
             b's' => Value::Text(self.string()?),
+            b'F' => Value::Floats(self.list(Reader::f64)?),
+            b'S' => Value::Texts(self.list(Reader::string)?),
             other => return Err(format!("unknown value type {other}")),
         })
     }
@@ -437,6 +439,9 @@ mod tests {
                 Field::int("n", -3),
                 Field::bool("ok", true),
                 Field::text("model", "kogut_etsion".repeat(20)),
+                Field::floats("loads", vec![5e6, f64::NAN, -0.0], Dimension::Pressure),
+                Field::texts("warnings", vec![String::from("a; b"), String::new()]),
+                Field::texts("none", Vec::new()),
             ],
             tables: [
                 (String::from("steps"), table),
@@ -502,6 +507,10 @@ mod tests {
                 assert_eq!((&a.name, a.dimension), (&b.name, b.dimension));
                 match (&a.value, &b.value) {
                     (Value::Float(x), Value::Float(y)) => assert_eq!(x.to_bits(), y.to_bits()),
+                    (Value::Floats(x), Value::Floats(y)) => {
+                        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                        assert_eq!(bits(x), bits(y));
+                    }
                     (x, y) => assert_eq!(x, y),
                 }
             }

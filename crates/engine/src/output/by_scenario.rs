@@ -49,11 +49,8 @@ pub(super) fn by_scenario_table(plan: &Plan, report: &RunReport, table: &str) ->
             Some(Value::Int(s as i64)),
         )];
         for ((name, value), ty) in parameter_columns.iter().zip(row).zip(&types) {
-            scenario_cells.push((
-                Cow::Borrowed(name.as_str()),
-                value.dimension(),
-                Some(ty.cell(value)),
-            ));
+            let (dimension, cell) = ty.cell(value);
+            scenario_cells.push((Cow::Borrowed(name.as_str()), dimension, Some(cell)));
         }
         for (n, &instance) in plan.scenario_nodes[s].iter().enumerate() {
             let node = &plan.nodes[instance];

@@ -42,7 +42,7 @@ use crate::summary::{summary_columns, SummarySpec, RUN_TIME_METRIC};
 use crate::units::Dimension;
 use crate::value::{ParamValue, Value};
 
-use row_table::{field_cell, text, to_series, RowTable};
+use row_table::{field_cell, text, texts, to_series, RowTable};
 
 pub use by_scenario::{BY_SCENARIO_SUFFIX, PARAMETER_PREFIX};
 pub use origin::{results_origin, ResultsOrigin, STUDY_FILE_HASH_KEY, STUDY_FILE_KEY, STUDY_KEY};
@@ -163,11 +163,8 @@ fn scenarios_table(plan: &Plan, report: &RunReport) -> RowTable {
             Some(Value::Int(s as i64)),
         )];
         for ((name, value), ty) in plan.scenarios.names.iter().zip(row).zip(&types) {
-            cells.push((
-                Cow::Borrowed(name.as_str()),
-                value.dimension(),
-                Some(ty.cell(value)),
-            ));
+            let (dimension, cell) = ty.cell(value);
+            cells.push((Cow::Borrowed(name.as_str()), dimension, Some(cell)));
         }
         let mut labels = Vec::with_capacity(key_columns.len());
         for (&instance, key_column) in plan.scenario_nodes[s].iter().zip(&key_columns) {
@@ -197,7 +194,9 @@ fn scenario_status(labels: &[&str]) -> &'static str {
 }
 
 /// Parameter values are written with one type per column: a column whose values mix integers and
-/// floats is written as floats; anything else mixed as text.
+/// floats is written as floats; a list as a list column ([`ParamValue::list_cell`]: its numbers
+/// in SI units with their unit in the column name, or its items as texts); anything else mixed
+/// as text.
 struct ColumnType {
     all_int: bool,
     /// Numbers or quantities of one dimension.
@@ -217,14 +216,19 @@ impl ColumnType {
         }
     }
 
-    fn cell(&self, value: &ParamValue) -> Value {
-        match value {
+    /// The cell of `value` and the dimension of its column.
+    fn cell(&self, value: &ParamValue) -> (Dimension, Value) {
+        if let Some((list, dimension)) = value.list_cell() {
+            return (dimension, list);
+        }
+        let cell = match value {
             ParamValue::Int(i) if self.all_int => Value::Int(*i),
             v if self.all_numeric => Value::Float(v.as_dimensioned().map_or(f64::NAN, |d| d.si)),
             ParamValue::Text(s) => Value::Text(s.clone()),
             ParamValue::Bool(b) => Value::Bool(*b),
             other => Value::Text(other.to_string()),
-        }
+        };
+        (value.dimension(), cell)
     }
 }
 
@@ -249,7 +253,7 @@ fn kind_tables(
             Vec::with_capacity(5 + node.upstream.len() + params.len() + outcome.metrics.len());
         cells.extend([
             text(KEY, key.clone()),
-            text(NODES, node.names.join(",")),
+            texts(NODES, node.names.clone()),
             (
                 Cow::Borrowed(KIND_VERSION),
                 Dimension::Dimensionless,
@@ -300,7 +304,7 @@ fn timings_table(plan: &Plan, report: &RunReport) -> RowTable {
         t.push_row(vec![
             text(KEY, node.key.to_hex()),
             text(KIND, node.task.kind()),
-            text(NODES, node.names.join(",")),
+            texts(NODES, node.names.clone()),
             text(STATUS, outcome.label()),
             (
                 Cow::Borrowed(FROM_CACHE),

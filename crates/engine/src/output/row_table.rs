@@ -3,7 +3,7 @@
 use std::borrow::Cow;
 use std::collections::HashMap;
 
-use polars::prelude::{NamedFrom, Series};
+use polars::prelude::{NamedFrom, PlSmallStr, Series};
 
 use crate::units::Dimension;
 use crate::value::{column_name, Field, Value};
@@ -134,10 +134,43 @@ pub(super) fn text<'a>(name: impl Into<Cow<'a, str>>, value: impl Into<String>) 
     )
 }
 
-/// The typed Parquet column of `values`: integers, floats (integers mixed in), booleans, or text.
+/// A cell of a list of texts.
+pub(super) fn texts<'a>(name: impl Into<Cow<'a, str>>, values: Vec<String>) -> Cell<'a> {
+    (name.into(), Dimension::Dimensionless, Some(Value::Texts(values)))
+}
+
+/// The typed Parquet column of `values`: integers, floats (integers mixed in), booleans, lists
+/// of floats (`List(Float64)`), lists of texts (`List(String)`; lists of floats mixed in, their
+/// items as text), or text.
 pub(super) fn to_series(name: &str, values: Vec<Option<Value>>) -> Series {
     let all = |f: fn(&Value) -> bool| values.iter().flatten().all(f);
     match values.iter().flatten().next() {
+        Some(Value::Floats(_)) if all(|v| matches!(v, Value::Floats(_))) => {
+            let v: Vec<Option<Series>> = values
+                .iter()
+                .map(|x| match x {
+                    Some(Value::Floats(f)) => Some(Series::new(PlSmallStr::EMPTY, f.as_slice())),
+                    _ => None,
+                })
+                .collect();
+            Series::new(name.into(), v)
+        }
+        Some(Value::Floats(_) | Value::Texts(_))
+            if all(|v| matches!(v, Value::Floats(_) | Value::Texts(_))) =>
+        {
+            let v: Vec<Option<Series>> = values
+                .iter()
+                .map(|x| {
+                    let texts: Vec<String> = match x {
+                        Some(Value::Texts(t)) => t.clone(),
+                        Some(Value::Floats(f)) => f.iter().map(ToString::to_string).collect(),
+                        _ => return None,
+                    };
+                    Some(Series::new(PlSmallStr::EMPTY, texts))
+                })
+                .collect();
+            Series::new(name.into(), v)
+        }
         Some(Value::Int(_)) if all(|v| matches!(v, Value::Int(_))) => {
             let v: Vec<Option<i64>> = values
                 .iter()
