@@ -92,4 +92,3 @@ pub fn study_schema_json() -> String {
     text.push('\n');
     text
 }
-

@@ -210,13 +210,12 @@ mod tests {
         );
     }
 
-    const SCALAR_KEY: &str = "";
+    const SCALAR_KEY: &str = "9c7911567e0f6e4ab127b713e07c0fec5270301fa58995bed447ab3bcc872d66";
 
     #[test]
     fn list_parameters_are_keyed_by_every_item_and_their_count() {
-        let key = |v: Vec<f64>| {
-            node_key("k", 1, &[Field::floats("p", v, Dimension::Pressure)], &[])
-        };
+        let key =
+            |v: Vec<f64>| node_key("k", 1, &[Field::floats("p", v, Dimension::Pressure)], &[]);
         assert_eq!(key(vec![-0.0, 1e6]), key(vec![0.0, 1e6]));
         assert_ne!(key(vec![1e6, 2e6]), key(vec![1e6]));
         assert_ne!(key(vec![1e6, 2e6]), key(vec![2e6, 1e6]));

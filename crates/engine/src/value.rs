@@ -70,7 +70,9 @@ impl ParamValue {
         let ParamValue::List(items) = self else {
             return None;
         };
-        let dimension = items.first().map_or(Dimension::Dimensionless, Self::dimension);
+        let dimension = items
+            .first()
+            .map_or(Dimension::Dimensionless, Self::dimension);
         let floats: Option<Vec<f64>> = items
             .iter()
             .map(|item| {
@@ -202,7 +204,11 @@ impl Field {
 
     /// A list of floats in SI units, one dimension for all (`nominal_pressures` of dimension
     /// pressure: the column `nominal_pressures_Pa`, of type `List(Float64)`).
-    pub fn floats(name: impl Into<Cow<'static, str>>, values: Vec<f64>, dimension: Dimension) -> Self {
+    pub fn floats(
+        name: impl Into<Cow<'static, str>>,
+        values: Vec<f64>,
+        dimension: Dimension,
+    ) -> Self {
         Self {
             name: name.into(),
             value: Value::Floats(values),

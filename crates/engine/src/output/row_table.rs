@@ -136,7 +136,11 @@ pub(super) fn text<'a>(name: impl Into<Cow<'a, str>>, value: impl Into<String>) 
 
 /// A cell of a list of texts.
 pub(super) fn texts<'a>(name: impl Into<Cow<'a, str>>, values: Vec<String>) -> Cell<'a> {
-    (name.into(), Dimension::Dimensionless, Some(Value::Texts(values)))
+    (
+        name.into(),
+        Dimension::Dimensionless,
+        Some(Value::Texts(values)),
+    )
 }
 
 /// The typed Parquet column of `values`: integers, floats (integers mixed in), booleans, lists
