@@ -419,6 +419,40 @@ pub mod curve_columns {
     pub const STEP_MESSAGE: &str = "step_message";
 }
 
+/// The columns that hold a list in every row, by name without unit; every other column holds
+/// one value per row. A list is never written as text joined by commas or semicolons: these are
+/// Parquet list columns, read by polars as `list[f64]`/`list[str]` and in Python as lists. An
+/// empty list, not null, says "none" (`twin_warnings` of a twin without warnings); null is a row
+/// the column does not apply to (a surface that is no twin).
+pub mod list_columns {
+    use super::twin_metrics::{
+        TWIN_CORRELATION_X_METHODS, TWIN_CORRELATION_Y_METHODS, TWIN_HURST_BANDS,
+        TWIN_MEASURED_BANDS, TWIN_WARNINGS,
+    };
+
+    /// Lists of numbers in SI units, the unit in the column name (`List(Float64)`:
+    /// `nominal_pressures_Pa`, `loads_N`).
+    pub const FLOATS: [&str; 2] = [super::metrics::NOMINAL_PRESSURES, super::metrics::LOADS];
+    /// Lists of texts (`List(String)`): an instance's node names (`nodes`), a twin's warnings,
+    /// per-file bands and correlation methods.
+    pub const TEXTS: [&str; 6] = [
+        crate::engine::columns::NODES,
+        TWIN_WARNINGS,
+        TWIN_HURST_BANDS,
+        TWIN_MEASURED_BANDS,
+        TWIN_CORRELATION_X_METHODS,
+        TWIN_CORRELATION_Y_METHODS,
+    ];
+    /// Columns of sentences for a reader, which may hold commas and semicolons: the reason a row
+    /// is flagged or failed (its sentences joined by "; ") and a step's, the lateral-scale
+    /// warning. Every other text column holds a name, a key or a label.
+    pub const PROSE: [&str; 3] = [
+        crate::engine::columns::MESSAGE,
+        super::curve_columns::STEP_MESSAGE,
+        super::surface_metrics::LATERAL_SCALE_WARNING,
+    ];
+}
+
 /// Upstream roles: the input a node names (`lower: surface_node`).
 pub mod roles {
     /// The lower body's surface.

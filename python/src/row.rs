@@ -8,7 +8,8 @@ use asperity::vocabulary::{spot_columns, summit_columns};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// Sets `field` in `d` under its column name (with its SI unit).
+/// Sets `field` in `d` under its column name (with its SI unit); a list as a Python list, as
+/// polars reads the table's list column.
 pub fn set_field(d: &Bound<'_, PyDict>, field: Field) -> PyResult<()> {
     let key = field.column_name();
     match field.value {
@@ -16,6 +17,8 @@ pub fn set_field(d: &Bound<'_, PyDict>, field: Field) -> PyResult<()> {
         Value::Int(v) => d.set_item(key, v),
         Value::Bool(v) => d.set_item(key, v),
         Value::Text(v) => d.set_item(key, v),
+        Value::Floats(v) => d.set_item(key, v),
+        Value::Texts(v) => d.set_item(key, v),
     }
 }
 

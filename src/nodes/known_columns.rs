@@ -6,12 +6,13 @@
 use std::collections::BTreeSet;
 
 use crate::engine::columns;
+use crate::engine::value::column_name;
 use crate::friction::laws::LAWS;
 use crate::units::Dimension;
 use crate::vocabulary::surface_metrics::{X_SUFFIX, Y_SUFFIX};
 use crate::vocabulary::surface_parameters::twin_of_blake3;
 use crate::vocabulary::twin_metrics::{twin_fit_r2, twin_fit_rms};
-use crate::vocabulary::{all, roles, spot_columns, summit_columns};
+use crate::vocabulary::{all, list_columns, roles, spot_columns, summit_columns};
 
 /// The engine's own columns.
 const ENGINE: [&str; 12] = [
@@ -71,9 +72,63 @@ pub fn is_known_column(column: &str) -> bool {
     })
 }
 
+/// What a list column holds ([`crate::vocabulary::list_columns`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ListItems {
+    /// Numbers in SI units (`List(Float64)`).
+    Floats,
+    /// Texts (`List(String)`).
+    Texts,
+}
+
+impl ListItems {
+    /// `"float"` or `"text"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ListItems::Floats => "float",
+            ListItems::Texts => "text",
+        }
+    }
+}
+
+/// What `column` (a table column or a Python result's key, with its unit suffix) holds when the
+/// vocabulary declares it a list column: `nominal_pressures_Pa` floats, `twin_warnings` texts;
+/// `None` for a column of one value per row.
+pub fn list_column(column: &str) -> Option<ListItems> {
+    let floats = list_columns::FLOATS.iter().any(|name| {
+        Dimension::ALL
+            .iter()
+            .any(|d| column_name(name, *d) == column)
+    });
+    if floats {
+        Some(ListItems::Floats)
+    } else if list_columns::TEXTS.contains(&column) {
+        Some(ListItems::Texts)
+    } else {
+        None
+    }
+}
+
+/// Whether `column` holds sentences for a reader ([`crate::vocabulary::list_columns::PROSE`]),
+/// which may hold commas and semicolons without being a list.
+pub fn is_prose_column(column: &str) -> bool {
+    list_columns::PROSE.contains(&column)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::is_known_column;
+    use super::{is_known_column, list_column, ListItems};
+
+    #[test]
+    fn list_columns_are_known_with_their_items() {
+        assert_eq!(list_column("nominal_pressures_Pa"), Some(ListItems::Floats));
+        assert_eq!(list_column("loads_N"), Some(ListItems::Floats));
+        assert_eq!(list_column("twin_warnings"), Some(ListItems::Texts));
+        assert_eq!(list_column("nodes"), Some(ListItems::Texts));
+        for scalar in ["nominal_pressure_Pa", "mu_s", "message"] {
+            assert_eq!(list_column(scalar), None, "{scalar}");
+        }
+    }
 
     #[test]
     fn vocabulary_names_with_their_unit_pass_and_others_fail() {

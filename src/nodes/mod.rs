@@ -26,7 +26,7 @@ pub use friction::{
     beyond_fit_field, coefficient_fields, friction_models_markdown, share, FrictionSpec,
     FrictionTask, DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE, FRICTION_KIND_VERSION,
 };
-pub use known_columns::is_known_column;
+pub use known_columns::{is_known_column, is_prose_column, list_column, ListItems};
 pub use material_spec::{MaterialMapping, MaterialSpec};
 pub use surface::{
     apply_height_unit, apply_lateral_calibration, height_unit_rule, scale_checks, surface_artifact,

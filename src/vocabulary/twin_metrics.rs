@@ -14,7 +14,7 @@ pub const TWIN_HURST_PREDICTED: &str = "twin_hurst_predicted";
 pub const TWIN_EXTRAPOLATED: &str = "twin_extrapolated";
 /// Whether the predicted Hurst exponent was clamped into (0, 1].
 pub const TWIN_HURST_CLAMPED: &str = "twin_hurst_clamped";
-/// The twin's warnings, joined by "; ".
+/// The twin's warnings, a list of sentences (empty when there is none).
 pub const TWIN_WARNINGS: &str = "twin_warnings";
 /// Smallest Sq of the measured files (m).
 pub const TWIN_MEASURED_SQ_MIN: &str = "twin_measured_sq_min";
@@ -22,9 +22,9 @@ pub const TWIN_MEASURED_SQ_MIN: &str = "twin_measured_sq_min";
 pub const TWIN_MEASURED_SQ_MAX: &str = "twin_measured_sq_max";
 /// Number of measured files the twin is made from.
 pub const TWIN_MEASURED_FILES: &str = "twin_measured_files";
-/// How the files' correlation lengths along x were obtained.
+/// How the files' correlation lengths along x were obtained, a list: one entry per method.
 pub const TWIN_CORRELATION_X_METHODS: &str = "twin_correlation_x_methods";
-/// How the files' correlation lengths along y were obtained.
+/// How the files' correlation lengths along y were obtained, a list: one entry per method.
 pub const TWIN_CORRELATION_Y_METHODS: &str = "twin_correlation_y_methods";
 /// Lowest r² of the files' Hurst fits.
 pub const TWIN_MIN_HURST_FIT_R2: &str = "twin_min_hurst_fit_r2";
@@ -34,7 +34,7 @@ pub const TWIN_CALIBRATION_ITERATIONS: &str = "twin_calibration_iterations";
 pub const TWIN_CALIBRATION_RESIDUAL: &str = "twin_calibration_residual";
 /// Where the Hurst band came from: `study` or `found`.
 pub const TWIN_HURST_BAND_SOURCE: &str = "twin_hurst_band_source";
-/// Each file's Hurst band, as text.
+/// Each file's Hurst band, a list: one text per file.
 pub const TWIN_HURST_BANDS: &str = "twin_hurst_bands";
 /// Shortest wavelength of the common Hurst band (m).
 pub const TWIN_HURST_BAND_SHORT: &str = "twin_hurst_band_short";
@@ -54,7 +54,7 @@ pub const TWIN_SPECTRUM_SQ: &str = "twin_spectrum_sq";
 pub const TWIN_GRID_POWER_SHARE: &str = "twin_grid_power_share";
 /// Factor the spectrum was scaled by to reach the target Sq.
 pub const TWIN_SPECTRUM_SCALE: &str = "twin_spectrum_scale";
-/// Each file's measured band, as text.
+/// Each file's measured band, a list: one text per file.
 pub const TWIN_MEASURED_BANDS: &str = "twin_measured_bands";
 /// Modes taken from the measured spectrum.
 pub const TWIN_MODES_MEASURED: &str = "twin_modes_measured";

@@ -16,8 +16,9 @@ const SCANNED: [&str; 2] = ["src", "python/src"];
 /// The one module allowed to spell column names: its file and its folder of submodules.
 const VOCABULARY: [&str; 2] = ["src/vocabulary.rs", "src/vocabulary/"];
 
-/// The calls whose first argument is a column name: `Field::<f>(name, …)`.
-const FIELD_CALLS: [&str; 4] = ["float", "int", "text", "bool"];
+/// The calls whose first argument is a column name: `Field::<f>(name, …)` (`floats` and
+/// `texts` make list columns).
+const FIELD_CALLS: [&str; 6] = ["float", "int", "text", "bool", "floats", "texts"];
 /// The methods whose first argument is a column name: `table.<m>(name, …)`.
 const TABLE_METHODS: [&str; 4] = ["push_float", "push_int", "push_text", "push_bool"];
 
@@ -175,6 +176,7 @@ fn the_check_finds_literal_names_in_every_form_and_passes_constants() {
                 fn closure() { let area = |name: &'static str, v| Field::float(name, v, D::Area);\n\
                     area(\"a\", 1.0); }\n\
                 fn formats(s: &str) { num(format!(\"{M0}{s}\"), 1.0); num(format!(\"{s}_modulus\"), 1.0); }\n\
+                fn lists() { Field::floats(\"loads\", vec![], D::Force); Field::texts(\"notes\", vec![]); }\n\
                 #[cfg(test)]\nmod tests { fn t() { Field::int(\"in_a_test\", 1); } }\n";
     let found = violations(&[(String::from("src/x.rs"), String::from(text))]);
     assert_eq!(
@@ -188,6 +190,8 @@ fn the_check_finds_literal_names_in_every_form_and_passes_constants() {
             "src/x.rs:12: \"state\"",
             "src/x.rs:15: \"a\"",
             "src/x.rs:16: \"{s}_modulus\"",
+            "src/x.rs:17: \"loads\"",
+            "src/x.rs:17: \"notes\"",
         ]
     );
 }

@@ -7,8 +7,8 @@ use std::process::Command;
 
 use asperity::engine::output::PARAMETER_PREFIX;
 use asperity::engine::study::SCENARIOS_TABLE;
-use asperity::nodes::is_known_column;
-use polars::prelude::{ParquetReader, SerReader};
+use asperity::nodes::{is_known_column, is_prose_column, list_column, ListItems};
+use polars::prelude::{Column, DataFrame, DataType, NamedFrom, ParquetReader, SerReader, Series};
 
 fn studies_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("studies")
@@ -97,6 +97,7 @@ fn every_shipped_study_runs_on_its_reduced_grid() {
         );
         check_friction(&name, &dir.join("out/friction.parquet"));
         check_vocabulary(&name, &dir.join("out"));
+        check_column_types(&name, &dir.join("out"));
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
@@ -172,4 +173,114 @@ fn check_friction(name: &str, file: &Path) {
             }
         }
     }
+}
+
+/// Every table of a run holds its lists as list columns, of the type the vocabulary declares
+/// (`asperity::vocabulary::list_columns`), and no text column holds a list joined by commas or
+/// semicolons (#41): `nominal_pressures_Pa` is `[5e6, 1e7, 2e7]`, never `"5e6,1e7,2e7"`.
+fn check_column_types(name: &str, out: &Path) {
+    let mut problems = Vec::new();
+    for entry in std::fs::read_dir(out).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "parquet") {
+            continue;
+        }
+        let table = path.file_stem().unwrap().to_string_lossy().to_string();
+        let df = ParquetReader::new(std::fs::File::open(&path).unwrap())
+            .finish()
+            .unwrap();
+        problems.extend(column_type_problems(&table, &df));
+    }
+    assert!(problems.is_empty(), "{name}: {problems:#?}");
+}
+
+/// What is wrong with the column types of `df` (table `table`): a list column the vocabulary
+/// does not declare (but a list parameter the study chose: `scenarios`, `summary_*`, `param_*`),
+/// a declared list column of another type, or a text column other than the prose ones
+/// (`message`, …) with a value holding a comma or a semicolon.
+fn column_type_problems(table: &str, df: &DataFrame) -> Vec<String> {
+    let study_named = table == SCENARIOS_TABLE || table.starts_with("summary_");
+    let mut problems = Vec::new();
+    for column in df.columns() {
+        let name = column.name().as_str();
+        let parameter = study_named || name.starts_with(PARAMETER_PREFIX);
+        let declared = list_column(name);
+        let found = match column.dtype() {
+            DataType::List(inner) => match inner.as_ref() {
+                DataType::Float64 => Some(ListItems::Floats),
+                DataType::String => Some(ListItems::Texts),
+                other => {
+                    problems.push(format!("{table}.{name}: a list of {other}"));
+                    continue;
+                }
+            },
+            _ => None,
+        };
+        if found != declared && !(parameter && declared.is_none()) {
+            let show = |l: Option<ListItems>| l.map_or("one value per row", ListItems::name);
+            problems.push(format!(
+                "{table}.{name}: holds {} ({}), the vocabulary declares {}",
+                show(found),
+                column.dtype(),
+                show(declared)
+            ));
+        }
+        if column.dtype() == &DataType::String && !is_prose_column(name) {
+            let joined = column
+                .str()
+                .unwrap()
+                .iter()
+                .flatten()
+                .find(|v| v.contains([',', ';']));
+            if let Some(value) = joined {
+                problems.push(format!(
+                    "{table}.{name}: {value:?} is a list joined as text"
+                ));
+            }
+        }
+    }
+    problems
+}
+
+/// The check fails on a synthetic table with every kind of wrong column and passes the right
+/// ones (prose with commas, list columns of the declared type, a list parameter).
+#[test]
+fn the_column_type_check_finds_joined_lists_and_wrong_list_types() {
+    let text = |name: &str, v: &str| Column::from(Series::new(name.into(), [v]));
+    let floats = |name: &str| {
+        let list = Series::new("".into(), [5e6, 1e7]);
+        Column::from(Series::new(name.into(), [list]))
+    };
+    let texts = |name: &str| {
+        let list = Series::new("".into(), ["a, b", "c"]);
+        Column::from(Series::new(name.into(), [list]))
+    };
+    let columns = vec![
+        text("nominal_pressures_Pa", "5e6,1e7"),
+        text("model", "kogut_etsion; ceb"),
+        text("twin_warnings", "one; two"),
+        texts("sq_m"),
+        floats("twin_hurst_bands"),
+        floats("mu_s"),
+        text("message", "flagged: a, b; c"),
+        floats("loads_N"),
+        texts("twin_measured_bands"),
+        texts("nodes"),
+        floats("param_pressures_Pa"),
+        text("status", "ok"),
+    ];
+    let df = DataFrame::new(1, columns).unwrap();
+    assert_eq!(
+        column_type_problems("friction", &df),
+        [
+            "friction.nominal_pressures_Pa: holds one value per row (str), the vocabulary declares float",
+            "friction.nominal_pressures_Pa: \"5e6,1e7\" is a list joined as text",
+            "friction.model: \"kogut_etsion; ceb\" is a list joined as text",
+            "friction.twin_warnings: holds one value per row (str), the vocabulary declares text",
+            "friction.twin_warnings: \"one; two\" is a list joined as text",
+            "friction.sq_m: holds text (list[str]), the vocabulary declares one value per row",
+            "friction.twin_hurst_bands: holds float (list[f64]), the vocabulary declares text",
+            "friction.mu_s: holds float (list[f64]), the vocabulary declares one value per row",
+        ]
+    );
 }
