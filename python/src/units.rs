@@ -11,6 +11,7 @@ use crate::guard::value_error;
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(parse_quantity, m)?)?;
     m.add_function(wrap_pyfunction!(is_column_name, m)?)?;
+    m.add_function(wrap_pyfunction!(list_column, m)?)?;
     let dimensions = PyDict::new(m.py());
     for d in Dimension::ALL {
         dimensions.set_item(d.name(), (d.si_symbol(), d.example(), d.accepted_units()))?;
@@ -24,6 +25,14 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
 #[pyfunction]
 fn is_column_name(name: &str) -> bool {
     asperity::nodes::is_known_column(name)
+}
+
+/// `"float"` or `"text"` when the vocabulary declares `name` a list column
+/// (`asperity::nodes::list_column`: `nominal_pressures_Pa`, `twin_warnings`), else `None`: what
+/// the tests check the tables' column types and the results' values against.
+#[pyfunction]
+fn list_column(name: &str) -> Option<&'static str> {
+    asperity::nodes::list_column(name).map(|items| items.name())
 }
 
 /// The dimension called `name` (as `Dimension::name` writes it: "length", "pressure", …).

@@ -84,6 +84,39 @@ def test_twin_results_speak_the_vocabulary():
         speaks_the_vocabulary(info, f"synthetic_twin spectrum={spectrum}")
 
 
+def test_list_columns_are_lists_in_tables_and_results(contact_study, tmp_path):
+    """The vocabulary's list columns (`nominal_pressures_Pa`, `nodes`, `twin_warnings`, …) are
+    Parquet list columns of their declared type in every table of a run, no other column is a
+    list, and a Python result holds them as lists."""
+    import polars as pl
+
+    assert _native.list_column("nominal_pressures_Pa") == "float"
+    assert _native.list_column("twin_warnings") == "text"
+    assert _native.list_column("nominal_pressure_Pa") is None
+    result = asperity.run(contact_study, out=tmp_path / "out", cache=tmp_path / "cache")
+    expected = {"float": pl.List(pl.Float64), "text": pl.List(pl.String)}
+    for table, df in result.tables.items():
+        for column, dtype in df.schema.items():
+            items = _native.list_column(column)
+            if items is not None:
+                assert dtype == expected[items], f"{table}.{column}: {dtype}"
+            else:
+                assert not isinstance(dtype, pl.List), f"{table}.{column}: {dtype} is not a declared list"
+    for table in ("contacts", "contacts_by_scenario"):
+        pressures = result[table]["nominal_pressures_Pa"].to_list()
+        assert pressures and all(p == [5e6, 20e6] for p in pressures), (table, pressures)
+    assert result["surfaces"]["nodes"].to_list() == [["rough"], ["rough"]]
+    other = asperity.synthetic_surface(64, 64e-6, sq=0.08e-6, hurst=0.8, correlation_length=20e-6, seed=2)
+    for spectrum in ("self_affine", "measured"):
+        _, _, _, info = asperity.synthetic_twin([T, other], sq="measured", spectrum=spectrum, grid=(64, 64), size=(64e-6, 64e-6), seed=1)
+        for key, value in info.items():
+            items = _native.list_column(key)
+            if items is None:
+                assert not isinstance(value, list), f"{key}: {value!r}"
+            else:
+                assert isinstance(value, list) and all(isinstance(v, {"float": float, "text": str}[items]) for v in value), f"{key}: {value!r}"
+
+
 def test_study_counts(contact_study):
     check(asperity.validate(contact_study), asperity.StudyCounts, "validate")
 

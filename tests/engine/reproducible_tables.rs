@@ -129,16 +129,21 @@ fn assert_same_bytes(a: &Path, b: &Path) {
     }
 }
 
-fn text_column(path: &Path, name: &str) -> Vec<String> {
+/// The `nodes` column (a list of names per row) of a table, each row's names joined by "+".
+fn node_names(path: &Path) -> Vec<String> {
     let df = ParquetReader::new(std::fs::File::open(path).unwrap())
         .finish()
         .unwrap();
-    df.column(name)
+    df.column("nodes")
         .unwrap()
-        .str()
+        .list()
         .unwrap()
-        .iter()
-        .map(|v| v.unwrap_or_default().to_string())
+        .into_iter()
+        .map(|names| {
+            let names = names.unwrap();
+            let names: Vec<&str> = names.str().unwrap().iter().flatten().collect();
+            names.join("+")
+        })
         .collect()
 }
 
@@ -179,7 +184,7 @@ fn tables_are_byte_identical_fresh_cached_and_on_any_thread_count() {
 
     // Friction rows: scenario by scenario, the study file's node order within one (zeta, alpha,
     // mid), although the plan instantiates them upstream first.
-    let names = text_column(&out.join("friction.parquet"), "nodes");
+    let names = node_names(&out.join("friction.parquet"));
     let expected: Vec<String> = (0..4)
         .flat_map(|_| ["zeta", "alpha", "mid"])
         .map(String::from)

@@ -135,9 +135,9 @@ nodes:
         Value::Bool(true)
     );
     match metric(&twin.metrics, "twin_warnings") {
-        Value::Text(w) => assert!(
-            w.starts_with("Sq = 2.00 µm lies outside the measured range"),
-            "{w}"
+        Value::Texts(w) => assert!(
+            w.len() == 1 && w[0].starts_with("Sq = 2.00 µm lies outside the measured range"),
+            "{w:?}"
         ),
         other => panic!("{other:?}"),
     }
@@ -223,7 +223,7 @@ nodes:
     );
     assert_eq!(
         metric(&spiky.metrics, "twin_correlation_x_methods"),
-        Value::Text(String::from("acf_crossing: 1"))
+        Value::Texts(vec![String::from("acf_crossing: 1")])
     );
     // A twin at the measured Sq has that Sq.
     let sq = float(metric(&spiky.metrics, "sq"));
