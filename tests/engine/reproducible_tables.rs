@@ -134,13 +134,10 @@ fn node_names(path: &Path) -> Vec<String> {
     let df = ParquetReader::new(std::fs::File::open(path).unwrap())
         .finish()
         .unwrap();
-    df.column("nodes")
-        .unwrap()
-        .list()
-        .unwrap()
-        .into_iter()
-        .map(|names| {
-            let names = names.unwrap();
+    let lists = df.column("nodes").unwrap().list().unwrap().clone();
+    (0..lists.len())
+        .map(|row| {
+            let names = lists.get_as_series(row).unwrap();
             let names: Vec<&str> = names.str().unwrap().iter().flatten().collect();
             names.join("+")
         })
