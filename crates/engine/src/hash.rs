@@ -142,7 +142,7 @@ fn put_value(out: &mut Vec<u8>, value: &Value) {
     let zero = |x: f64| if x == 0.0 { 0.0 } else { x };
     match value {
         Value::Float(x) => encoding::put_value(out, &Value::Float(zero(*x)), Lengths::Fixed64),
-        Value::Floats(v) if v.iter().any(|x| *x == 0.0) => {
+        Value::Floats(v) if v.contains(&0.0) => {
             let v = v.iter().map(|x| zero(*x)).collect();
             encoding::put_value(out, &Value::Floats(v), Lengths::Fixed64);
         }
