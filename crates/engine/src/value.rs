@@ -251,6 +251,41 @@ pub fn column_name(name: &str, dimension: Dimension) -> String {
 }
 
 #[cfg(test)]
+mod list_tests {
+    use super::{ParamValue, Value};
+    use crate::units::{Dimension, DimensionedValue};
+
+    /// A list of quantities of one dimension is a list of SI floats with that dimension; any
+    /// other list is a list of its items as written; a scalar is no list.
+    #[test]
+    fn a_list_parameter_is_a_list_cell() {
+        let mpa = |x: f64| {
+            ParamValue::Quantity(DimensionedValue {
+                si: x * 1e6,
+                dimension: Dimension::Pressure,
+            })
+        };
+        assert_eq!(
+            ParamValue::List(vec![mpa(5.0), mpa(10.0)]).list_cell(),
+            Some((Value::Floats(vec![5e6, 1e7]), Dimension::Pressure))
+        );
+        assert_eq!(
+            ParamValue::List(vec![ParamValue::Int(2), ParamValue::Number(0.5)]).list_cell(),
+            Some((Value::Floats(vec![2.0, 0.5]), Dimension::Dimensionless))
+        );
+        let mixed = ParamValue::List(vec![mpa(5.0), ParamValue::Text(String::from("a,b"))]);
+        assert_eq!(
+            mixed.list_cell(),
+            Some((
+                Value::Texts(vec![String::from("5e6 Pa"), String::from("a,b")]),
+                Dimension::Dimensionless
+            ))
+        );
+        assert_eq!(ParamValue::Int(3).list_cell(), None);
+    }
+}
+
+#[cfg(test)]
 mod nan_tests {
     use super::Value;
 

@@ -222,3 +222,33 @@ pub(super) fn to_series(name: &str, values: Vec<Option<Value>>) -> Series {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use polars::prelude::DataType;
+
+    use super::*;
+
+    /// A list column keeps an empty list apart from a null (a row the column does not apply to),
+    /// and its items' type: floats as `List(Float64)`, texts as `List(String)`.
+    #[test]
+    fn lists_become_list_columns_with_empty_lists_and_nulls_apart() {
+        let texts = to_series(
+            "w",
+            vec![
+                Some(Value::Texts(Vec::new())),
+                None,
+                Some(Value::Texts(vec![String::from("a, b"), String::from("c")])),
+            ],
+        );
+        assert_eq!(texts.dtype(), &DataType::List(Box::new(DataType::String)));
+        let lists = texts.list().unwrap();
+        assert_eq!(lists.get_as_series(0).unwrap().len(), 0);
+        assert!(lists.get_as_series(1).is_none());
+        assert_eq!(lists.get_as_series(2).unwrap().len(), 2);
+        let floats = to_series("p", vec![None, Some(Value::Floats(vec![5e6, 1e7]))]);
+        assert_eq!(floats.dtype(), &DataType::List(Box::new(DataType::Float64)));
+        let list = floats.list().unwrap().get_as_series(1).unwrap();
+        assert_eq!(list.f64().unwrap().get(1), Some(1e7));
+    }
+}
