@@ -108,7 +108,22 @@ struct SourceHeights {
     periodogram: Option<Periodogram>,
 }
 
+/// Peak bytes per point of a synthetic surface node: heights, complex half spectrum and the
+/// statistics' work arrays, ≈ 6 f64 (measured at 1024²: 39–41 MiB, i.e. 4.9 f64 per point;
+/// docs/robustness.md, "Memory").
+const SYNTHETIC_BYTES_PER_POINT: u64 = 6 * 8;
+
 impl SurfaceTask {
+    /// The number of points of the heights (an upper bound for a twin made of larger files), for
+    /// the memory estimates of the nodes downstream.
+    pub(crate) fn points(&self) -> u64 {
+        match &self.source {
+            SurfaceSource::Synthetic(s) => (s.nx as u64) * (s.ny as u64),
+            SurfaceSource::Measured(m) => m.memory_estimate() / 64,
+            SurfaceSource::Twin(t) => t.memory_estimate() / SYNTHETIC_BYTES_PER_POINT,
+        }
+    }
+
     /// Generates or reads the heights; says whether the map is periodic and adds any metrics of
     /// the source itself and the sentences that flag its row.
     fn heights(&self) -> Result<SourceHeights, NodeError> {
@@ -234,8 +249,7 @@ impl NodeTask for SurfaceTask {
 
     fn memory_estimate(&self) -> u64 {
         match &self.source {
-            // heights + complex half spectrum + statistics work arrays ≈ 6 f64 per point.
-            SurfaceSource::Synthetic(s) => (s.nx as u64) * (s.ny as u64) * 8 * 6,
+            SurfaceSource::Synthetic(_) => self.points() * SYNTHETIC_BYTES_PER_POINT,
             SurfaceSource::Measured(m) => m.memory_estimate(),
             SurfaceSource::Twin(t) => t.memory_estimate(),
         }

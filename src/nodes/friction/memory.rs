@@ -1,0 +1,34 @@
+//! The memory estimate of a friction node, from its method and the grid of its upstream contact.
+
+use super::MethodSetup;
+
+/// Peak bytes per point of the contact's grid for a method that reads its maps (per summit, per
+/// spot): the maps are read in place; spot labels, summit lists and per-point work arrays are
+/// held beside them, ≤ 3 f64 per point (measured at 1024²: 4–12 MiB, i.e. ≤ 1.5 f64 per point;
+/// docs/robustness.md, "Memory").
+const BYTES_PER_MAP_POINT: u64 = 3 * 8;
+
+/// The result rows and the law's tables, whatever the grid (a statistical node at 1024² peaks
+/// at 0.2 MiB).
+const FIXED_BYTES: u64 = 1 << 20;
+
+/// Peak bytes per point for the maps of one earlier load step, derived while that step's friction
+/// is computed (`ContactTask::step_maps`: the gap, both deformations, the plastic penetration and
+/// the composite height, 5 f64, and the influence operator's kernel and transform buffers, at most
+/// 7 f64 more for a zero-padded, non-periodic grid): an upper bound by count, not a measurement.
+const BYTES_PER_DERIVED_STEP_POINT: u64 = 12 * 8;
+
+/// The peak memory of a friction node with `setup`, bytes.
+pub(super) fn estimate(setup: &MethodSetup) -> u64 {
+    let contact = match setup {
+        MethodSetup::Statistical { .. } => return FIXED_BYTES,
+        MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } => contact,
+    };
+    let points = contact.task.points();
+    let per_point = if contact.task.step_count() > 1 {
+        BYTES_PER_MAP_POINT + BYTES_PER_DERIVED_STEP_POINT
+    } else {
+        BYTES_PER_MAP_POINT
+    };
+    FIXED_BYTES.saturating_add(points.saturating_mul(per_point))
+}
