@@ -20,10 +20,9 @@ use std::sync::{Arc, Mutex, PoisonError};
 use crate::artifact::{Artifact, ColumnData, Table};
 
 /// What the process's resident set grows by in a run, whatever its nodes: the worker threads,
-/// the allocator's per-thread arenas, the FFT plans, the cache's compression and the tables'
-/// buffers. Measured: a run of one 256² surface peaks 22 MiB above the resident set at its start,
-/// one of a 1024² surface 41 MiB (docs/robustness.md, "Memory").
-pub(super) const RUN_OVERHEAD_BYTES: u64 = 24 << 20;
+/// the allocator's arena, the FFT plans, the cache's compression and the tables' buffers (an
+/// upper bound of a run of one 16² surface; figures: docs/robustness.md, "Memory").
+pub(super) const RUN_OVERHEAD_BYTES: u64 = 32 << 20;
 
 /// A counter of bytes against a total; charges are taken by [`MemoryBudget::try_charge`] (only
 /// if they fit) or [`MemoryBudget::force`] (memory that exists already) and returned when the
