@@ -150,7 +150,12 @@ impl ContactSpec {
             .upstream(0)
             .and_then(|t| t.as_any().downcast_ref::<super::surface::SurfaceTask>())
             .map_or(1 << 24, super::surface::SurfaceTask::points);
-        let memory_estimate = memory_estimate(points, periodic, fields);
+        let memory_estimate = memory_estimate(
+            points,
+            periodic,
+            fields,
+            super::thread_scratch_bytes_per_point(),
+        );
         Ok(ContactTask {
             material,
             pressures,
@@ -290,21 +295,24 @@ pub struct ContactTask {
     memory_estimate: u64,
 }
 
-/// Peak bytes per grid point of the solver on periodic surfaces (12 f64) and on non-periodic
-/// ones (22 f64: its FFTs run on the grid padded to twice each side), and of the fields kept for
-/// consumers (`fields: true`: seven maps), beside a fixed [`SOLVER_FIXED_BYTES`]. Measured from
-/// 512² to 1024² (two threads; the process's peak less its base): 83, 156 and 53 bytes per
-/// point, about 5 MiB fixed; docs/robustness.md, "Memory".
-const SOLVER_BYTES_PER_POINT: [u64; 2] = [12 * 8, 22 * 8];
+/// Peak bytes per grid point of the solver on periodic surfaces and on non-periodic ones (its
+/// FFTs run on the grid padded to twice each side): its maps, spectra and the solver's
+/// single-precision copies, beside the threads' scratch.
+const SOLVER_BYTES_PER_POINT: [u64; 2] = [10 * 8, 24 * 8];
+/// Peak bytes per grid point of the final step's maps kept for consumers (`fields: true`): the
+/// pressure, gap, both deformations, plastic penetration, composite height and upper heights.
 const FIELDS_BYTES_PER_POINT: u64 = 7 * 8;
+/// The solver's bytes whatever the grid: its options, plans and load-curve rows.
 const SOLVER_FIXED_BYTES: u64 = 8 << 20;
 
-/// The peak memory of a contact on `points` grid points, bytes: the solver's arrays, with the
-/// fields when kept.
-fn memory_estimate(points: u64, periodic: bool, fields: bool) -> u64 {
+/// The peak memory of a contact on `points` grid points, bytes: the solver's arrays, the worker
+/// threads' `scratch` (bytes per point, [`super::thread_scratch_bytes_per_point`]) and the fields
+/// when kept; an upper bound of the process's peak less its base (figures: docs/robustness.md,
+/// "Memory").
+fn memory_estimate(points: u64, periodic: bool, fields: bool, scratch: u64) -> u64 {
     let solver = SOLVER_BYTES_PER_POINT[usize::from(!periodic)];
     let kept = if fields { FIELDS_BYTES_PER_POINT } else { 0 };
-    SOLVER_FIXED_BYTES.saturating_add(points.saturating_mul(solver + kept))
+    SOLVER_FIXED_BYTES.saturating_add(points.saturating_mul(solver + scratch + kept))
 }
 
 impl ContactTask {

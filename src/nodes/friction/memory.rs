@@ -4,29 +4,30 @@ use super::MethodSetup;
 
 /// Peak bytes per point of the contact's grid for a method that reads its maps (per summit, per
 /// spot): the maps are read in place; spot labels, summit lists and per-point work arrays are
-/// held beside them, ≤ 3 f64 per point (measured at 1024²: 4–12 MiB, i.e. ≤ 1.5 f64 per point;
-/// docs/robustness.md, "Memory").
+/// held beside them, ≤ 3 f64 per point.
 const BYTES_PER_MAP_POINT: u64 = 3 * 8;
 
-/// The result rows and the law's tables, whatever the grid (a statistical node at 1024² peaks
-/// at 0.2 MiB).
+/// The result rows and the law's tables, whatever the grid.
 const FIXED_BYTES: u64 = 1 << 20;
 
 /// Peak bytes per point for the maps of one earlier load step, derived while that step's friction
-/// is computed (`ContactTask::step_maps`: the gap, both deformations, the plastic penetration and
-/// the composite height, 5 f64, and the influence operator's kernel and transform buffers, at most
-/// 7 f64 more for a zero-padded, non-periodic grid): an upper bound by count, not a measurement.
+/// is computed (`ContactTask::step_maps`): the gap, both deformations, the plastic penetration and
+/// the pressure, 5 f64, and the influence operator's kernel and transform buffers, 7 f64 more,
+/// beside the worker threads' scratch.
 const BYTES_PER_DERIVED_STEP_POINT: u64 = 12 * 8;
 
-/// The peak memory of a friction node with `setup`, bytes.
-pub(super) fn estimate(setup: &MethodSetup) -> u64 {
+/// The peak memory of a friction node with `setup`, bytes, where deriving a load step's maps adds
+/// the worker threads' `scratch` (bytes per point, `nodes::thread_scratch_bytes_per_point`); an
+/// upper bound of the process's peak less its base and the contact's maps (figures:
+/// docs/robustness.md, "Memory").
+pub(super) fn estimate(setup: &MethodSetup, scratch: u64) -> u64 {
     let contact = match setup {
         MethodSetup::Statistical { .. } => return FIXED_BYTES,
         MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } => contact,
     };
     let points = contact.task.points();
     let per_point = if contact.task.step_count() > 1 {
-        BYTES_PER_MAP_POINT + BYTES_PER_DERIVED_STEP_POINT
+        BYTES_PER_MAP_POINT + BYTES_PER_DERIVED_STEP_POINT + scratch
     } else {
         BYTES_PER_MAP_POINT
     };

@@ -108,19 +108,19 @@ struct SourceHeights {
     periodogram: Option<Periodogram>,
 }
 
-/// Peak bytes per point of a synthetic surface node: heights, complex half spectrum and the
-/// statistics' work arrays, ≈ 6 f64 (measured at 1024²: 39–41 MiB, i.e. 4.9 f64 per point;
-/// docs/robustness.md, "Memory").
+/// Peak bytes per point of a synthetic surface node (and of a twin's grid): the heights, their
+/// complex half spectrum and the statistics' spectra and work arrays, an upper bound of the
+/// process's peak less its base (figures: docs/robustness.md, "Memory").
 const SYNTHETIC_BYTES_PER_POINT: u64 = 6 * 8;
 
 impl SurfaceTask {
-    /// The number of points of the heights (an upper bound for a twin made of larger files), for
-    /// the memory estimates of the nodes downstream.
+    /// The number of points of the heights (for a measured file an upper bound, before it is
+    /// read), for the memory estimates of the nodes downstream.
     pub(crate) fn points(&self) -> u64 {
         match &self.source {
             SurfaceSource::Synthetic(s) => (s.nx as u64) * (s.ny as u64),
-            SurfaceSource::Measured(m) => m.memory_estimate() / 64,
-            SurfaceSource::Twin(t) => t.memory_estimate() / SYNTHETIC_BYTES_PER_POINT,
+            SurfaceSource::Measured(m) => m.points(),
+            SurfaceSource::Twin(t) => t.points(),
         }
     }
 
