@@ -11,15 +11,15 @@ use std::path::{Path, PathBuf};
 use scale_out_common::*;
 
 /// The budget under test, MiB.
-const BUDGET_MIB: u64 = 100;
+const BUDGET_MIB: u64 = 110;
 
 /// What the budget does not count, MiB: the Parquet writer's buffers once the run is over
 /// (≤ 2 MiB at this size) and the rounding of the estimates, which are upper bounds per node but
-/// measured on other surfaces (docs/robustness.md, "Memory"). 8 % of the budget.
+/// measured on other surfaces (docs/robustness.md, "Memory"). 7 % of the budget.
 const ALLOWANCE_MIB: u64 = 8;
 
 /// Four seeds of a 512² surface in contact with a flat, with fields, and a per-spot friction
-/// node on each contact: 12 instances; a contact's estimate is 46 MiB.
+/// node on each contact: 12 instances; a contact's estimate is 50 MiB with four threads.
 fn study(dir: &Path) -> PathBuf {
     let path = dir.join("memory.yaml");
     std::fs::write(
@@ -135,7 +135,7 @@ fn a_node_that_cannot_fit_the_budget_fails_naming_itself_its_estimate_and_the_fl
     assert_eq!(small.code, Some(2), "stderr: {}", small.stderr);
     for needed in [
         "failed: contact node 'contact'",
-        "needs about 46 MiB of memory",
+        "needs about 50 MiB of memory",
         "exceeds the run's budget of 70 MiB: raise `--memory-mib` to at least",
     ] {
         assert!(small.stderr.contains(needed), "stderr: {}", small.stderr);
