@@ -15,7 +15,7 @@ from common import Case, classify_run, first_words
 ALLOWANCE_MIB = 8
 #: The grid the quickstart is run at, and the budgets tried (MiB).
 GRID = 512
-BUDGETS = (400, 160, 100, 60, 40)
+BUDGETS = (400, 160, 120, 100, 60, 40)
 
 
 def memory_cases(shrunk):
