@@ -298,12 +298,13 @@ pub struct ContactTask {
 /// Peak bytes per grid point of the solver on periodic surfaces and on non-periodic ones (its
 /// FFTs run on the grid padded to twice each side): its maps, spectra and the solver's
 /// single-precision copies, beside the threads' scratch.
-const SOLVER_BYTES_PER_POINT: [u64; 2] = [10 * 8, 24 * 8];
+const SOLVER_BYTES_PER_POINT: [u64; 2] = [11 * 8, 25 * 8];
 /// Peak bytes per grid point of the final step's maps kept for consumers (`fields: true`): the
 /// pressure, gap, both deformations, plastic penetration, composite height and upper heights.
 const FIELDS_BYTES_PER_POINT: u64 = 7 * 8;
-/// The solver's bytes whatever the grid: its options, plans and load-curve rows.
-const SOLVER_FIXED_BYTES: u64 = 8 << 20;
+/// The node's bytes whatever the grid: the solver's plans and options, the load curve and
+/// storing the result in the cache.
+const SOLVER_FIXED_BYTES: u64 = 20 << 20;
 
 /// The peak memory of a contact on `points` grid points, bytes: the solver's arrays, the worker
 /// threads' `scratch` (bytes per point, [`super::thread_scratch_bytes_per_point`]) and the fields

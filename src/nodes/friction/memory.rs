@@ -16,6 +16,10 @@ const FIXED_BYTES: u64 = 1 << 20;
 /// beside the worker threads' scratch.
 const BYTES_PER_DERIVED_STEP_POINT: u64 = 12 * 8;
 
+/// Peak bytes of deriving earlier load steps' maps whatever the grid: the influence operator's
+/// plans.
+const DERIVED_STEP_FIXED_BYTES: u64 = 12 << 20;
+
 /// The peak memory of a friction node with `setup`, bytes, where deriving a load step's maps adds
 /// the worker threads' `scratch` (bytes per point, `nodes::thread_scratch_bytes_per_point`); an
 /// upper bound of the process's peak less its base and the contact's maps (figures:
@@ -26,10 +30,13 @@ pub(super) fn estimate(setup: &MethodSetup, scratch: u64) -> u64 {
         MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } => contact,
     };
     let points = contact.task.points();
-    let per_point = if contact.task.step_count() > 1 {
-        BYTES_PER_MAP_POINT + BYTES_PER_DERIVED_STEP_POINT + scratch
+    let (fixed, per_point) = if contact.task.step_count() > 1 {
+        (
+            FIXED_BYTES + DERIVED_STEP_FIXED_BYTES,
+            BYTES_PER_MAP_POINT + BYTES_PER_DERIVED_STEP_POINT + scratch,
+        )
     } else {
-        BYTES_PER_MAP_POINT
+        (FIXED_BYTES, BYTES_PER_MAP_POINT)
     };
-    FIXED_BYTES.saturating_add(points.saturating_mul(per_point))
+    fixed.saturating_add(points.saturating_mul(per_point))
 }

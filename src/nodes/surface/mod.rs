@@ -109,9 +109,14 @@ struct SourceHeights {
 }
 
 /// Peak bytes per point of a synthetic surface node (and of a twin's grid): the heights, their
-/// complex half spectrum and the statistics' spectra and work arrays, an upper bound of the
-/// process's peak less its base (figures: docs/robustness.md, "Memory").
-const SYNTHETIC_BYTES_PER_POINT: u64 = 6 * 8;
+/// complex half spectrum and the statistics' spectra and work arrays, beside
+/// [`STATISTICS_FIXED_BYTES`]; an upper bound of the process's peak less its base (figures:
+/// docs/robustness.md, "Memory").
+const SYNTHETIC_BYTES_PER_POINT: u64 = 4 * 8;
+
+/// Peak bytes of every surface node whatever its grid: the statistics' tables (PSD, ACF,
+/// material ratio, summits) and storing them in the cache.
+const STATISTICS_FIXED_BYTES: u64 = 24 << 20;
 
 impl SurfaceTask {
     /// The number of points of the heights (for a measured file an upper bound, before it is
@@ -248,11 +253,12 @@ impl NodeTask for SurfaceTask {
     }
 
     fn memory_estimate(&self) -> u64 {
-        match &self.source {
+        let source = match &self.source {
             SurfaceSource::Synthetic(_) => self.points() * SYNTHETIC_BYTES_PER_POINT,
             SurfaceSource::Measured(m) => m.memory_estimate(),
             SurfaceSource::Twin(t) => t.memory_estimate(),
-        }
+        };
+        STATISTICS_FIXED_BYTES.saturating_add(source)
     }
 
     /// The heights' statistics, checked by [`validity`]: the spacing before any statistic is
