@@ -149,8 +149,9 @@ impl MeasuredFile {
 
 /// Peak bytes per point of a measured surface node: the file's values as read, the map, its
 /// validity mask, the preprocessing's copies (form removal, filters, filling missing points) and
-/// the statistics' spectra and work arrays, beside the worker threads' scratch; an upper bound of the process's peak less its base
-/// (figures: docs/robustness.md, "Memory").
+/// the statistics' spectra and work arrays, beside the worker threads' scratch and the fixed part
+/// of every surface node; an upper bound of the process's peak less its base (figures:
+/// docs/robustness.md, "Memory").
 const MEASURED_BYTES_PER_POINT: u64 = 16 * 8;
 
 impl MeasuredSource {
