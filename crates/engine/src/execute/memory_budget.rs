@@ -2,7 +2,7 @@
 //!
 //! The budget is for the whole process, not per node. Charged against it:
 //! * the process's own base ([`MemoryBudget::for_process`]): its resident set when the run starts
-//!   (the program, its libraries, the plan) and what a run adds whatever its nodes
+//!   (the program, its libraries, the plan) and what running nodes adds whatever they are
 //!   ([`RUN_OVERHEAD_BYTES`]);
 //! * each running instance, its [`NodeTask::memory_estimate`](crate::task::NodeTask::memory_estimate),
 //!   from the moment the scheduler admits it until it is computed, stored and handed over
@@ -12,6 +12,10 @@
 //!   ([`artifact_bytes`]), until its last dependant finished;
 //! * the tables every instance contributes to the results, kept until they are written.
 //!
+//! Writing the results comes after the nodes, when only the base and those tables are charged;
+//! it needs more than the base ([`RESULTS_OVERHEAD_BYTES`]), so a budget below that is refused
+//! whatever the nodes ([`MemoryBudget::results`]).
+//!
 //! The allocator must give freed memory back for the count to bound the resident set: the
 //! binary fixes the system allocator's mmap threshold for that (`src/huge_pages.rs`).
 
@@ -19,10 +23,16 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use crate::artifact::{Artifact, ColumnData, Table};
 
-/// What the process's resident set grows by in a run, whatever its nodes: the worker threads,
-/// the allocator's arena, the FFT plans, the cache's compression and the tables' buffers (an
-/// upper bound of a run of one 16² surface; figures: docs/robustness.md, "Memory").
-pub(super) const RUN_OVERHEAD_BYTES: u64 = 32 << 20;
+/// What the process's resident set grows by while nodes run, whatever they are: the worker
+/// threads, the allocator's arena, the FFT plans and the cache's compression (an upper bound of a
+/// `--shard` run of one 16² surface, which writes no result tables; figures: docs/robustness.md,
+/// "Memory").
+pub(super) const RUN_OVERHEAD_BYTES: u64 = 12 << 20;
+
+/// What the process's resident set grows by when the result tables are written after the nodes
+/// (the Parquet writer's buffers), beside the tables themselves (an upper bound of a run of one
+/// 16² surface; figures: docs/robustness.md, "Memory").
+pub(super) const RESULTS_OVERHEAD_BYTES: u64 = 32 << 20;
 
 /// A counter of bytes against a total; charges are taken by [`MemoryBudget::try_charge`] (only
 /// if they fit) or [`MemoryBudget::force`] (memory that exists already) and returned when the
@@ -30,8 +40,11 @@ pub(super) const RUN_OVERHEAD_BYTES: u64 = 32 << 20;
 #[derive(Debug)]
 pub(super) struct MemoryBudget {
     total: u64,
-    /// The process's resident set when the run started, charged for the whole run.
+    /// The process's resident set when the run started with what running nodes add, charged for
+    /// the whole run.
     base: u64,
+    /// What the process holds while it writes the results, the tables kept for them aside.
+    results: u64,
     used: Mutex<u64>,
 }
 
@@ -43,20 +56,27 @@ pub(super) struct Charge {
 }
 
 impl MemoryBudget {
-    /// A budget of `total` bytes with `base` of them charged for the whole run.
-    pub(super) fn new(total: u64, base: u64) -> Arc<Self> {
+    /// A budget of `total` bytes with `base` of them charged for the whole run and `results`
+    /// needed to write the results.
+    pub(super) fn new(total: u64, base: u64, results: u64) -> Arc<Self> {
         Arc::new(Self {
             total: total.max(1),
             base,
+            results,
             used: Mutex::new(base),
         })
     }
 
     /// A budget of `total` bytes for this process: its base is its resident set now (none where
-    /// the system does not say) and [`RUN_OVERHEAD_BYTES`].
+    /// the system does not say) and [`RUN_OVERHEAD_BYTES`]; writing the results needs that
+    /// resident set and [`RESULTS_OVERHEAD_BYTES`].
     pub(super) fn for_process(total: u64) -> Arc<Self> {
         let resident = super::process_memory::resident_bytes().unwrap_or(0);
-        Self::new(total, resident + RUN_OVERHEAD_BYTES)
+        Self::new(
+            total,
+            resident + RUN_OVERHEAD_BYTES,
+            resident + RESULTS_OVERHEAD_BYTES,
+        )
     }
 
     /// The whole budget, bytes.
@@ -67,6 +87,12 @@ impl MemoryBudget {
     /// The process's base charged for the whole run, bytes.
     pub(super) fn base(&self) -> u64 {
         self.base
+    }
+
+    /// What the process holds while it writes the results (the tables kept for them aside),
+    /// bytes: a budget below it cannot be kept whatever the nodes.
+    pub(super) fn results(&self) -> u64 {
+        self.results
     }
 
     /// Charges `bytes` if they fit beside what is charged already.
@@ -157,7 +183,7 @@ mod tests {
 
     #[test]
     fn charges_fit_beside_the_base_and_are_returned_when_dropped() {
-        let budget = MemoryBudget::new(100, 30);
+        let budget = MemoryBudget::new(100, 30, 40);
         let a = budget.try_charge(60).expect("30 + 60 fit in 100");
         assert!(budget.try_charge(20).is_none(), "30 + 60 + 20 exceed 100");
         let forced = budget.force(20);
@@ -183,7 +209,7 @@ mod tests {
             artifact_bytes(&artifact),
             32 * 8 + 3 * 8 + (2 + 24) + (7 + 24)
         );
-        let budget = MemoryBudget::new(1 << 20, 0);
+        let budget = MemoryBudget::new(1 << 20, 0, 0);
         let held = Held::new(Arc::new(artifact), &budget);
         assert_eq!(*budget.lock(), 337);
         drop(held);

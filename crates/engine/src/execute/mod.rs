@@ -489,9 +489,9 @@ impl<'a> RunContext<'a> {
     }
 
     /// The failure of a node whose memory estimate, its inputs held in memory and the process's
-    /// base together exceed the whole budget (an input read again for it is charged when read):
-    /// checked before it reads its inputs and allocates, so `--memory-mib` bounds what a run may
-    /// allocate.
+    /// base together exceed the whole budget (an input read again for it is charged when read),
+    /// or of every node when the budget cannot hold the writing of the results: checked before it
+    /// reads its inputs and allocates, so `--memory-mib` bounds what a run may allocate.
     fn over_budget(&self, node: &PlannedNode) -> Option<NodeStatus> {
         let estimate = node.task.memory_estimate();
         let inputs: u64 = {
@@ -504,10 +504,21 @@ impl<'a> RunContext<'a> {
         };
         let (base, total) = (self.budget.base(), self.budget.total());
         let needed = estimate.saturating_add(inputs).saturating_add(base);
+        let results = self.budget.results();
+        let mib = |bytes: u64| bytes.div_ceil(1 << 20);
+        if needed <= total && results > total {
+            return Some(NodeStatus::Failed(format!(
+                "the run's budget of {} MiB is below the {} MiB the process needs to write the \
+                 results: raise `--memory-mib` to at least {} (default 60 % of the available \
+                 memory)",
+                mib(total),
+                mib(results),
+                mib(results.max(needed))
+            )));
+        }
         if needed <= total {
             return None;
         }
-        let mib = |bytes: u64| bytes.div_ceil(1 << 20);
         let inputs = match inputs {
             0 => String::new(),
             bytes => format!(" its inputs' {} MiB and", mib(bytes)),
