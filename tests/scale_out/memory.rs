@@ -147,3 +147,42 @@ fn a_node_that_cannot_fit_the_budget_fails_naming_itself_its_estimate_and_the_fl
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A budget that holds the nodes but not the writing of the results (a statistical friction
+/// node of 1 MiB): the nodes fail naming the MiB the process needs to write them.
+#[test]
+fn a_budget_too_small_to_write_the_results_is_refused_naming_the_flag() {
+    let dir = tempdir("memory-results");
+    let study = dir.join("results.yaml");
+    std::fs::write(
+        &study,
+        r#"
+study: memory-results
+nodes:
+  friction:
+    friction:
+      lower_material: s235jr
+      roughness: {sigma: 0.1 um, radius: 100 um, density: 4e9}
+      nominal_area: 1 mm^2
+      nominal_pressures: [5 MPa]
+"#,
+    )
+    .unwrap();
+    let small = run_measured(&dir, &study, "small", &["--memory-mib", "45"]);
+    assert_eq!(small.code, Some(2), "stderr: {}", small.stderr);
+    for needed in [
+        "failed: friction node 'friction'",
+        "the run's budget of 45 MiB is below the",
+        "MiB the process needs to write the results: raise `--memory-mib` to at least",
+    ] {
+        assert!(small.stderr.contains(needed), "stderr: {}", small.stderr);
+    }
+    let enough = run_measured(&dir, &study, "enough", &["--memory-mib", "80"]);
+    assert_eq!(enough.code, Some(0), "stderr: {}", enough.stderr);
+    assert!(
+        enough.peak_mib <= 80 + ALLOWANCE_MIB,
+        "peak {} MiB",
+        enough.peak_mib
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
