@@ -17,7 +17,8 @@
 //! whatever the nodes ([`MemoryBudget::results`]).
 //!
 //! The allocator must give freed memory back for the count to bound the resident set: the
-//! binary fixes the system allocator's mmap threshold for that (`src/huge_pages.rs`).
+//! binary fixes the system allocator's mmap threshold and keeps one arena for that
+//! (`src/huge_pages.rs`).
 
 use std::sync::{Arc, Mutex, PoisonError};
 
