@@ -96,6 +96,36 @@ fn madvise_huge(first: usize, length: usize) {
 #[cfg(not(target_os = "linux"))]
 fn madvise_huge(_first: usize, _length: usize) {}
 
+/// Blocks of at least this size are mapped afresh by the system allocator and unmapped when
+/// freed ([`return_freed_blocks`]): every grid of 512² points or more.
+const MMAP_THRESHOLD_BYTES: i32 = 1 << 20;
+
+/// The system allocator's arenas (heaps of blocks below [`MMAP_THRESHOLD_BYTES`]): one, shared
+/// by all threads ([`return_freed_blocks`]).
+const ARENAS: i32 = 1;
+
+/// Makes the system allocator (glibc) give freed memory back, so the resident set follows what
+/// the process holds and `--memory-mib` can bound it:
+/// * fixes the mmap threshold at [`MMAP_THRESHOLD_BYTES`], so a freed grid goes back to the
+///   system at once. Left to itself, glibc raises the threshold to the size of each mapped block
+///   freed (up to 32 MiB): the next grids of that size then come from its heap, which keeps their
+///   pages after they are freed;
+/// * keeps [`ARENAS`] arena. Left to itself, glibc gives each thread that allocates its own arena
+///   (up to 8 per core), and each keeps the pages of the small blocks freed in it: the resident
+///   set then grows with `--jobs` beyond what the process holds.
+///
+/// Measured figures: `docs/robustness.md`, "Memory". Elsewhere (musl, other systems) this does
+/// nothing.
+pub fn return_freed_blocks() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: `mallopt` only changes tuning parameters of the allocator, called before any
+    // thread of ours starts.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, MMAP_THRESHOLD_BYTES);
+        libc::mallopt(libc::M_ARENA_MAX, ARENAS);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

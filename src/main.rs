@@ -15,6 +15,7 @@ use clap::Parser;
 static ALLOCATOR: huge_pages::HugePageAllocator = huge_pages::HugePageAllocator;
 
 fn main() -> ExitCode {
+    huge_pages::return_freed_blocks();
     // A closed pipe ends the process as it ends every Unix filter (`asperity inspect f | head`).
     #[cfg(unix)]
     sigpipe::reset();

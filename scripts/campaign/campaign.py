@@ -32,13 +32,14 @@ from common import Runner  # noqa: E402
 from fam_cache import Base, CacheFamily, ConcurrencyFamily, KillFamily  # noqa: E402
 from fam_files import FileFamily  # noqa: E402
 from fam_issue42 import FolderFamily, InterruptFamily, StudyCasesFamily, angle_cases, per_spot_cases  # noqa: E402
+from fam_memory import MemoryFamily, memory_cases  # noqa: E402
 from fam_studies import StudyFamily, shrunk_studies  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SHARES = {"cache": 0.07, "kills": 0.07, "concurrency": 0.07, "interrupts": 0.07, "folders": 0.02,
-          "angles": 0.03, "per_spot": 0.04, "studies": 0.36, "files": 0.27}
+          "angles": 0.03, "per_spot": 0.04, "memory": 0.04, "studies": 0.32, "files": 0.27}
 # Families whose every case is listed in the report, with what it said.
-NAMED = {"folders", "angles", "per_spot"}
+NAMED = {"folders", "angles", "per_spot", "memory"}
 
 
 def parse_args():
@@ -122,6 +123,7 @@ def main():
             "folders": lambda: FolderFamily(ctx, base),
             "angles": lambda: StudyCasesFamily(ctx, "angles", angle_cases(shrunk_studies(ctx.repo))),
             "per_spot": lambda: StudyCasesFamily(ctx, "per_spot", per_spot_cases(shrunk_studies(ctx.repo))),
+            "memory": lambda: MemoryFamily(ctx, memory_cases(shrunk_studies(ctx.repo))),
             "studies": lambda: StudyFamily(ctx),
             "files": lambda: FileFamily(ctx),
         }

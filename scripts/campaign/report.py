@@ -30,11 +30,13 @@ EXTRA_COLUMNS = {
     "interrupts": [("exit 130", "interrupted"), ("said interrupted", "said interrupted"),
                    ("tmp clean", "tmp clean"), ("verify ok at once", "verify ok at once"),
                    ("rerun identical", "rerun identical")],
+    "memory": [("completed within budget", "within_budget"), ("refused naming --memory-mib", "refused")],
 }
 NAMED_TITLES = {
     "folders": "Folder cases of issue #42 (small study; unprivileged user when run as root)",
     "angles": "Angle forms of issue #42 (shrunk ground-validation study)",
     "per_spot": "Per-spot cases of issue #42 (shrunk quickstart)",
+    "memory": "Memory budgets of issue #42 (quickstart at 512², `--memory-mib`)",
 }
 
 

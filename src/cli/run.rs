@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 
 use asperity::engine::cache::Cache;
 use asperity::engine::execute::{
-    execute, execute_nodes, ExecuteOptions, NodeOutcome, NodeStatus, RunReport,
+    execute, execute_nodes, process_memory, ExecuteOptions, NodeOutcome, NodeStatus, RunReport,
 };
 use asperity::engine::plan::Plan;
 use asperity::engine::shard::{Shard, ShardPlan};
@@ -42,8 +42,11 @@ pub struct RunArgs {
     /// Worker threads [default: all cores].
     #[arg(long, short = 'j', value_name = "N")]
     jobs: Option<usize>,
-    /// Memory budget for nodes running at once, in MiB [default: 60 % of available memory]; a
-    /// node whose estimate alone exceeds it fails, saying so, before it allocates.
+    /// Memory budget of the process, in MiB [default: 60 % of available memory]: its own base,
+    /// the nodes running at once (their estimates), the arrays held for dependants and the tables
+    /// kept for the results stay within it (nodes wait their turn); a node that cannot fit even
+    /// alone fails, saying so, before it allocates. Linux counts the resident set; the run prints
+    /// its peak.
     #[arg(long, value_name = "MIB")]
     memory_mib: Option<u64>,
     /// Compute only shard I of N (0 <= I < N) of the study's nodes, into the shared cache; no
@@ -104,7 +107,10 @@ pub fn run(args: RunArgs) -> Result<ExitCode> {
     {
         eprintln!("warning: {warning}");
     }
-    println!("{}", run_summary(study.name(), &report));
+    println!(
+        "{}",
+        run_summary(study.name(), &report, options.memory_budget)
+    );
     println!("tables in {}:", out.display());
     for f in published.files {
         println!("  {}", f.display());
@@ -133,20 +139,21 @@ fn run_shard(
         return Ok(interrupted(&report, "no tables are written by a shard"));
     }
     println!(
-        "{} shard {shard}: {} computed, {} reused from cache, {} failed, {} skipped in {:.2} s \
+        "{} shard {shard}: {} computed, {} reused from cache, {} failed, {} skipped in {:.2} s{} \
          (no tables written: run the study without --shard to assemble them)",
         study.name(),
         report.computed,
         report.cached,
         report.failed,
         report.skipped,
-        report.wall_seconds
+        report.wall_seconds,
+        peak_memory(options.memory_budget)
     );
     Ok(exit_code(&report))
 }
 
-/// The line a finished run prints: its counts and wall time.
-fn run_summary(name: &str, report: &RunReport) -> String {
+/// The line a finished run prints: its counts, wall time and peak memory.
+fn run_summary(name: &str, report: &RunReport, memory_budget: u64) -> String {
     let discarded = if report.discarded > 0 {
         format!(" ({} corrupt cache entries recomputed)", report.discarded)
     } else {
@@ -159,9 +166,27 @@ fn run_summary(name: &str, report: &RunReport) -> String {
     };
     format!(
         "{name}: {} computed, {} reused from cache, {} failed, {} skipped{discarded}{not_stored} \
-         in {:.2} s",
-        report.computed, report.cached, report.failed, report.skipped, report.wall_seconds
+         in {:.2} s{}",
+        report.computed,
+        report.cached,
+        report.failed,
+        report.skipped,
+        report.wall_seconds,
+        peak_memory(memory_budget)
     )
+}
+
+/// `, peak memory P MiB of a B MiB budget`: the process's peak resident set so far (tables
+/// written included) beside `--memory-mib`; empty where the system does not say (not Linux).
+fn peak_memory(budget: u64) -> String {
+    let mib = |bytes: u64| bytes.div_ceil(1 << 20);
+    process_memory::peak_resident_bytes().map_or(String::new(), |peak| {
+        format!(
+            ", peak memory {} MiB of a {} MiB budget",
+            mib(peak),
+            mib(budget)
+        )
+    })
 }
 
 /// Says what an interrupted run did (everything computed is cached, so a rerun continues

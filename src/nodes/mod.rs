@@ -20,6 +20,17 @@ use serde::Deserialize;
 use crate::engine::node::{NodeSpec, NodeTask, UpstreamRef};
 use crate::engine::study::{ResolveContext, SpecError};
 
+/// Peak bytes per grid point that each worker thread adds to a node that transforms or reduces a
+/// grid in parallel (the contact solver, deriving a load step's maps, a measured surface's
+/// preprocessing and statistics): its FFT scratch and partial sums; an upper bound (figures:
+/// docs/robustness.md, "Memory").
+const THREAD_BYTES_PER_POINT: u64 = 8;
+
+/// [`THREAD_BYTES_PER_POINT`] for each thread of the current worker pool, bytes per grid point.
+fn thread_scratch_bytes_per_point() -> u64 {
+    THREAD_BYTES_PER_POINT.saturating_mul(rayon::current_num_threads().max(1) as u64)
+}
+
 pub use contact::{final_step_metrics, ContactSpec, ContactTask, CONTACT_KIND_VERSION};
 pub use contact_view::{ContactView, StepMaps};
 pub use friction::{

@@ -430,8 +430,8 @@ nodes:
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// A node whose memory estimate alone exceeds the budget fails before it allocates, naming
-/// both sizes and `--memory-mib`; with a budget that holds it, it computes.
+/// A node whose memory estimate and the process's base exceed the budget fails before it
+/// allocates, naming the sizes and `--memory-mib`; with a budget that holds it, it computes.
 #[test]
 fn a_node_larger_than_the_memory_budget_fails_before_it_allocates() {
     let dir = tempdir("memory_budget");
@@ -453,7 +453,7 @@ fn a_node_larger_than_the_memory_budget_fails_before_it_allocates() {
     for outcome in report.outcomes.iter().flatten() {
         let message = outcome.status.message();
         assert!(
-            message.contains("more than the run's budget of 1 MiB")
+            message.contains("exceeds the run's budget of 1 MiB")
                 && message.contains("--memory-mib"),
             "{message}"
         );

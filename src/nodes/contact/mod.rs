@@ -146,15 +146,23 @@ impl ContactSpec {
             Some(p) => ctx.resolve(p, "fields")?,
             None => false,
         };
-        // The surface estimate is ~6 f64 per point; the solver holds ~12 per (padded) point.
-        let surface_bytes = ctx.upstream(0).map_or(1 << 30, |t| t.memory_estimate());
-        let memory_estimate = surface_bytes.saturating_mul(if periodic { 2 } else { 8 });
+        let points = ctx
+            .upstream(0)
+            .and_then(|t| t.as_any().downcast_ref::<super::surface::SurfaceTask>())
+            .map_or(1 << 24, super::surface::SurfaceTask::points);
+        let memory_estimate = memory_estimate(
+            points,
+            periodic,
+            fields,
+            super::thread_scratch_bytes_per_point(),
+        );
         Ok(ContactTask {
             material,
             pressures,
             periodic,
             tolerance,
             fields,
+            points,
             memory_estimate,
         })
     }
@@ -281,8 +289,31 @@ pub struct ContactTask {
     periodic: bool,
     tolerance: f64,
     fields: bool,
-    /// Peak memory in bytes, scaled from the lower surface's estimate (grid size).
+    /// The points of the lower surface's grid (the contact's maps have as many).
+    points: u64,
+    /// Peak memory in bytes, from the grid ([`memory_estimate`]).
     memory_estimate: u64,
+}
+
+/// Peak bytes per grid point of the solver on periodic surfaces and on non-periodic ones (its
+/// FFTs run on the grid padded to twice each side): its maps, spectra and the solver's
+/// single-precision copies, beside the threads' scratch.
+const SOLVER_BYTES_PER_POINT: [u64; 2] = [11 * 8, 25 * 8];
+/// Peak bytes per grid point of the final step's maps kept for consumers (`fields: true`): the
+/// pressure, gap, both deformations, plastic penetration, composite height and upper heights.
+const FIELDS_BYTES_PER_POINT: u64 = 7 * 8;
+/// The node's bytes whatever the grid: the solver's plans and options, the load curve and
+/// storing the result in the cache.
+const SOLVER_FIXED_BYTES: u64 = 20 << 20;
+
+/// The peak memory of a contact on `points` grid points, bytes: the solver's arrays, the worker
+/// threads' `scratch` (bytes per point, [`super::thread_scratch_bytes_per_point`]) and the fields
+/// when kept; an upper bound of the process's peak less its base (figures: docs/robustness.md,
+/// "Memory").
+fn memory_estimate(points: u64, periodic: bool, fields: bool, scratch: u64) -> u64 {
+    let solver = SOLVER_BYTES_PER_POINT[usize::from(!periodic)];
+    let kept = if fields { FIELDS_BYTES_PER_POINT } else { 0 };
+    SOLVER_FIXED_BYTES.saturating_add(points.saturating_mul(solver + scratch + kept))
 }
 
 impl ContactTask {
@@ -295,6 +326,7 @@ impl ContactTask {
             periodic,
             tolerance,
             fields,
+            points: _,
             memory_estimate: _,
         } = self;
         let pair = material.pair();
@@ -329,6 +361,16 @@ impl ContactTask {
             Field::bool(FIELDS, *fields),
         ]);
         key
+    }
+
+    /// The points of the contact's grid (its maps have as many).
+    pub(crate) fn points(&self) -> u64 {
+        self.points
+    }
+
+    /// The load steps the contact solves.
+    pub(crate) fn step_count(&self) -> usize {
+        self.pressures.len()
     }
 
     /// Whether the final step's fields are kept for consumers (`fields: true`).

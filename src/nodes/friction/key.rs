@@ -24,6 +24,8 @@ impl FrictionTask {
             input_flags: _,
             // Derived from which upstream nodes the spec names (in the key as roles).
             input_roles: _,
+            // Derived from the grid: not a parameter.
+            memory_estimate: _,
         } = self;
         // Room for the fields of every setup.
         let mut key = Vec::with_capacity(24);

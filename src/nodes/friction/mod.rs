@@ -48,6 +48,7 @@ mod contact_input;
 mod deformation_part;
 mod key;
 mod material_pair;
+mod memory;
 mod model_spec;
 mod models_doc;
 mod per_spot;
@@ -239,6 +240,8 @@ pub struct FrictionTask {
     input_roles: Vec<&'static str>,
     adhesion: AdhesionParameters,
     setup: MethodSetup,
+    /// Peak memory in bytes, from the method and the contact's grid ([`memory::estimate`]).
+    memory_estimate: u64,
 }
 
 /// `input` at `index`, or an error naming the role.
@@ -286,16 +289,7 @@ impl NodeTask for FrictionTask {
     }
 
     fn memory_estimate(&self) -> u64 {
-        match self.setup {
-            // The net-load grid and a few result rows.
-            MethodSetup::Statistical { .. } => 1 << 20,
-            // Copies of the contact's maps (a 2048² map is 32 MiB) plus per-summit rows, and
-            // the maps of one earlier load step at a time.
-            MethodSetup::PerSummit { .. } => 1 << 28,
-            // Spot labels (4 B per point) and the spots (the final step's maps are read in
-            // place), and the maps of one earlier load step at a time.
-            MethodSetup::PerSpot { .. } => 1 << 28,
-        }
+        self.memory_estimate
     }
 
     /// Every load step's row (`steps`), then the `friction` row: the final step's, with the

@@ -127,19 +127,32 @@ impl MeasuredFile {
         &self.content_hash
     }
 
-    /// Working arrays of ≈ 8 f64 per point (64 bytes), for the larger of the point count the
-    /// header declares and the file size at 4 bytes per stored point. A compressed X3P or MNT
-    /// may declare far more points than its size suggests; the estimate then makes the scheduler
-    /// run it alone rather than beside other large nodes (and the reader refuses more than
-    /// [`crate::surface::io::MAX_POINTS`]).
-    pub(super) fn memory_estimate(&self) -> u64 {
+    /// The points the file holds, as far as can be told before reading it: the larger of the
+    /// point count its header declares and its size at 4 bytes per stored point. A compressed
+    /// X3P or MNT may declare far more points than its size suggests; the estimate then makes
+    /// the scheduler run it alone rather than beside other large nodes (and the reader refuses
+    /// more than [`crate::surface::io::MAX_POINTS`]).
+    pub(super) fn points(&self) -> u64 {
         let declared = self
             .declared_points
             .get_or_init(|| declared_points(&self.path).map(|n| n as u64));
-        let from_size = self.file_bytes / 4;
-        declared.unwrap_or(0).max(from_size).saturating_mul(64)
+        declared.unwrap_or(0).max(self.file_bytes / 4)
+    }
+
+    /// The peak memory of reading, preprocessing and describing the file, bytes:
+    /// [`MEASURED_BYTES_PER_POINT`] and the worker threads' scratch per point ([`Self::points`]).
+    pub(super) fn memory_estimate(&self) -> u64 {
+        let per_point = MEASURED_BYTES_PER_POINT + crate::nodes::thread_scratch_bytes_per_point();
+        self.points().saturating_mul(per_point)
     }
 }
+
+/// Peak bytes per point of a measured surface node: the file's values as read, the map, its
+/// validity mask, the preprocessing's copies (form removal, filters, filling missing points) and
+/// the statistics' spectra and work arrays, beside the worker threads' scratch and the fixed part
+/// of every surface node; an upper bound of the process's peak less its base (figures:
+/// docs/robustness.md, "Memory").
+const MEASURED_BYTES_PER_POINT: u64 = 16 * 8;
 
 impl MeasuredSource {
     pub(super) fn new(file: MeasuredFile, preprocessing: Preprocessing) -> Self {
@@ -198,6 +211,11 @@ impl MeasuredSource {
 
     pub(super) fn memory_estimate(&self) -> u64 {
         self.file.memory_estimate()
+    }
+
+    /// The points of the file ([`MeasuredFile::points`]).
+    pub(super) fn points(&self) -> u64 {
+        self.file.points()
     }
 }
 

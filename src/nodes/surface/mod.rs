@@ -109,7 +109,27 @@ struct SourceHeights {
     periodogram: Option<Periodogram>,
 }
 
+/// Peak bytes per point of a synthetic surface node (and of a twin's grid): the heights, their
+/// complex half spectrum and the statistics' spectra and work arrays, beside
+/// [`STATISTICS_FIXED_BYTES`]; an upper bound of the process's peak less its base (figures:
+/// docs/robustness.md, "Memory").
+const SYNTHETIC_BYTES_PER_POINT: u64 = 4 * 8;
+
+/// Peak bytes of every surface node whatever its grid: the statistics' tables (PSD, ACF,
+/// material ratio, summits) and storing them in the cache.
+const STATISTICS_FIXED_BYTES: u64 = 24 << 20;
+
 impl SurfaceTask {
+    /// The number of points of the heights (for a measured file an upper bound, before it is
+    /// read), for the memory estimates of the nodes downstream.
+    pub(crate) fn points(&self) -> u64 {
+        match &self.source {
+            SurfaceSource::Synthetic(s) => (s.nx as u64) * (s.ny as u64),
+            SurfaceSource::Measured(m) => m.points(),
+            SurfaceSource::Twin(t) => t.points(),
+        }
+    }
+
     /// Generates or reads the heights; says whether the map is periodic and adds any metrics of
     /// the source itself and the sentences that flag its row.
     fn heights(&self) -> Result<SourceHeights, NodeError> {
@@ -234,12 +254,12 @@ impl NodeTask for SurfaceTask {
     }
 
     fn memory_estimate(&self) -> u64 {
-        match &self.source {
-            // heights + complex half spectrum + statistics work arrays ≈ 6 f64 per point.
-            SurfaceSource::Synthetic(s) => (s.nx as u64) * (s.ny as u64) * 8 * 6,
+        let source = match &self.source {
+            SurfaceSource::Synthetic(_) => self.points() * SYNTHETIC_BYTES_PER_POINT,
             SurfaceSource::Measured(m) => m.memory_estimate(),
             SurfaceSource::Twin(t) => t.memory_estimate(),
-        }
+        };
+        STATISTICS_FIXED_BYTES.saturating_add(source)
     }
 
     /// The heights' statistics, checked by [`validity`]: the spacing before any statistic is

@@ -335,23 +335,33 @@ impl TwinSource {
         }
     }
 
+    /// The points of the twin's grid: `grid`, or the first file's when not given.
+    pub(super) fn points(&self) -> u64 {
+        match self.size {
+            Some(s) => (s.nx as u64) * (s.ny as u64),
+            None => self.measured.first().map_or(0, MeasuredFile::points),
+        }
+    }
+
     /// Memory of the largest step: measured files are read one at a time, but a spectrum twin
-    /// keeps each file's half periodogram (4 bytes per point, a sixteenth of a file's estimate)
-    /// until the twin is made; the twin's grid is the first file's when not given.
+    /// keeps each file's half periodogram (4 bytes per point) until the twin is made, a synthetic
+    /// surface on the twin's grid ([`super::SYNTHETIC_BYTES_PER_POINT`]).
     pub(super) fn memory_estimate(&self) -> u64 {
-        let files: Vec<u64> = self
+        let largest = self
             .measured
             .iter()
             .map(MeasuredFile::memory_estimate)
-            .collect();
-        let largest = files.iter().copied().max().unwrap_or(0);
-        let twin = match self.size {
-            Some(s) => (s.nx as u64) * (s.ny as u64) * 8 * 6,
-            None => files.first().map_or(0, |f| f / 64 * 8 * 6),
-        };
+            .max()
+            .unwrap_or(0);
+        let twin = self
+            .points()
+            .saturating_mul(super::SYNTHETIC_BYTES_PER_POINT);
         match self.spectrum {
             None => largest.max(twin),
-            Some(_) => largest.max(twin) + files.iter().map(|f| f / 16).sum::<u64>(),
+            Some(_) => {
+                let periodograms: u64 = self.measured.iter().map(|f| f.points() * 4).sum();
+                largest.max(twin) + periodograms
+            }
         }
     }
 }

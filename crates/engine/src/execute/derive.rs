@@ -4,7 +4,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Arc;
 
-use super::{internal_error, over_budget, NodeOutcome, NodeStatus, RunContext};
+use super::{internal_error, NodeOutcome, NodeStatus, RunContext};
 use crate::artifact::Artifact;
 use crate::cache::CachedEntry;
 use crate::node::ArrayStorage;
@@ -54,17 +54,13 @@ impl RunContext<'_> {
         if !matches!(node.task.array_storage(), ArrayStorage::Derive(_)) {
             return Ok(artifact);
         }
-        let inputs = self
+        if let Some(failed) = self.over_budget(node) {
+            return Err(failed.message().to_string());
+        }
+        let (inputs, _charges) = self
             .upstream_artifacts(node)
             .map_err(|failed| failed.status.message().to_string())?;
         let input_refs: Vec<&Artifact> = inputs.iter().map(Arc::as_ref).collect();
-        let estimate = node.task.memory_estimate();
-        if estimate > self.budget.total() {
-            return Err(over_budget(estimate, self.budget.total())
-                .message()
-                .to_string());
-        }
-        let _permit = self.budget.acquire(estimate);
         catch_unwind(AssertUnwindSafe(|| {
             node.task.derive_arrays(&input_refs, &mut artifact)
         }))

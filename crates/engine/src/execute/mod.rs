@@ -1,8 +1,9 @@
 //! Execution: load what the cache has, compute the rest in parallel, upstream first.
 //!
 //! Only instances the requested tables need are touched. Instances run in parallel on the rayon
-//! pool as soon as their upstream finished, deepest first (see `RunContext::pull`), each first
-//! acquiring its memory estimate from a budget so large nodes do not run all at once. A failing
+//! pool as soon as their upstream finished, deepest first (see `RunContext::pull`), each admitted
+//! only when its memory estimate fits the process's budget beside what is held already
+//! (`memory_budget`), so large nodes do not run all at once. A failing
 //! node fails only its dependants; a flagged one (computed, with sentences its row must be read
 //! with, [`Artifact::flags`]) is used by them like any other.
 
@@ -14,7 +15,6 @@ use std::time::Instant;
 
 use crate::artifact::Artifact;
 use crate::cache::{Cache, CacheError, CachedEntry};
-use crate::hash::NodeKey;
 use crate::node::{ArrayStorage, NodeError};
 use crate::plan::{Plan, PlannedNode};
 
@@ -22,11 +22,14 @@ mod cache_access;
 mod derive;
 mod memory_budget;
 mod outcome;
+pub mod process_memory;
+mod schedule;
 mod store;
 mod store_gate;
 
-use memory_budget::MemoryBudget;
+use memory_budget::{artifact_bytes, table_bytes, Charge, Held, MemoryBudget};
 pub use outcome::{NodeOutcome, NodeStatus};
+use schedule::{payload_needs, Schedule};
 use store::Storing;
 pub use store_gate::StoreGate;
 
@@ -65,7 +68,9 @@ impl Progress for NoProgress {
 pub struct ExecuteOptions {
     /// Tables to produce; instances are computed only if these need them.
     pub tables: Vec<String>,
-    /// Memory budget for concurrently running nodes, bytes.
+    /// Memory budget of the process, bytes: its resident set when the run starts, the nodes
+    /// running at once (their estimates), the artifacts held for dependants and the tables kept
+    /// for the results together stay within it (see the `memory_budget` module).
     pub memory_budget: u64,
     /// Tool version recorded in manifests.
     pub tool_version: String,
@@ -90,6 +95,9 @@ pub struct RunReport {
     /// The run stopped early on [`Progress::cancelled`]: some needed instances never ran.
     pub cancelled: bool,
     pub wall_seconds: f64,
+    /// The process's peak resident set (`VmHWM`) when the run ended, bytes; `None` where the
+    /// system does not say (not Linux).
+    pub peak_resident_bytes: Option<u64>,
 }
 
 impl RunReport {
@@ -131,9 +139,9 @@ pub fn execute_nodes(
         ready,
     } = Schedule::of(plan, &needed);
     progress.start(needed.len());
-    let budget = MemoryBudget::new(options.memory_budget);
+    let budget = MemoryBudget::for_process(options.memory_budget);
     let shared = Mutex::new(Shared {
-        artifacts: vec![None; n],
+        artifacts: (0..n).map(|_| None).collect(),
         outcomes: vec![None; n],
         dependants,
         waiting,
@@ -163,6 +171,7 @@ pub fn execute_nodes(
     report.cancelled = progress.cancelled() && needed.iter().any(|&i| outcomes[i].is_none());
     report.outcomes = outcomes;
     report.wall_seconds = start.elapsed().as_secs_f64();
+    report.peak_resident_bytes = process_memory::peak_resident_bytes();
     Ok(report)
 }
 
@@ -184,83 +193,10 @@ fn prepare_cache(cache: &Cache, progress: &dyn Progress) -> Result<Storing, Cach
     })
 }
 
-/// Which instances of `needed` must be loaded with their arrays (a dependant will be computed,
-/// or derives its arrays from them) and how many dependants each has.
-fn payload_needs(plan: &Plan, cache: &Cache, needed: &[usize]) -> (Vec<bool>, Vec<usize>) {
-    let n = plan.nodes.len();
-    let entries: Vec<(&str, &NodeKey)> = needed
-        .iter()
-        .map(|&i| (plan.nodes[i].task.kind(), &plan.nodes[i].key))
-        .collect();
-    let mut in_cache = vec![false; n];
-    for (&i, present) in needed.iter().zip(cache.present(&entries)) {
-        in_cache[i] = present;
-    }
-    let mut wants_payload = vec![false; n];
-    let mut dependants = vec![0usize; n];
-    for &i in needed {
-        for (_, u) in &plan.nodes[i].upstream {
-            dependants[*u] += 1;
-            if !in_cache[i] {
-                wants_payload[*u] = true;
-            }
-        }
-    }
-    for &i in needed.iter().rev() {
-        if wants_payload[i] && matches!(plan.nodes[i].task.array_storage(), ArrayStorage::Derive(_))
-        {
-            for (_, u) in &plan.nodes[i].upstream {
-                wants_payload[*u] = true;
-            }
-        }
-    }
-    (wants_payload, dependants)
-}
-
-/// The order instances run in: each as soon as its upstream finished, deepest first (see
-/// [`RunContext::pull`]).
-struct Schedule {
-    /// Upstream instances not yet finished.
-    waiting: Vec<usize>,
-    /// The dependants of each instance.
-    downstream: Vec<Vec<usize>>,
-    /// Depth in the DAG (0: no upstream).
-    level: Vec<usize>,
-    /// The instances with nothing to wait for.
-    ready: BinaryHeap<(usize, Reverse<usize>)>,
-}
-
-impl Schedule {
-    fn of(plan: &Plan, needed: &[usize]) -> Schedule {
-        let n = plan.nodes.len();
-        let mut waiting = vec![0usize; n];
-        let mut downstream: Vec<Vec<usize>> = vec![Vec::new(); n];
-        let mut level = vec![0usize; n];
-        for &i in needed {
-            for (_, u) in &plan.nodes[i].upstream {
-                waiting[i] += 1;
-                downstream[*u].push(i);
-                level[i] = level[i].max(level[*u] + 1);
-            }
-        }
-        let ready = needed
-            .iter()
-            .filter(|&&i| waiting[i] == 0)
-            .map(|&i| (level[i], Reverse(i)))
-            .collect();
-        Schedule {
-            waiting,
-            downstream,
-            level,
-            ready,
-        }
-    }
-}
-
 /// What the running instances share.
 struct Shared {
-    /// Artifacts that dependants yet to run still need.
-    artifacts: Vec<Option<Arc<Artifact>>>,
+    /// Artifacts that dependants yet to run still need, each charged its size.
+    artifacts: Vec<Option<Held>>,
     outcomes: Vec<Option<NodeOutcome>>,
     /// Per instance, its needed dependants that have not finished: its artifact is released at 0.
     dependants: Vec<usize>,
@@ -276,12 +212,15 @@ struct Shared {
     report: RunReport,
 }
 
+/// A node's upstream artifacts, and the charges of those read or computed for it alone.
+type Inputs = (Vec<Arc<Artifact>>, Vec<Charge>);
+
 struct RunContext<'a> {
     plan: &'a Plan,
     cache: &'a Cache,
     options: &'a ExecuteOptions,
     progress: &'a dyn Progress,
-    budget: &'a MemoryBudget,
+    budget: &'a Arc<MemoryBudget>,
     shared: &'a Mutex<Shared>,
     /// Per instance, whether its arrays are loaded from the cache (a dependant will be computed).
     wants_payload: &'a [bool],
@@ -316,16 +255,22 @@ impl<'a> RunContext<'a> {
     where
         'a: 's,
     {
-        let Some(i) = self.take_ready() else {
+        let Some((i, charge)) = self.take_ready() else {
             return;
         };
         let (outcome, artifact) = self.run_node(i, self.wants_payload[i]);
         self.progress.finished(&self.plan.nodes[i], &outcome.status);
-        self.finish(i, outcome, artifact);
+        self.finish(i, outcome, artifact, charge);
         self.spawn_pulls(scope);
     }
 
-    fn take_ready(&self) -> Option<usize> {
+    /// The ready instance of highest priority, with the charge of its memory estimate, if a slot
+    /// is free and the estimate fits the budget beside what is charged already. When it does not
+    /// fit, it waits for a running instance to finish (nothing of lower priority overtakes it);
+    /// when nothing runs, the artifacts held for other instances are let go (their dependants
+    /// read them again from the cache) and it is admitted: a node larger than the whole budget
+    /// then fails in [`Self::over_budget`], a cached one is loaded.
+    fn take_ready(&self) -> Option<(usize, Charge)> {
         if self.progress.cancelled() {
             return None;
         }
@@ -333,15 +278,43 @@ impl<'a> RunContext<'a> {
         if shared.running >= self.slots {
             return None;
         }
-        let (_, Reverse(i)) = shared.ready.pop()?;
+        let &(_, Reverse(i)) = shared.ready.peek()?;
+        let estimate = self.plan.nodes[i].task.memory_estimate();
+        let charge = match self.budget.try_charge(estimate) {
+            Some(charge) => charge,
+            None if shared.running > 0 => return None,
+            None => {
+                let upstream = &self.plan.nodes[i].upstream;
+                for (u, held) in shared.artifacts.iter_mut().enumerate() {
+                    if !upstream.iter().any(|(_, v)| *v == u) {
+                        *held = None;
+                    }
+                }
+                self.budget.force(estimate)
+            }
+        };
+        shared.ready.pop();
         shared.running += 1;
-        Some(i)
+        Some((i, charge))
     }
 
-    /// Records the result of instance `i`, releases the artifacts no dependant needs any more and
-    /// queues the dependants that became ready.
-    fn finish(&self, i: usize, outcome: NodeOutcome, artifact: Option<Arc<Artifact>>) {
+    /// Records the result of instance `i`, holds its artifact for its dependants (charged its
+    /// size) and returns its admission `charge`, releases the artifacts no dependant needs any
+    /// more and queues the dependants that became ready.
+    fn finish(
+        &self,
+        i: usize,
+        outcome: NodeOutcome,
+        artifact: Option<Arc<Artifact>>,
+        charge: Charge,
+    ) {
         let mut shared = self.lock();
+        if shared.dependants[i] > 0 {
+            shared.artifacts[i] = artifact.map(|a| Held::new(a, self.budget));
+        }
+        drop(charge);
+        self.budget
+            .keep(outcome.tables.values().map(table_bytes).sum());
         shared.running -= 1;
         let report = &mut shared.report;
         match &outcome.status {
@@ -352,9 +325,6 @@ impl<'a> RunContext<'a> {
         }
         if outcome.is_flagged() {
             report.flagged += 1;
-        }
-        if shared.dependants[i] > 0 {
-            shared.artifacts[i] = artifact;
         }
         shared.outcomes[i] = Some(outcome);
         for (_, u) in &self.plan.nodes[i].upstream {
@@ -451,22 +421,18 @@ impl<'a> RunContext<'a> {
         }
     }
 
-    /// Computes a node from its upstream artifacts (loading any that are not in memory), under
-    /// the memory budget, turning a panic into a failure. Returns the result and its time.
+    /// Computes a node from its upstream artifacts (loading any that are not in memory; the
+    /// caller holds the charge of its own estimate), turning a panic into a failure. Returns the
+    /// result and its time.
     fn run_compute(&self, node: &PlannedNode) -> (Result<Artifact, NodeOutcome>, f64) {
-        let inputs = match self.upstream_artifacts(node) {
+        if let Some(failed) = self.over_budget(node) {
+            return (Err(failed_outcome(failed)), 0.0);
+        }
+        let (inputs, _charges) = match self.upstream_artifacts(node) {
             Ok(inputs) => inputs,
             Err(failed) => return (Err(failed), 0.0),
         };
         let input_refs: Vec<&Artifact> = inputs.iter().map(Arc::as_ref).collect();
-        let estimate = node.task.memory_estimate();
-        if estimate > self.budget.total() {
-            return (
-                Err(failed_outcome(over_budget(estimate, self.budget.total()))),
-                0.0,
-            );
-        }
-        let _permit = self.budget.acquire(estimate);
         let start = Instant::now();
         let result = catch_unwind(AssertUnwindSafe(|| node.task.compute(&input_refs)))
             .unwrap_or_else(|panic| Err(internal_error(panic)));
@@ -477,16 +443,23 @@ impl<'a> RunContext<'a> {
         )
     }
 
-    /// The artifacts (with arrays) of `node`'s upstream instances, in its order. Present when
-    /// loaded with arrays or computed in this run; otherwise (loaded metrics-only because its
-    /// dependants were cached, then one turned out corrupt) an upstream entry is read again with
-    /// its arrays (and its derived arrays derived), or recomputed if they are not stored or that
-    /// read finds the entry gone or corrupt.
-    fn upstream_artifacts(&self, node: &PlannedNode) -> Result<Vec<Arc<Artifact>>, NodeOutcome> {
+    /// The artifacts (with arrays) of `node`'s upstream instances, in its order, and the charges
+    /// of those not held in memory. Present when loaded with arrays or computed in this run;
+    /// otherwise (loaded metrics-only because its dependants were cached, then one turned out
+    /// corrupt, or let go to admit another instance) an upstream entry is read again with its
+    /// arrays (and its derived arrays derived), or recomputed if they are not stored or that read
+    /// finds the entry gone or corrupt, charged its memory estimate until `node` is done.
+    fn upstream_artifacts(&self, node: &PlannedNode) -> Result<Inputs, NodeOutcome> {
         let mut inputs = Vec::with_capacity(node.upstream.len());
+        let mut charges = Vec::new();
         for (role, u) in &node.upstream {
             let upstream = &self.plan.nodes[*u];
-            let in_memory = self.lock().artifacts[*u].clone();
+            let in_memory = self.lock().artifacts[*u]
+                .as_ref()
+                .map(|held| Arc::clone(&held.artifact));
+            if in_memory.is_none() {
+                charges.push(self.budget.force(upstream.task.memory_estimate()));
+            }
             let fail = |what: &str, failed: NodeOutcome| {
                 let message = format!("{what} upstream {role} node: {}", failed.status.message());
                 failed_outcome(NodeStatus::Failed(message))
@@ -512,7 +485,53 @@ impl<'a> RunContext<'a> {
             };
             inputs.push(artifact);
         }
-        Ok(inputs)
+        Ok((inputs, charges))
+    }
+
+    /// The failure of a node whose memory estimate, its inputs held in memory and the process's
+    /// base together exceed the whole budget (an input read again for it is charged when read),
+    /// or of every node when the budget cannot hold the writing of the results: checked before it
+    /// reads its inputs and allocates, so `--memory-mib` bounds what a run may allocate.
+    fn over_budget(&self, node: &PlannedNode) -> Option<NodeStatus> {
+        let estimate = node.task.memory_estimate();
+        let inputs: u64 = {
+            let shared = self.lock();
+            node.upstream
+                .iter()
+                .filter_map(|(_, u)| shared.artifacts[*u].as_ref())
+                .map(|held| artifact_bytes(&held.artifact))
+                .sum()
+        };
+        let (base, total) = (self.budget.base(), self.budget.total());
+        let needed = estimate.saturating_add(inputs).saturating_add(base);
+        let results = self.budget.results();
+        let mib = |bytes: u64| bytes.div_ceil(1 << 20);
+        if needed <= total && results > total {
+            return Some(NodeStatus::Failed(format!(
+                "the run's budget of {} MiB is below the {} MiB the process needs to write the \
+                 results: raise `--memory-mib` to at least {} (default 60 % of the available \
+                 memory)",
+                mib(total),
+                mib(results),
+                mib(results.max(needed))
+            )));
+        }
+        if needed <= total {
+            return None;
+        }
+        let inputs = match inputs {
+            0 => String::new(),
+            bytes => format!(" its inputs' {} MiB and", mib(bytes)),
+        };
+        Some(NodeStatus::Failed(format!(
+            "needs about {} MiB of memory, which with{inputs} the process's own {} MiB exceeds \
+             the run's budget of {} MiB: raise `--memory-mib` to at least {} (default 60 % of \
+             the available memory) or make the node smaller (a coarser grid, fewer fields)",
+            mib(estimate),
+            mib(base),
+            mib(total),
+            mib(needed)
+        )))
     }
 
     fn compute(&self, node: &PlannedNode) -> (NodeOutcome, Option<Arc<Artifact>>) {
@@ -521,19 +540,6 @@ impl<'a> RunContext<'a> {
             (Err(failed), _) => (failed, None),
         }
     }
-}
-
-/// The failure of a node whose memory estimate exceeds the whole budget: checked before its
-/// inputs' arrays meet its own allocations, so `--memory-mib` bounds what a run may allocate.
-fn over_budget(estimate: u64, budget: u64) -> NodeStatus {
-    let mib = |bytes: u64| bytes.div_ceil(1 << 20);
-    NodeStatus::Failed(format!(
-        "needs about {} MiB of memory, more than the run's budget of {} MiB: raise \
-         `--memory-mib` (default 60 % of the available memory) or make the node smaller (a \
-         coarser grid, fewer fields)",
-        mib(estimate),
-        mib(budget)
-    ))
 }
 
 /// The failure of a node kind's code that panicked (with the panic's text).
