@@ -39,19 +39,16 @@ pub(super) fn flag_mu_beyond_law(law: &LawDescriptor, artifact: &mut Artifact) {
             _ => None,
         })
         .collect();
-    if above.is_empty() {
-        return;
-    }
+    let (list, verb) = match above.as_slice() {
+        [] => return,
+        [one] => (one.clone(), "is"),
+        [rest @ .., last] => (format!("{} and {last}", rest.join(", ")), "are"),
+    };
     let local = if above.iter().any(|a| a.starts_with("`local_mu")) {
         "; a local μ quantile above it means that share of the load sits on spots the law \
          extrapolates to"
     } else {
         ""
-    };
-    let (list, verb) = match above.as_slice() {
-        [one] => (one.clone(), "is"),
-        [rest @ .., last] => (format!("{} and {last}", rest.join(", ")), "are"),
-        [] => return,
     };
     artifact.flags.push(format!(
         "{list} {verb} above {}, the largest friction coefficient `model: {}` describes \
