@@ -52,8 +52,10 @@ pub(crate) use crate::vocabulary::tables::SURFACES as TABLE;
 /// `hurst_band` finds its band per file and reports it; 10: an MNT file's mask image, not a
 /// count of 0, marks its missing points; 11: a synthetic surface's spectra come from its
 /// synthesized modes, not a transform of its heights, and the Hurst fit leaves out PSD points at
-/// round-off level).
-pub const SURFACE_KIND_VERSION: u32 = 11;
+/// round-off level; 12: the readers refuse an rms slope above 100 from a file's scales and a
+/// binary SDF whose bytes after the data are no text trailer, so a cached surface of such a file
+/// is not reused).
+pub const SURFACE_KIND_VERSION: u32 = 12;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
 /// cache but regenerated when a dependant needs their heights.
