@@ -385,7 +385,10 @@ def check_results(out):
         if t in kind_tables or t in ("scenarios", "timings") or t.startswith("summary"):
             continue
         if "key" in cols:
-            ok_rows = [dict(r, status=keys_status.get(r.get("key"))) for r in rows]
+            # A load step's row (`friction_curve`) has its own `step_status`; other long-table
+            # rows take their instance's status.
+            ok_rows = [dict(r, status=r.get("step_status") or keys_status.get(r.get("key")))
+                       for r in rows]
             impossible += impossible_values(t, ok_rows)
     cols, rows = data["scenarios"]
     for c in cols:

@@ -1,7 +1,8 @@
 //! A friction row says how far to trust it: a row computed on a flagged contact is flagged with
 //! the contact's reason; a row with more than half its load beyond its law's fit, without a
 //! radius or on merged spots is flagged with that share; no row is `ok` with μ_s above what its
-//! law describes, over loads from 1e-6·H to 0.95·H; adhesion carrying more than half the load is
+//! law describes, over loads from 1e-6·H to 0.95·H, nor with a local μ quantile above it on coarse
+//! grids; each reason is one sentence, the beyond-fit one naming the row's law alone; adhesion carrying more than half the load is
 //! flagged; so is a ploughing row with more than half its load beyond the ploughing regime.
 
 use crate::nodes_common;
@@ -54,6 +55,7 @@ fn no_row_is_ok_beyond_what_its_law_describes_from_light_to_saturated_loads() {
         let model = text(row, "model");
         let mu = float(row, "mu_s");
         let bound = find_law(model).unwrap().mu_s_max;
+        assert_one_sentence_per_reason(model, &row.flags);
         if row.flags.is_empty() {
             assert!(mu <= bound, "{model}: an ok row with μ_s = {mu} > {bound}");
             for share in [
@@ -71,7 +73,7 @@ fn no_row_is_ok_beyond_what_its_law_describes_from_light_to_saturated_loads() {
             assert!(
                 row.flags
                     .iter()
-                    .any(|f| f.contains("largest static friction coefficient")),
+                    .any(|f| f.contains("largest friction coefficient")),
                 "{model}: μ_s = {mu} without its flag: {:?}",
                 row.flags
             );
@@ -85,6 +87,92 @@ fn no_row_is_ok_beyond_what_its_law_describes_from_light_to_saturated_loads() {
     assert!(
         merged_flags >= 3,
         "{merged_flags} rows with most load on merged spots"
+    );
+}
+
+/// A row's flags: each reason once, none in the wording of a failure ("is outside ≤ 0.5", which
+/// the flag's sentence says in words), so that the `message` joining them repeats no clause.
+fn assert_one_sentence_per_reason(model: &str, flags: &[String]) {
+    for (i, flag) in flags.iter().enumerate() {
+        assert!(!flag.contains(" is outside "), "{model}: {flag}");
+        assert!(!flags[i + 1..].contains(flag), "{model}: twice: {flag}");
+    }
+}
+
+/// The campaign's shrunk quickstart (a 33² and a 30² grid of 0.125 mm), with two rough bodies:
+/// the spots are few and many are lightly loaded, where full stick, junction shear and KE give
+/// local μ_i = Q_i/P_i far above any friction coefficient (count quantiles of 14–61 were `ok`).
+const COARSE: &str = r#"
+study: coarse
+parameters:
+  product:
+    n: [30, 33]
+nodes:
+  lower:
+    surface:
+      synthetic: {grid: ["${n}", "${n}"], size: [0.125 mm, 0.125 mm], sq: 0.05 um, hurst: 0.8,
+                  correlation_length: 40 um, anisotropy: {ratio: 4, angle: 0 deg}, seed: 1}
+  upper:
+    surface:
+      synthetic: {grid: ["${n}", "${n}"], size: [0.125 mm, 0.125 mm], sq: 0.03 um, hurst: 0.8,
+                  correlation_length: 40 um, seed: 2}
+  contact:
+    contact: {lower: lower, upper: upper, lower_material: s235jr, upper_material: s235jr,
+              nominal_pressures: [5 MPa, 10 MPa, 20 MPa], fields: true}
+  per_summit:
+    friction: {method: per_summit, contact: contact, lower_material: s235jr,
+               upper_material: s235jr}
+  stick_per_spot:
+    friction: {method: per_spot, model: full_stick, contact: contact, lower_material: s235jr,
+               upper_material: s235jr}
+  junction_shear:
+    friction: {model: junction_shear, contact: contact, lower_material: s235jr,
+               upper_material: s235jr}
+"#;
+
+/// No `ok` row (nor `ok` load step) has μ_s or a local μ quantile above the bound its law
+/// states; the quantiles are weighted by load, so the median lies within the spots' range and a
+/// flagged quantile names itself.
+#[test]
+fn no_ok_row_has_a_local_mu_quantile_beyond_its_law() {
+    let (plan, report) = run(COARSE, "coarse");
+    let rows = friction_rows(&plan, &report);
+    assert_eq!(rows.len(), 6);
+    let mut flagged_quantiles = 0;
+    for row in rows {
+        let model = text(row, "model");
+        let bound = find_law(model).unwrap().mu_s_max;
+        assert_one_sentence_per_reason(model, &row.flags);
+        let above: Vec<&str> = ["mu_s", "local_mu_p10", "local_mu_median", "local_mu_p90"]
+            .into_iter()
+            .filter(|c| float(row, c) > bound)
+            .collect();
+        if row.flags.is_empty() {
+            assert!(
+                above.is_empty(),
+                "{model}: an ok row with {above:?} > {bound}"
+            );
+        }
+        for column in above {
+            assert!(
+                row.flags
+                    .iter()
+                    .any(|f| f.contains(&format!("`{column}` = ")) && f.contains("largest")),
+                "{model}: {column} above {bound} without its flag: {:?}",
+                row.flags
+            );
+            flagged_quantiles += usize::from(column.starts_with("local_mu"));
+        }
+        let (p10, median, p90) = (
+            float(row, "local_mu_p10"),
+            float(row, "local_mu_median"),
+            float(row, "local_mu_p90"),
+        );
+        assert!(0.0 <= p10 && p10 <= median && median <= p90, "{model}");
+    }
+    assert!(
+        flagged_quantiles > 0,
+        "no quantile above its law: pick a coarser case"
     );
 }
 
@@ -137,10 +225,18 @@ fn a_row_on_a_flagged_contact_is_flagged_with_its_reason() {
         // KE carries no tangential load beyond x = 6: the share says so in words.
         let beyond = float(row, "load_share_beyond_fit");
         assert!(beyond > 0.5, "{beyond}");
-        assert!(row
+        // The sentence names the row's law and where its range ends, no other law.
+        let flag = row
             .flags
             .iter()
-            .any(|f| f.contains("load_share_beyond_fit") && f.contains("more than half")));
+            .find(|f| f.contains("load_share_beyond_fit") && f.contains("more than half"))
+            .unwrap_or_else(|| panic!("no beyond-fit flag: {:?}", row.flags));
+        assert!(flag.contains("`model: kogut_etsion`") && flag.contains("x = ω/ω_c = 6"));
+        assert!(
+            !flag.contains("CEB") && !flag.contains("full stick"),
+            "{flag}"
+        );
+        assert_one_sentence_per_reason("kogut_etsion", &row.flags);
     }
 }
 

@@ -181,8 +181,9 @@ nodes:
     assert!(m.contains("extrapolation: zero"), "{m}");
 }
 
-/// A calibrated text matrix of `rows` (heights in `unit`, side `width`).
-fn write_matrix(path: &Path, width: &str, unit: &str, rows: usize) {
+/// A calibrated text matrix of `rows` (heights of `amplitude` times order 1, in `unit`; side
+/// `width`).
+fn write_matrix(path: &Path, width: &str, unit: &str, rows: usize, amplitude: f64) {
     let mut text = format!("# Width: {width}\n# Height: {width}\n# Value units: {unit}\n");
     for iy in 0..rows {
         let row: Vec<String> = (0..rows)
@@ -190,7 +191,7 @@ fn write_matrix(path: &Path, width: &str, unit: &str, rows: usize) {
                 let (x, y) = (ix as f64, iy as f64);
                 format!(
                     "{:e}",
-                    (0.7 * x).sin() + (0.3 * y + 0.2 * x).cos() + 0.1 * (x * y).sin()
+                    amplitude * ((0.7 * x).sin() + (0.3 * y + 0.2 * x).cos() + 0.1 * (x * y).sin())
                 )
             })
             .collect();
@@ -216,9 +217,12 @@ fn line_scans_and_mismatched_units_are_refused_with_the_reason() {
         })
         .collect();
     std::fs::write(&profile, line).unwrap();
-    write_matrix(&dir.join("um.txt"), "32 µm", "um", 32);
-    write_matrix(&dir.join("m.txt"), "32 µm", "m", 32);
-    write_matrix(&dir.join("mm.txt"), "32 mm", "um", 32);
+    // The metre file's heights are 30 times the micrometre file's (more than the twin's factor
+    // of 10), not 10⁶ times: metres of height over a 32 µm map are refused by the readers'
+    // rms-slope bound before the twin compares the two.
+    write_matrix(&dir.join("um.txt"), "32 µm", "um", 32, 1.0);
+    write_matrix(&dir.join("m.txt"), "32 µm", "m", 32, 3e-5);
+    write_matrix(&dir.join("mm.txt"), "32 mm", "um", 32, 1.0);
     let twin = |of: &str| {
         format!(
             "    surface:\n      twin: {{of: [{of}], spectrum: measured, sq: measured, seed: 1}}\n"

@@ -220,14 +220,15 @@ fn height_file(dir: &Path, value: &str) -> String {
     path.display().to_string()
 }
 
-/// `BASE` with its lower surface read from a 64 × 64 checkerboard of 2 × 2 blocks of heights
-/// ±`a` m (Sq = `a` exactly, slopes that central differences see) on the same 0.125 mm square: a measured file is the way such heights still arrive,
-/// since `validate` refuses a synthetic Sq outside [1 pm, the shorter side].
+/// `BASE` with its lower surface read from a 64 × 64 checkerboard of 16 × 16 blocks of heights
+/// ±`a` m (Sq = `a` exactly, one step in 16 differences, so that Sq = 2e-4 m keeps its rms slope
+/// below the readers' bound of 100) on the same 0.125 mm square: a measured file is the way such
+/// heights still arrive, since `validate` refuses a synthetic Sq outside [1 pm, the shorter side].
 fn base_on_checkerboard(dir: &Path, a: f64) -> String {
     let mut text = String::from("# Width: 1.25e-4 m\n# Height: 1.25e-4 m\n# Value units: m\n");
     for iy in 0..64 {
         let row: Vec<String> = (0..64)
-            .map(|ix| format!("{:e}", if (ix / 2 + iy / 2) % 2 == 0 { a } else { -a }))
+            .map(|ix| format!("{:e}", if (ix / 16 + iy / 16) % 2 == 0 { a } else { -a }))
             .collect();
         text.push_str(&row.join("\t"));
         text.push('\n');

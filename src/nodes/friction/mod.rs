@@ -69,8 +69,10 @@ use crate::vocabulary::{metrics as names, roles};
 /// harder body's deformed surface at each spot's loaded front, `tilted_junction` removed, merged
 /// spots and the adhesion share reported, flags inherited from the inputs; 6: friction at
 /// every load step, the `curve` table for every method with every column of the row and the
-/// step's validity, per spot with `nominal_pressure`; the final step's values are those of 5).
-pub const FRICTION_KIND_VERSION: u32 = 6;
+/// step's validity, per spot with `nominal_pressure`; the final step's values are those of 5;
+/// 7: the local μ quantiles weighted by load and flagged above the law's μ bound, the
+/// beyond-fit flag naming the row's law).
+pub const FRICTION_KIND_VERSION: u32 = 7;
 
 /// Default adhesion energy Δγ (N/m): "somewhat clean" metal surfaces, the value of the static
 /// friction experiments on 17-4PH compared with the KE model (reference workflow; the range
@@ -350,7 +352,8 @@ impl FrictionTask {
                 .map_err(NodeError::new)?;
         }
         trust::inherit_flags(&self.input_roles, inputs, &mut artifact.flags);
-        trust::flag_mu_s_beyond_law(self.law.descriptor(), &mut artifact);
+        trust::flag_mu_beyond_law(self.law.descriptor(), &mut artifact);
+        trust::flag_load_beyond_fit(self.law.descriptor(), &mut artifact);
         validity::check_artifact(KIND, &mut artifact)?;
         Ok(artifact)
     }

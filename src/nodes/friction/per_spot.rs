@@ -27,7 +27,7 @@ use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::NodeError;
 use crate::engine::value::Field;
 use crate::friction::contact_spots::{Connectivity, ContactSpot};
-use crate::friction::per_summit::quantile;
+use crate::friction::per_summit::{load_weighted_quantile, quantile};
 use crate::friction::{
     per_spot_friction, BodyHardness, BodyMaps, ContactBodies, ContactSection, PerSpotResult,
     SectionFriction, SpotFriction,
@@ -217,17 +217,18 @@ fn push_spot_statistics(
     push_quantiles(metrics, spots, &result.spots);
 }
 
-/// Quantiles of the spot areas and of the local μ_i = Q_i/P_i (a negative one counts as 0).
+/// Quantiles of the spot areas (over the spots) and load-weighted quantiles of the local
+/// μ_i = Q_i/P_i (a negative one counts as 0): the μ_i below which a share q of Σ P_i sits
+/// ([`load_weighted_quantile`]).
 fn push_quantiles(metrics: &mut Vec<Field>, spots: &[ContactSpot], friction: &[SpotFriction]) {
     let mut areas: Vec<f64> = spots.iter().map(|s| s.area).collect();
     areas.sort_by(f64::total_cmp);
-    let mut local: Vec<f64> = spots
+    let local: Vec<(f64, f64)> = spots
         .iter()
         .zip(friction)
         .filter(|(s, _)| s.load > 0.0)
-        .map(|(s, f)| (f.friction_force / s.load).max(0.0))
+        .map(|(s, f)| ((f.friction_force / s.load).max(0.0), s.load))
         .collect();
-    local.sort_by(f64::total_cmp);
     if !areas.is_empty() {
         let area_quantiles = [
             (names::SPOT_AREA_P10, 0.1),
@@ -238,18 +239,20 @@ fn push_quantiles(metrics: &mut Vec<Field>, spots: &[ContactSpot], friction: &[S
             metrics.push(Field::float(name, quantile(&areas, q), Dimension::Area));
         }
     }
-    if !local.is_empty() {
-        let mu_quantiles = [
-            (names::LOCAL_MU_P10, 0.1),
-            (names::LOCAL_MU_MEDIAN, 0.5),
-            (names::LOCAL_MU_P90, 0.9),
-        ];
-        for (name, q) in mu_quantiles {
-            metrics.push(Field::float(
-                name,
-                quantile(&local, q),
-                Dimension::Dimensionless,
-            ));
+    push_local_mu_quantiles(metrics, &local);
+}
+
+/// `local_mu_p10`, `local_mu_median`, `local_mu_p90`: load-weighted quantiles of the
+/// `(μ_i, load_i)` pairs of the summits or spots (absent when none carries load).
+pub(super) fn push_local_mu_quantiles(metrics: &mut Vec<Field>, local: &[(f64, f64)]) {
+    let mu_quantiles = [
+        (names::LOCAL_MU_P10, 0.1),
+        (names::LOCAL_MU_MEDIAN, 0.5),
+        (names::LOCAL_MU_P90, 0.9),
+    ];
+    for (name, q) in mu_quantiles {
+        if let Some(mu) = load_weighted_quantile(local, q) {
+            metrics.push(Field::float(name, mu, Dimension::Dimensionless));
         }
     }
 }

@@ -33,7 +33,6 @@ use ndarray::ArrayView2;
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::NodeError;
 use crate::engine::value::Field;
-use crate::friction::per_summit::quantile;
 use crate::friction::per_summit::PerSummitResult;
 use crate::friction::{
     per_summit_friction, summit_interference, AdhesionBeyondFits, DeformationState, SummitContact,
@@ -282,23 +281,19 @@ fn push_counts(
     ]);
 }
 
-/// Quantiles of the local μ_i = Q_i/P_i of the summits in contact. A negative local value (the
-/// literal KE 2004 Q_max on 4.29 < x ≤ 6) counts as 0.
+/// Load-weighted quantiles of the local μ_i = Q_i/(F_n − F_a)_i of the summits in contact, each
+/// weighted by its net load (F_n − F_a)_i > 0 (the weights of μ_s = Σ Q_i / Σ (F_n − F_a)_i). A
+/// negative local value (the literal KE 2004 Q_max on 4.29 < x ≤ 6) counts as 0.
 fn push_local_mu(metrics: &mut Vec<Field>, result: &PerSummitResult) {
-    let mut local: Vec<f64> = result
+    let local: Vec<(f64, f64)> = result
         .summits
         .iter()
-        .filter_map(|s| s.local_mu)
-        .map(|m| m.max(0.0))
+        .filter_map(|s| {
+            s.local_mu
+                .map(|m| (m.max(0.0), s.normal_force - s.adhesion_force))
+        })
         .collect();
-    local.sort_by(f64::total_cmp);
-    if !local.is_empty() {
-        metrics.extend([
-            dimensionless(names::LOCAL_MU_P10, quantile(&local, 0.1)),
-            dimensionless(names::LOCAL_MU_MEDIAN, quantile(&local, 0.5)),
-            dimensionless(names::LOCAL_MU_P90, quantile(&local, 0.9)),
-        ]);
-    }
+    super::per_spot::push_local_mu_quantiles(metrics, &local);
 }
 
 /// One row per summit: position, geometry, interference, state and forces (section values).

@@ -53,8 +53,10 @@ pub(crate) use crate::vocabulary::tables::SURFACES as TABLE;
 /// count of 0, marks its missing points; 11: a synthetic surface's spectra come from its
 /// synthesized modes, not a transform of its heights, and the Hurst fit leaves out PSD points at
 /// round-off level; 12: a twin's `twin_warnings`, `twin_hurst_bands`, `twin_measured_bands` and
-/// `twin_correlation_x/y_methods` are lists of texts, no longer texts joined by "; ").
-pub const SURFACE_KIND_VERSION: u32 = 12;
+/// `twin_correlation_x/y_methods` are lists of texts, no longer texts joined by "; "; 13: the
+/// readers refuse an rms slope above 100 from a file's scales and a binary SDF whose bytes after
+/// the data are no text trailer, so a cached surface of such a file is not reused).
+pub const SURFACE_KIND_VERSION: u32 = 13;
 
 /// Synthetic surfaces with more points than this (1024², 8 MB of heights) are not stored in the
 /// cache but regenerated when a dependant needs their heights.

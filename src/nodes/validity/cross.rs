@@ -1,8 +1,10 @@
 //! The validity checks that compare two inputs or two columns, each one function, called by the
 //! node kind that has both values, and listed in [`CHECKS`] for the documentation.
 
+use super::{Range, MAX_UNTRUSTED_LOAD_SHARE};
 use crate::units::format_number;
 use crate::vocabulary::kinds::{CONTACT, FRICTION, SURFACE};
+use crate::vocabulary::metrics as names;
 
 /// One cross-input check, as documented.
 pub struct CrossCheck {
@@ -84,7 +86,28 @@ pub const CHECKS: &[CrossCheck] = &[
         outcome: "failed",
         why: "the spectral moments m2, m4 are finite differences of the heights: a coarser grid gives summit statistics of a few differences, not of a surface",
     },
+    CrossCheck {
+        kind: FRICTION,
+        columns: "`load_share_beyond_fit` against the row's law",
+        rule: "≤ 0.5",
+        outcome: "flagged",
+        why: "more than half the load lies beyond the validated range of the row's law, which the sentence names with where its range ends (KE: x = 6, CEB: x = 1, full stick: ω* = 110, ploughing: each spot's loaded front; docs/friction-models.md): μ_s is mostly the law's extrapolation, not its fit",
+    },
 ];
+
+/// Friction: a flag when more than [`MAX_UNTRUSTED_LOAD_SHARE`] of the row's load lies beyond
+/// the validated range of its law `law`, named with `range` (where that range ends,
+/// [`crate::friction::LawDescriptor::validated_range`]).
+pub fn load_beyond_fit(share: f64, law: &str, range: &str) -> Option<String> {
+    (!Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE).contains(share)).then(|| {
+        format!(
+            "`{}` = {}: more than half the load lies beyond the validated range of `model: \
+             {law}` ({range}): μ_s is mostly the law's extrapolation, not its fit",
+            names::LOAD_SHARE_BEYOND_FIT,
+            format_number(share)
+        )
+    })
+}
 
 /// Surface: Sq against the larger side of the map; a flag when the heights exceed the field of
 /// view.

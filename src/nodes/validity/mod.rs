@@ -85,6 +85,8 @@ pub struct ColumnRule {
     pub range: Range,
     pub severity: Severity,
     /// Why a value outside is impossible (or must be read with care), its likely cause and a fix.
+    /// A flag's sentence is the value and this text, so a flag rule's text states its bound in
+    /// words ("more than half the load ...").
     pub why: &'static str,
 }
 
@@ -262,17 +264,6 @@ pub const RULES: &[ColumnRule] = &[
     },
     ColumnRule {
         kind: FRICTION,
-        columns: &[m::LOAD_SHARE_BEYOND_FIT],
-        range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
-        severity: Severity::Flag,
-        why: "more than half the load lies beyond the validated range of the friction law (KE \
-              beyond x = 6 and CEB beyond x = 1 carry no tangential load there, full stick is \
-              extrapolated beyond ω* = 110, ploughing lacks its front geometry): μ_s is mostly \
-              the law's extrapolation, not its fit (docs/friction-models.md gives each law's \
-              range)",
-    },
-    ColumnRule {
-        kind: FRICTION,
         columns: &[m::LOAD_SHARE_WITHOUT_RADIUS],
         range: Range::AtMost(MAX_UNTRUSTED_LOAD_SHARE),
         severity: Severity::Flag,
@@ -421,15 +412,18 @@ fn check_value(
         if rule.range.contains(v) {
             continue;
         }
-        let range = rule.range.describe(dimension.si_symbol());
-        let sentence = format!(
-            "{label} = {} is outside {range}: {}",
-            format_number(v),
-            rule.why
-        );
         match rule.severity {
-            Severity::Fail => return Err(NodeError::new(sentence)),
-            Severity::Flag => flags.push(sentence),
+            Severity::Fail => {
+                let range = rule.range.describe(dimension.si_symbol());
+                return Err(NodeError::new(format!(
+                    "{label} = {} is outside {range}: {}",
+                    format_number(v),
+                    rule.why
+                )));
+            }
+            // A flag's sentence states its bound in words ("more than half the load"), so that
+            // several flags of a row joined in its message do not repeat "is outside ≤ 0.5".
+            Severity::Flag => flags.push(format!("{label} = {}: {}", format_number(v), rule.why)),
         }
     }
     Ok(())

@@ -118,6 +118,32 @@ pub fn quantile(sorted: &[f64], q: f64) -> f64 {
     lo + frac * (hi - lo)
 }
 
+/// Load-weighted quantile `q` in [0, 1] of `(value, load)` pairs: the smallest value μ_k such
+/// that the pairs with a value ≤ μ_k carry at least a share `q` of the total load,
+/// Σ_{μ_j ≤ μ_k} P_j ≥ q Σ P_j. Pairs with a load that is not finite and > 0 are left out; `None`
+/// when none is left. Weighted by load, the quantiles describe the spots that carry the section's
+/// load, as μ_s = Σ Q_i / Σ P_i = Σ (P_i/Σ P) μ_i does, instead of the many lightly loaded spots
+/// whose μ_i = Q_i/P_i a law with μ → ∞ as P → 0 (full stick, junction shear, KE below first
+/// yield) extrapolates without bound.
+pub fn load_weighted_quantile(pairs: &[(f64, f64)], q: f64) -> Option<f64> {
+    let mut loaded: Vec<(f64, f64)> = pairs
+        .iter()
+        .copied()
+        .filter(|&(v, p)| v.is_finite() && p.is_finite() && p > 0.0)
+        .collect();
+    loaded.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: f64 = loaded.iter().map(|&(_, p)| p).sum();
+    let target = q.clamp(0.0, 1.0) * total;
+    let mut carried = 0.0;
+    for &(value, load) in &loaded {
+        carried += load;
+        if carried >= target {
+            return Some(value);
+        }
+    }
+    loaded.last().map(|&(value, _)| value)
+}
+
 /// Summary statistics of `values` (None if empty).
 pub fn summarize(values: &[f64]) -> Option<DistributionSummary> {
     let mut sorted = values.to_vec();
@@ -265,4 +291,27 @@ pub fn per_summit_friction(
         local_mu_summary: summarize(&local),
         summits: per,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::load_weighted_quantile;
+
+    /// One spot with 80 % of the load at μ = 1 and two light ones at 2 and 3: by load, the median
+    /// and the 10 % quantile are 1 (a count median would be 2), the 90 % one 2; unloaded and
+    /// non-finite pairs are left out.
+    #[test]
+    fn quantiles_are_weighted_by_load() {
+        let pairs = [
+            (3.0, 1.0),
+            (1.0, 8.0),
+            (2.0, 1.0),
+            (50.0, 0.0),
+            (f64::NAN, 1.0),
+        ];
+        let q = |q| load_weighted_quantile(&pairs, q).unwrap();
+        assert_eq!((q(0.1), q(0.5), q(0.8)), (1.0, 1.0, 1.0));
+        assert_eq!((q(0.85), q(0.9), q(0.95), q(1.0)), (2.0, 2.0, 3.0, 3.0));
+        assert_eq!(load_weighted_quantile(&[(5.0, 0.0)], 0.5), None);
+    }
 }

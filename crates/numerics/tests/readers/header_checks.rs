@@ -7,6 +7,7 @@ use asperity_numerics::surface::io::{parse_topography, TopographyData};
 
 use crate::common;
 use crate::damage::{check_outcome, expect_error, load, patched, shared_files};
+use crate::readers_a_common;
 
 /// The NMS example's header fields: z range (2 × f64), header size (u32), nx, ny (u32),
 /// spacing (2 × f64).
@@ -183,4 +184,35 @@ fn a_damaged_first_data_line_of_a_text_matrix_is_refused() {
         &patched(&b, at + 2, &[b'.' ^ 0x20]),
         "a data line with a damaged value",
     );
+}
+
+/// The binary SDF fixture's fields (ISO 25178-71): NumPoints (u16) at 42, Xscale, Yscale,
+/// Zscale (f64) at 46, 54, 62, DataType (u8) at 79, then 7 × 4 int32 samples.
+const SDF_NUM_POINTS: usize = 42;
+const SDF_ZSCALE: usize = 62;
+const SDF_DATA_TYPE: usize = 79;
+
+/// A damaged binary SDF header is refused where the format allows it: a height scale whose
+/// heights exceed the field of view by orders of magnitude (the campaign's flip turned Sq
+/// 1.36e-8 m into 3.99e-3 m on a 7 µm × 4 µm map) by the rms slope, fewer declared points or a
+/// smaller sample type by the bytes after the data, which are no text trailer. A text trailer
+/// is still read.
+#[test]
+fn sdf_binary_header_damage_is_refused() {
+    let path = readers_a_common::fixture("sdf-1_binary_int32.sdf");
+    let b = std::fs::read(&path).unwrap();
+    let zscale = f64::from_le_bytes(b[SDF_ZSCALE..SDF_ZSCALE + 8].try_into().unwrap());
+    expect_error(
+        &path,
+        &patched(&b, SDF_ZSCALE, &(zscale * 2.93e5).to_le_bytes()),
+        "rms slope",
+    );
+    for bit in 0..3 {
+        expect_error(&path, &flipped(&b, SDF_NUM_POINTS, bit), "no text trailer");
+    }
+    expect_error(&path, &flipped(&b, SDF_DATA_TYPE, 1), "no text trailer");
+    let mut with_trailer = b.clone();
+    with_trailer.extend_from_slice(b"Operator = test\r\nComment = a text trailer\r\n");
+    let t = parse_topography(&path, &with_trailer).expect("a text trailer reads");
+    assert!(matches!(t.data, TopographyData::Areal(ref m) if m.nx() == 7 && m.ny() == 4));
 }

@@ -26,6 +26,8 @@ pub(super) const LAW: LawDescriptor = LawDescriptor {
     methods: &[Method::Statistical, Method::PerSummit, Method::PerSpot],
     parameters: &[],
     mu_s_max: super::asperity::YIELD_INCEPTION_MU_S_MAX,
+    validated_range: "the Chang–Etsion–Bogy tangential load ends at first yield, x = ω/ω_c = 1, \
+                      beyond which an asperity carries none",
     build,
 };
 

@@ -22,6 +22,7 @@ pub(super) const LAW: LawDescriptor = LawDescriptor {
     methods: &[Method::PerSpot],
     parameters: &[INTERFACE_FACTOR],
     mu_s_max: super::law::DRY_METAL_MU_S_MAX,
+    validated_range: "junction shear has no fitted range: every spot is inside it",
     build,
 };
 

@@ -44,6 +44,8 @@ pub(super) const LAW: LawDescriptor = LawDescriptor {
     methods: &[Method::Statistical, Method::PerSummit, Method::PerSpot],
     parameters: &[FORM],
     mu_s_max: super::asperity::YIELD_INCEPTION_MU_S_MAX,
+    validated_range: "Kogut–Etsion's static friction fit ends at x = ω/ω_c = 6, beyond which an \
+                      asperity carries no tangential load",
     build,
 };
 

@@ -103,6 +103,9 @@ pub struct LawDescriptor {
     /// The largest μ_s a row of the law reports as `ok`: above it the row is flagged, the law is
     /// outside what it can describe (docs/study-format.md, the models table).
     pub mu_s_max: f64,
+    /// Where the law's validated range ends and what a spot or summit beyond it gets, one
+    /// clause: the flag of a row with most of its load beyond the range names this law alone.
+    pub validated_range: &'static str,
     /// Its constructor.
     pub build: BuildLaw,
 }

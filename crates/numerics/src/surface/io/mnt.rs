@@ -339,9 +339,12 @@ fn decode_blocks(
             false,
         );
         if written != Ok(n * size) {
+            let why = match written {
+                Ok(bytes) => format!("it gives {bytes} bytes, {} expected", n * size),
+                Err(status) => format!("zlib status {status:?}"),
+            };
             return Err(ParseError::malformed(format!(
-                "{what} at point {first}: the zlib stream does not inflate to {n} points \
-                 ({written:?})"
+                "{what} at point {first}: the zlib stream does not inflate to {n} points ({why})"
             )));
         }
         next += n;

@@ -320,8 +320,26 @@ fn parse_binary(bytes: &[u8]) -> Result<Topography, ParseError> {
         check_block_size(n, ty.size(), c.remaining(), "sdf binary data")?,
         "sdf binary data",
     )?;
+    check_binary_trailer(&bytes[bytes.len() - c.remaining()..], n, ty.size())?;
     let values = decode_samples(data, n, ty, le, "sdf binary data")?;
     header.into_topography(values)
+}
+
+/// What follows the `count` samples of `size` bytes of a binary file is its optional trailer,
+/// text (`Key = Value` lines, ISO 25178-71): binary bytes there mean NumPoints, NumProfiles or
+/// DataType declares fewer data bytes than the file holds, a damaged header.
+fn check_binary_trailer(rest: &[u8], count: usize, size: usize) -> Result<(), ParseError> {
+    let text = |b: &u8| b.is_ascii_graphic() || b" \t\r\n".contains(b) || *b >= 0x80;
+    match rest.iter().position(|b| !text(b)) {
+        None => Ok(()),
+        Some(at) => Err(ParseError::malformed(format!(
+            "sdf: the header declares {count} points of {size} B, but the {} bytes after them \
+             are no text trailer (a binary byte {:#04x} at {at} bytes past the data): \
+             NumPoints, NumProfiles or DataType is damaged",
+            rest.len(),
+            rest[at]
+        ))),
+    }
 }
 
 #[cfg(test)]

@@ -32,6 +32,8 @@ pub(super) const LAW: LawDescriptor = LawDescriptor {
     methods: &[Method::Statistical, Method::PerSummit, Method::PerSpot],
     parameters: &[A, B],
     mu_s_max: super::law::DRY_METAL_MU_S_MAX,
+    validated_range: "the full-stick μ(P*) fit ends at ω* = 110, beyond which μ(P*) is \
+                      extrapolated",
     build,
 };
 

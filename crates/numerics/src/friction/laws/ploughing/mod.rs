@@ -48,6 +48,8 @@ pub(super) const LAW: LawDescriptor = LawDescriptor {
         PENETRATION_LIMIT,
     ],
     mu_s_max: DRY_METAL_MU_S_MAX,
+    validated_range: "the ploughing law needs each spot's loaded front on the ploughing body, \
+                      without which a spot gets its junction shear alone",
     build,
 };
 
