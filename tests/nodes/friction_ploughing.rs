@@ -8,7 +8,7 @@ use crate::nodes_common;
 use asperity::engine::execute::{NodeOutcome, RunReport};
 use asperity::engine::plan::Plan;
 use asperity::engine::value::Value;
-use nodes_common::{column, float, plan_error, run, text};
+use nodes_common::{column, float, plan_error, rough_and_smooth, run, text};
 
 /// A ground pair with the lay along x, contact at 20 MPa with fields both ways round, junction
 /// shear and the ploughing law along and across the lay, and along the lay on the swapped pair
@@ -128,17 +128,8 @@ fn ploughing_rows_split_mu_into_adhesion_and_deformation() {
 
 /// A rough body against a smooth one of another material, both ways round, and against a rigid
 /// flat: `{rough}` and `{smooth}` are materials.
+/// The nodes beside the bodies of `nodes_common::rough_and_smooth`.
 const HARDNESS: &str = r#"
-study: hardness
-nodes:
-  rough:
-    surface:
-      synthetic: {grid: [64, 64], size: [64 um, 64 um], sq: 0.4 um, hurst: 0.8,
-                  correlation_length: 16 um, seed: 5}
-  smooth:
-    surface:
-      synthetic: {grid: [64, 64], size: [64 um, 64 um], sq: 2 nm, hurst: 0.8,
-                  correlation_length: 16 um, seed: 6}
   hard_rough:
     contact: {lower: rough, upper: smooth, lower_material: aisi52100,
               upper_material: al6061-t6, nominal_pressures: [20 MPa], fields: true}
@@ -160,7 +151,7 @@ nodes:
 
 #[test]
 fn the_harder_body_ploughs() {
-    let (plan, report) = run(HARDNESS, "hardness");
+    let (plan, report) = run(&rough_and_smooth("hardness", HARDNESS), "hardness");
     let [hard, soft, flat] = ["hard_rough_ploughs", "soft_rough_ploughs", "flat_ploughs"]
         .map(|n| named(&plan, &report, n));
     assert_eq!(

@@ -9,7 +9,7 @@ use crate::nodes_common;
 use asperity::engine::execute::{NodeOutcome, RunReport};
 use asperity::engine::plan::Plan;
 use asperity::friction::find_law;
-use nodes_common::{float, outcomes, run, text};
+use nodes_common::{float, outcomes, rough_and_smooth, run, text};
 
 /// The friction outcomes with their model, in plan order.
 fn friction_rows<'a>(plan: &Plan, report: &'a RunReport) -> Vec<&'a NodeOutcome> {
@@ -273,17 +273,8 @@ fn adhesion_carrying_most_of_the_load_is_flagged() {
 
 /// A hard rough bearing steel on a soft aluminium flat (the rough body ploughs) with the
 /// ploughing regime's bound far below and far above its spots' degrees of penetration.
+/// The nodes beside the bodies of `nodes_common::rough_and_smooth`.
 const REGIME: &str = r#"
-study: regime
-nodes:
-  rough:
-    surface:
-      synthetic: {grid: [64, 64], size: [64 um, 64 um], sq: 0.4 um, hurst: 0.8,
-                  correlation_length: 16 um, seed: 5}
-  smooth:
-    surface:
-      synthetic: {grid: [64, 64], size: [64 um, 64 um], sq: 2 nm, hurst: 0.8,
-                  correlation_length: 16 um, seed: 6}
   pair:
     contact: {lower: rough, upper: smooth, lower_material: aisi52100,
               upper_material: al6061-t6, nominal_pressures: [20 MPa], fields: true}
@@ -297,7 +288,7 @@ nodes:
 
 #[test]
 fn a_row_with_most_load_beyond_the_ploughing_regime_is_flagged() {
-    let (plan, report) = run(REGIME, "regime");
+    let (plan, report) = run(&rough_and_smooth("regime", REGIME), "regime");
     let contact = &outcomes(&plan, &report, "contact")[0];
     assert!(contact.flags.is_empty(), "{:?}", contact.flags);
     let node = |name: &str| {

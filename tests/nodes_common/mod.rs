@@ -30,6 +30,29 @@ pub fn run(text: &str, name: &str) -> (Plan, RunReport) {
     (plan, report)
 }
 
+/// The two bodies of the two-body friction tests, `nodes:` entries of a study: `rough`, 64² over
+/// 64 µm, Sq 0.4 µm (seed 5), and `smooth`, Sq 2 nm (seed 6), both H 0.8 with a 16 µm
+/// correlation length.
+const ROUGH_AND_SMOOTH: &str = r#"
+  rough:
+    surface:
+      synthetic: {grid: [64, 64], size: [64 um, 64 um], sq: 0.4 um, hurst: 0.8,
+                  correlation_length: 16 um, seed: 5}
+  smooth:
+    surface:
+      synthetic: {grid: [64, 64], size: [64 um, 64 um], sq: 2 nm, hurst: 0.8,
+                  correlation_length: 16 um, seed: 6}
+"#;
+
+/// The study `name` whose nodes are the bodies `rough` and `smooth` ([`ROUGH_AND_SMOOTH`]) and
+/// `nodes` (further `nodes:` entries, indented by two spaces).
+pub fn rough_and_smooth(name: &str, nodes: &str) -> String {
+    format!(
+        "study: {name}\nnodes:{ROUGH_AND_SMOOTH}{}",
+        nodes.trim_start_matches('\n')
+    )
+}
+
 pub fn plan_error(text: &str) -> String {
     match Study::<TribologyNode>::from_source(std::path::Path::new("f.yaml"), text.to_string()) {
         Ok(study) => Plan::build(&study)

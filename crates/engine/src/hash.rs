@@ -137,7 +137,8 @@ fn key_encoding(
 
 /// A parameter's value in the encoding shared with the cache ([`crate::encoding`]), lengths in 8
 /// bytes; `-0.0` is written as `0.0`, alone or in a list: the same physical value, one key.
-/// Scalars encode as they did before lists existed, so their keys did not change.
+/// A scalar is its lower-case tag and value (`KEY_SCHEMA_VERSION` 1); a list has an upper-case
+/// tag and its length, so no list encodes as a scalar does.
 fn put_value(out: &mut Vec<u8>, value: &Value) {
     let zero = |x: f64| if x == 0.0 { 0.0 } else { x };
     match value {
@@ -193,9 +194,8 @@ mod tests {
         );
     }
 
-    /// The key of a scalar parameter is the one it had before lists were added to [`Value`]
-    /// (the blake3 below is of the encoding as `KEY_SCHEMA_VERSION` 1 defined it), so
-    /// adding lists changed no existing key.
+    /// The key of scalar parameters is pinned: the blake3 below is of the encoding
+    /// `KEY_SCHEMA_VERSION` 1 defines for scalars (lower-case tag, then the value).
     #[test]
     fn scalar_keys_are_unchanged_by_lists() {
         let params = [

@@ -6,7 +6,7 @@
 //! Each step's values pass the same validity rules as the row ([`crate::nodes::validity`]): an
 //! impossible value at any step fails the node naming the step; a flag marks that step's row
 //! only (`step_status` `flagged`, its sentences in `step_message`), so the `friction` row keeps
-//! the flags of the final step and of the inputs, as before per-step rows existed.
+//! the flags of the final step and of the inputs.
 
 use std::borrow::Cow;
 
