@@ -154,7 +154,7 @@ fn contact<'py>(
             ..Artifact::default()
         };
         check_artifact(CONTACT, &mut artifact).map_err(|e| value_error("contact", e.message))?;
-        let fields = solver.last_fields(FieldRequest::ALL);
+        let fields = solver.into_last_fields(FieldRequest::ALL);
         let earlier = match &problem {
             Some(problem) => earlier_step_fields(problem, &curve)?,
             None => Vec::new(),

@@ -514,7 +514,7 @@ impl NodeTask for ContactTask {
         }
         if self.fields {
             let fields = solver
-                .last_fields(FieldRequest::ALL)
+                .into_last_fields(FieldRequest::ALL)
                 .ok_or_else(|| NodeError::new("the final load step left no fields"))?;
             store_fields(&mut artifact, fields);
             artifact.arrays.extend(earlier);

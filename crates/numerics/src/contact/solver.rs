@@ -409,6 +409,30 @@ impl ContactSolver {
         self.last_nominal.map(|_| self.fields_of_workspace(request))
     }
 
+    /// The requested fields of the last converged step, as [`Self::last_fields`] gives them, from
+    /// a solver no longer needed: its operator, transforms and every other workspace array are
+    /// released before the fields are assembled, so the caller's peak holds the fields beside
+    /// three grid arrays (pressure, gap, displacement) instead of beside the whole solver.
+    pub fn into_last_fields(self, request: FieldRequest) -> Option<ContactFields> {
+        self.last_nominal?;
+        let shape = (self.problem.gap().ny(), self.problem.gap().nx());
+        let material = *self.problem.material();
+        let Self {
+            workspace,
+            operator,
+            problem,
+            ..
+        } = self;
+        drop((operator, problem));
+        let [p, g, u] = workspace.into_solution();
+        Some(derived::assemble_fields(
+            shape,
+            (&p, &g, &u),
+            &material,
+            request,
+        ))
+    }
+
     fn fields_of_workspace(&self, request: FieldRequest) -> ContactFields {
         let ws = &self.workspace;
         let shape = (self.problem.gap().ny(), self.problem.gap().nx());

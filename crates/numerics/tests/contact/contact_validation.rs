@@ -518,3 +518,30 @@ fn saturated_contacts_finish_on_the_free_set() {
         .fold(0.0f64, |a, &z| a.max(z.abs()));
     assert!((step.approach - tight.approach).abs() < 1e-6 * scale);
 }
+
+#[test]
+fn the_fields_of_a_consumed_solver_are_those_it_returned() {
+    // A capped wavy contact of two elastic bodies in partial contact, so that every field (the
+    // plastic penetration and each body's deformation too) has non-zero points.
+    let material = ContactMaterial::from_young_poisson(210e9, 0.3, 70e9, 0.33, 5e8).unwrap();
+    let gap = westergaard_problem(128, 1e-6, 1e11, 2e9).gap().clone();
+    let problem = || ContactProblem::new(gap.clone(), material, Boundary::Periodic);
+    let fresh = ContactSolver::new(problem(), options(1e-10, FieldRequest::NONE)).unwrap();
+    assert!(fresh.into_last_fields(FieldRequest::ALL).is_none());
+    let mut solver = ContactSolver::new(problem(), options(1e-10, FieldRequest::NONE)).unwrap();
+    solver.solve(2e8).unwrap();
+    let kept = solver.last_fields(FieldRequest::ALL).unwrap();
+    let consumed = solver.into_last_fields(FieldRequest::ALL).unwrap();
+    let pairs = [
+        (kept.pressure, consumed.pressure),
+        (kept.gap, consumed.gap),
+        (kept.deformation_first, consumed.deformation_first),
+        (kept.deformation_second, consumed.deformation_second),
+        (kept.plastic_penetration, consumed.plastic_penetration),
+    ];
+    for (i, (a, b)) in pairs.into_iter().enumerate() {
+        let (a, b) = (a.unwrap(), b.unwrap());
+        assert!(a.iter().any(|&x| x != 0.0), "field {i} is all zero");
+        assert_eq!(a, b, "field {i}");
+    }
+}

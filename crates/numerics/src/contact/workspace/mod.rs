@@ -201,6 +201,12 @@ pub(crate) struct Workspace {
 }
 
 impl Workspace {
+    /// The pressure, gap and displacement of the last iterate, `[p, g, u]`, the rest released.
+    pub(crate) fn into_solution(self) -> [Vec<f64>; 3] {
+        let Self { p, g, u, .. } = self;
+        [p, g, u]
+    }
+
     /// The workspace of a grid of `g0.len()` points in rows of `nx`, pressures capped at `plim`.
     pub(crate) fn new(g0: Vec<f64>, nx: usize, plim: f64) -> Self {
         let n = g0.len();
