@@ -225,8 +225,14 @@ def message_lines(text):
     return [line for line in text.splitlines() if line.strip() and not SOURCE_ECHO.match(line)]
 
 
+QUOTED = re.compile(r"`[^`]*`")
+
+
 def has_debug_text(text):
-    return any(p.search(line) for line in message_lines(text) for p in DEBUG_SHAPES)
+    """A Debug-formatted Rust value in a message; spans in backquotes are names the message
+    quotes (a file's own header key such as WSxM's `Control::Y Amplitude`), not checked."""
+    lines = (QUOTED.sub("``", line) for line in message_lines(text))
+    return any(p.search(line) for line in lines for p in DEBUG_SHAPES)
 
 
 def clauses(text):
