@@ -40,46 +40,10 @@ impl ContactTask {
         step: usize,
         reuse: Option<StepMaps>,
     ) -> Result<StepMaps, NodeError> {
-        let curve = contact
-            .tables
-            .get(tables::LOAD_CURVE)
-            .ok_or_else(|| NodeError::new("the contact has no load curve"))?;
-        let column = |name: &str| match curve.columns.iter().find(|c| c.name == name) {
-            Some(c) => match &c.data {
-                ColumnData::Float(v) => v.get(step).copied().ok_or_else(|| {
-                    NodeError::new(format!(
-                        "the contact has {} load steps, not a step {step}",
-                        v.len()
-                    ))
-                }),
-                _ => Err(NodeError::new(format!(
-                    "load curve column {name} is not a float"
-                ))),
-            },
-            None => Err(NodeError::new(format!(
-                "the load curve has no column {name}"
-            ))),
-        };
-        let (approach, nominal_pressure, area_fraction) = (
-            column(APPROACH)?,
-            column(NOMINAL_PRESSURE)?,
-            column(AREA_FRACTION)?,
-        );
+        let (approach, nominal_pressure, area_fraction, steps) = step_values(contact, step)?;
         let composite = array2(contact, COMPOSITE_HEIGHT)?;
-        let (mut pressure, mut fields) = match reuse {
-            Some(maps) if maps.pressure.dim() == composite.dim() => (
-                maps.pressure,
-                ContactFields {
-                    pressure: None,
-                    gap: Some(maps.gap),
-                    deformation_first: Some(maps.deformation_lower),
-                    deformation_second: maps.deformation_upper,
-                    plastic_penetration: Some(maps.plastic_penetration),
-                },
-            ),
-            _ => (Array2::zeros(composite.dim()), ContactFields::default()),
-        };
-        let final_step = step + 1 == curve.rows();
+        let (mut pressure, mut fields) = reused(reuse, composite.dim());
+        let final_step = step + 1 == steps;
         if final_step {
             pressure.assign(&array2(contact, PRESSURE)?);
         } else {
@@ -231,6 +195,55 @@ pub(super) fn no_fields(name: &str) -> NodeError {
     NodeError::new(format!(
         "the contact node holds no '{name}' array: run it with `fields: true`"
     ))
+}
+
+/// The approach (m), nominal pressure (Pa) and contact area share of load step `step` from the
+/// contact's load curve, and its number of steps.
+fn step_values(contact: &Artifact, step: usize) -> Result<(f64, f64, f64, usize), NodeError> {
+    let curve = contact
+        .tables
+        .get(tables::LOAD_CURVE)
+        .ok_or_else(|| NodeError::new("the contact has no load curve"))?;
+    let column = |name: &str| match curve.columns.iter().find(|c| c.name == name) {
+        Some(c) => match &c.data {
+            ColumnData::Float(v) => v.get(step).copied().ok_or_else(|| {
+                NodeError::new(format!(
+                    "the contact has {} load steps, not a step {step}",
+                    v.len()
+                ))
+            }),
+            _ => Err(NodeError::new(format!(
+                "load curve column {name} is not a float"
+            ))),
+        },
+        None => Err(NodeError::new(format!(
+            "the load curve has no column {name}"
+        ))),
+    };
+    Ok((
+        column(APPROACH)?,
+        column(NOMINAL_PRESSURE)?,
+        column(AREA_FRACTION)?,
+        curve.rows(),
+    ))
+}
+
+/// The pressure map and the fields of `reuse` (maps of another step on the grid `shape`) to be
+/// overwritten, or new ones.
+fn reused(reuse: Option<StepMaps>, shape: (usize, usize)) -> (Array2<f64>, ContactFields) {
+    match reuse {
+        Some(maps) if maps.pressure.dim() == shape => (
+            maps.pressure,
+            ContactFields {
+                pressure: None,
+                gap: Some(maps.gap),
+                deformation_first: Some(maps.deformation_lower),
+                deformation_second: maps.deformation_upper,
+                plastic_penetration: Some(maps.plastic_penetration),
+            },
+        ),
+        _ => (Array2::zeros(shape), ContactFields::default()),
+    }
 }
 
 /// The displacement of earlier load step `step` among the contact's [`STEP_DISPLACEMENTS`].
