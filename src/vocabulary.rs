@@ -71,6 +71,10 @@ pub mod arrays {
     /// The upper body's heights z₂ (m, outward towards the lower body) the contact was solved
     /// with; only with an upper surface.
     pub const HEIGHT_UPPER: &str = "height_upper";
+    /// The composite elastic displacement u = u₁ + u₂ (m) of every load step before the final
+    /// one, `[[step, iy, ix]]`: derived from the steps' pressure when a contact is computed or
+    /// read for its consumers, never stored in the cache.
+    pub const STEP_DISPLACEMENTS: &str = "step_displacements";
 }
 
 /// Metric columns (SI; the tables append the unit: `nominal_pressure_Pa`).

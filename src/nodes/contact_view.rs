@@ -13,6 +13,9 @@ use crate::engine::artifact::{Artifact, ColumnData};
 use crate::engine::node::NodeError;
 use crate::engine::value::Value;
 
+/// The composite displacement of each load step before the final one, `[[step, iy, ix]]` (m),
+/// which the contact derives once for all its consumers (`ContactTask::step_maps` reads it).
+pub(crate) use crate::vocabulary::arrays::STEP_DISPLACEMENTS;
 /// The final step's maps (pressure in Pa, gap, deformations, plastic penetration in m,
 /// `[[iy, ix]]`; no upper deformation against a rigid flat), the composite height z₁ + z₂ (m)
 /// the contact was solved on (the lower heights against a flat) and the upper body's heights z₂
@@ -64,11 +67,12 @@ pub(crate) fn contact_points(pressure: ArrayView2<f64>) -> ArrayD<f64> {
         .unwrap_or_else(|_| unreachable!("2 × m values in a 2 × m array"))
 }
 
-/// The pressure map of `(ny, nx)` points whose contact points are `points` ([`contact_points`]).
-pub(crate) fn pressure_of_contact_points(
+/// `pressure` (its grid's shape kept, all of it overwritten) set to the pressure map whose
+/// contact points are `points` ([`contact_points`]).
+pub(crate) fn fill_pressure_of_contact_points(
     points: &ArrayD<f64>,
-    (ny, nx): (usize, usize),
-) -> Result<Array2<f64>, NodeError> {
+    pressure: &mut Array2<f64>,
+) -> Result<(), NodeError> {
     let bad = |why: &str| NodeError::new(format!("contact pressure of a load step: {why}"));
     let points = points
         .view()
@@ -77,10 +81,10 @@ pub(crate) fn pressure_of_contact_points(
     if points.nrows() != 2 {
         return Err(bad("not a 2 × m array"));
     }
-    let mut pressure = Array2::zeros((ny, nx));
     let flat = pressure
         .as_slice_mut()
-        .unwrap_or_else(|| unreachable!("a new array is contiguous"));
+        .ok_or_else(|| bad("the map is not one contiguous array"))?;
+    flat.fill(0.0);
     for (&index, &p) in points.row(0).iter().zip(points.row(1)) {
         let slot = (index >= 0.0 && index.fract() == 0.0)
             .then(|| flat.get_mut(index as usize))
@@ -88,7 +92,7 @@ pub(crate) fn pressure_of_contact_points(
             .ok_or_else(|| bad("a point index outside the grid"))?;
         *slot = p;
     }
-    Ok(pressure)
+    Ok(())
 }
 
 /// The final step's fields of a contact run with `fields: true` (or, from [`StepMaps::view`],

@@ -21,9 +21,9 @@ use crate::engine::node::{NodeSpec, NodeTask, UpstreamRef};
 use crate::engine::study::{ResolveContext, SpecError};
 
 /// Peak bytes per grid point that each worker thread adds to a node that transforms or reduces a
-/// grid in parallel (the contact solver, deriving a load step's maps, a measured surface's
-/// preprocessing and statistics): its FFT scratch and partial sums; an upper bound (figures:
-/// docs/robustness.md, "Memory").
+/// grid in parallel (the contact solver and the displacements of its load steps, a measured
+/// surface's preprocessing and statistics): its FFT scratch and partial sums; an upper bound
+/// (figures: docs/robustness.md, "Memory").
 const THREAD_BYTES_PER_POINT: u64 = 8;
 
 /// [`THREAD_BYTES_PER_POINT`] for each thread of the current worker pool, bytes per grid point.

@@ -117,6 +117,11 @@ fn derived_maps_equal_the_solvers_at_every_step() {
             if name.starts_with("pressure_step_") {
                 continue;
             }
+            if name == "step_displacements" {
+                // Convolved from the same stored pressures by the same operator.
+                assert_eq!(array, &lean.arrays[name], "periodic {periodic}");
+                continue;
+            }
             let d = relative_difference(map(array), map(&lean.arrays[name]));
             assert!(d <= 1e-12, "periodic {periodic}, final {name}: {d:e}");
         }
@@ -124,8 +129,9 @@ fn derived_maps_equal_the_solvers_at_every_step() {
         // Every step: the maps of `c3` at step i against the solver's maps of the contact
         // stopped there (the same warm-started steps, so the same solution).
         let task = c3.task.as_any().downcast_ref::<ContactTask>().unwrap();
+        let mut previous = None;
         for (step, stopped) in ["c1", "c2", "c3"].into_iter().enumerate() {
-            let maps: StepMaps = task.step_maps(&lean, step).unwrap();
+            let maps: StepMaps = task.step_maps(&lean, step, previous.take()).unwrap();
             let solved = &artifacts[stopped];
             for (name, derived) in [
                 ("pressure", maps.pressure.view()),
@@ -142,7 +148,8 @@ fn derived_maps_equal_the_solvers_at_every_step() {
             let view = maps.view(&lean).unwrap();
             assert_eq!(view.pressure, maps.pressure.view());
             assert_eq!(view.composite_height, map(&full.arrays["composite_height"]));
+            previous = Some(maps);
         }
-        assert!(task.step_maps(&lean, 3).is_err());
+        assert!(task.step_maps(&lean, 3, None).is_err());
     }
 }

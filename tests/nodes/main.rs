@@ -12,6 +12,7 @@ mod friction_steps;
 mod friction_trust;
 #[path = "../nodes_common/mod.rs"]
 mod nodes_common;
+mod step_sharing;
 mod surface_functional_node;
 mod surface_node;
 mod surface_spectrum_twin;

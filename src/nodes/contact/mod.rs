@@ -18,7 +18,7 @@ use serde::Deserialize;
 
 use super::contact_view::{
     contact_points, step_pressure_name, COMPOSITE_HEIGHT, DEFORMATION_LOWER, DEFORMATION_UPPER,
-    GAP, HEIGHT_UPPER, PLASTIC_PENETRATION, PRESSURE,
+    GAP, HEIGHT_UPPER, PLASTIC_PENETRATION, PRESSURE, STEP_DISPLACEMENTS,
 };
 use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
@@ -40,9 +40,11 @@ use crate::vocabulary::contact_parameters::{
 use crate::vocabulary::metrics::{APPROACH, NOMINAL_PRESSURES, POISSON_RATIO};
 use crate::vocabulary::{roles, tables};
 
+mod memory;
 mod results;
 mod steps;
 
+use memory::memory_estimate;
 pub use results::final_step_metrics;
 use results::{load_curve_table, store_fields};
 use steps::array2;
@@ -56,7 +58,8 @@ pub(crate) use crate::vocabulary::tables::CONTACTS as TABLE;
 /// transforms with a double-precision polish, values within the solver's tolerance of 28's).
 pub const CONTACT_KIND_VERSION: u32 = 29;
 
-/// The maps a contact's cache entry leaves out and [`ContactTask::derive_arrays`] derives.
+/// The maps a contact's cache entry leaves out and [`ContactTask::derive_arrays`] derives (the
+/// earlier steps' displacements only for its consumers, never stored).
 const DERIVED_ARRAYS: &[&str] = &[
     COMPOSITE_HEIGHT,
     HEIGHT_UPPER,
@@ -64,6 +67,7 @@ const DERIVED_ARRAYS: &[&str] = &[
     DEFORMATION_LOWER,
     DEFORMATION_UPPER,
     PLASTIC_PENETRATION,
+    STEP_DISPLACEMENTS,
 ];
 
 /// The fields derived from a step's pressure: all but the pressure itself.
@@ -154,6 +158,7 @@ impl ContactSpec {
             points,
             periodic,
             fields,
+            pressures.len(),
             super::thread_scratch_bytes_per_point(),
         );
         Ok(ContactTask {
@@ -293,27 +298,6 @@ pub struct ContactTask {
     points: u64,
     /// Peak memory in bytes, from the grid ([`memory_estimate`]).
     memory_estimate: u64,
-}
-
-/// Peak bytes per grid point of the solver on periodic surfaces and on non-periodic ones (its
-/// FFTs run on the grid padded to twice each side): its maps, spectra and the solver's
-/// single-precision copies, beside the threads' scratch.
-const SOLVER_BYTES_PER_POINT: [u64; 2] = [11 * 8, 25 * 8];
-/// Peak bytes per grid point of the final step's maps kept for consumers (`fields: true`): the
-/// pressure, gap, both deformations, plastic penetration, composite height and upper heights.
-const FIELDS_BYTES_PER_POINT: u64 = 7 * 8;
-/// The node's bytes whatever the grid: the solver's plans and options, the load curve and
-/// storing the result in the cache.
-const SOLVER_FIXED_BYTES: u64 = 20 << 20;
-
-/// The peak memory of a contact on `points` grid points, bytes: the solver's arrays, the worker
-/// threads' `scratch` (bytes per point, [`super::thread_scratch_bytes_per_point`]) and the fields
-/// when kept; an upper bound of the process's peak less its base (figures: docs/robustness.md,
-/// "Memory").
-fn memory_estimate(points: u64, periodic: bool, fields: bool, scratch: u64) -> u64 {
-    let solver = SOLVER_BYTES_PER_POINT[usize::from(!periodic)];
-    let kept = if fields { FIELDS_BYTES_PER_POINT } else { 0 };
-    SOLVER_FIXED_BYTES.saturating_add(points.saturating_mul(solver + scratch + kept))
 }
 
 impl ContactTask {
@@ -456,6 +440,9 @@ impl NodeTask for ContactTask {
         )
         .map_err(|e| NodeError::new(format!("maps of the final load step: {e}")))?;
         store_fields(artifact, fields);
+        if let Some(u) = self.earlier_displacements(artifact)? {
+            artifact.arrays.insert(String::from(STEP_DISPLACEMENTS), u);
+        }
         if let Some(z) = setup.composite {
             artifact
                 .arrays
@@ -518,6 +505,9 @@ impl NodeTask for ContactTask {
                 .ok_or_else(|| NodeError::new("the final load step left no fields"))?;
             store_fields(&mut artifact, fields);
             artifact.arrays.extend(earlier);
+            if let Some(u) = self.earlier_displacements(&artifact)? {
+                artifact.arrays.insert(String::from(STEP_DISPLACEMENTS), u);
+            }
         }
         artifact.flags = input_flags(inputs)?;
         validity::check_artifact(KIND, &mut artifact)?;

@@ -1,14 +1,23 @@
 //! Load steps of a contact: solved one after the other (each converged step handed to the node
 //! while the solver holds it), and the maps of any step derived from its stored pressure.
+//!
+//! The expensive part of a step's maps, the convolution `u = K p` of its pressure, is done once
+//! per contact for all its consumers: [`ContactTask::earlier_displacements`] convolves every
+//! earlier step's pressure with one operator when the contact is computed or read for its
+//! dependants (the artifact then holds them as [`STEP_DISPLACEMENTS`] until its last dependant
+//! is done), and [`ContactTask::step_maps`] only assembles a step's maps from it, into the
+//! arrays of the step read before.
 
-use ndarray::{ArrayView2, Ix2};
+use ndarray::{Array2, Array3, ArrayD, ArrayView2, Axis, Ix2, Ix3};
 
 use super::super::contact_view::{
-    pressure_of_contact_points, step_pressure_name, StepMaps, COMPOSITE_HEIGHT, PRESSURE,
+    fill_pressure_of_contact_points, step_pressure_name, StepMaps, COMPOSITE_HEIGHT, PRESSURE,
+    STEP_DISPLACEMENTS,
 };
 use super::{ContactTask, DERIVED_FIELDS};
 use crate::contact::{
-    fields_from_pressure, CompositeGap, ContactError, ContactProblem, ContactSolver, LoadCurve,
+    fields_from_displacement, ContactError, ContactFields, ContactSolver, DisplacementOperator,
+    LoadCurve,
 };
 use crate::engine::artifact::{Artifact, ColumnData};
 use crate::engine::node::NodeError;
@@ -20,71 +29,114 @@ impl ContactTask {
     /// The maps of load step `step` (0 for the first listed pressure) of this contact, whose
     /// artifact `contact` (computed, or cached with its derived arrays, as a consumer receives
     /// it) holds the step's pressure: the other maps from it, the step's approach and the
-    /// composite height by one convolution ([`fields_from_pressure`]). An error when the contact
-    /// kept no fields or has no such step.
-    pub fn step_maps(&self, contact: &Artifact, step: usize) -> Result<StepMaps, NodeError> {
-        let curve = contact
-            .tables
-            .get(tables::LOAD_CURVE)
-            .ok_or_else(|| NodeError::new("the contact has no load curve"))?;
-        let column = |name: &str| match curve.columns.iter().find(|c| c.name == name) {
-            Some(c) => match &c.data {
-                ColumnData::Float(v) => v.get(step).copied().ok_or_else(|| {
-                    NodeError::new(format!(
-                        "the contact has {} load steps, not a step {step}",
-                        v.len()
-                    ))
-                }),
-                _ => Err(NodeError::new(format!(
-                    "load curve column {name} is not a float"
-                ))),
-            },
-            None => Err(NodeError::new(format!(
-                "the load curve has no column {name}"
-            ))),
-        };
-        let (approach, nominal_pressure, area_fraction) = (
-            column(APPROACH)?,
-            column(NOMINAL_PRESSURE)?,
-            column(AREA_FRACTION)?,
-        );
+    /// composite height ([`fields_from_displacement`]), with the step's displacement `u = K p`
+    /// the contact derived once for all its consumers ([`Self::earlier_displacements`]; the
+    /// final step's is convolved here). The arrays of `reuse` (the maps of another step of this
+    /// contact) are overwritten instead of allocating new ones. An error when the contact kept
+    /// no fields or has no such step.
+    pub fn step_maps(
+        &self,
+        contact: &Artifact,
+        step: usize,
+        reuse: Option<StepMaps>,
+    ) -> Result<StepMaps, NodeError> {
+        let (approach, nominal_pressure, area_fraction, steps) = step_values(contact, step)?;
         let composite = array2(contact, COMPOSITE_HEIGHT)?;
-        let problem = self.problem_of_composite(composite, contact)?;
-        let pressure = if step + 1 == curve.rows() {
-            array2(contact, PRESSURE)?.to_owned()
+        let (mut pressure, mut fields) = reused(reuse, composite.dim());
+        let final_step = step + 1 == steps;
+        if final_step {
+            pressure.assign(&array2(contact, PRESSURE)?);
         } else {
             let name = step_pressure_name(step);
             let points = contact.arrays.get(&name).ok_or_else(|| no_fields(&name))?;
-            pressure_of_contact_points(points, composite.dim())?
+            fill_pressure_of_contact_points(points, &mut pressure)?;
+        }
+        let failed = |e: ContactError| NodeError::new(format!("maps of load step {step}: {e}"));
+        let convolved;
+        let displacement = if final_step {
+            let mut u = Array2::zeros(composite.dim());
+            let slice = u
+                .as_slice_mut()
+                .unwrap_or_else(|| unreachable!("a new array"));
+            self.displacement_operator(contact, composite.dim())?
+                .apply(pressure.view(), slice)
+                .map_err(failed)?;
+            convolved = u;
+            convolved.view()
+        } else {
+            earlier_displacement(contact, step)?
         };
-        let f = fields_from_pressure(&problem, pressure.view(), approach, DERIVED_FIELDS)
-            .map_err(|e| NodeError::new(format!("maps of load step {step}: {e}")))?;
+        fields_from_displacement(
+            composite,
+            pressure.view(),
+            displacement,
+            approach,
+            &self.material,
+            DERIVED_FIELDS,
+            &mut fields,
+        )
+        .map_err(failed)?;
         let missing = || NodeError::new(format!("maps of load step {step}: a field is missing"));
         Ok(StepMaps {
-            gap: f.gap.ok_or_else(missing)?,
-            deformation_lower: f.deformation_first.ok_or_else(missing)?,
-            deformation_upper: f.deformation_second,
-            plastic_penetration: f.plastic_penetration.ok_or_else(missing)?,
+            gap: fields.gap.ok_or_else(missing)?,
+            deformation_lower: fields.deformation_first.ok_or_else(missing)?,
+            deformation_upper: fields.deformation_second,
+            plastic_penetration: fields.plastic_penetration.ok_or_else(missing)?,
             pressure,
             nominal_pressure,
             area_fraction,
         })
     }
 
-    /// The contact problem on the composite height `z` the contact was solved on, with the grid
-    /// spacings of its metrics: the gap `g₀ = max z − z` as the solver had it.
-    fn problem_of_composite(
+    /// The composite displacement `u = K p` (m) of every load step before the final one, from
+    /// the steps' pressure in `contact` (this contact's artifact, with the final step's metrics
+    /// and every step's pressure), by one operator for all steps: the [`STEP_DISPLACEMENTS`]
+    /// array, `[[step, iy, ix]]`, which every consumer of the contact reads instead of
+    /// convolving the steps itself. `None` without fields or earlier steps.
+    pub(super) fn earlier_displacements(
         &self,
-        z: ArrayView2<f64>,
         contact: &Artifact,
-    ) -> Result<ContactProblem, NodeError> {
+    ) -> Result<Option<ArrayD<f64>>, NodeError> {
+        let earlier = self.pressures.len().saturating_sub(1);
+        if !self.fields || earlier == 0 {
+            return Ok(None);
+        }
+        let shape = array2(contact, PRESSURE)?.dim();
+        let mut operator = self.displacement_operator(contact, shape)?;
+        let mut displacements = Array3::zeros((earlier, shape.0, shape.1));
+        let mut pressure = Array2::zeros(shape);
+        for (step, mut u) in displacements.outer_iter_mut().enumerate() {
+            let name = step_pressure_name(step);
+            let points = contact.arrays.get(&name).ok_or_else(|| no_fields(&name))?;
+            fill_pressure_of_contact_points(points, &mut pressure)?;
+            let u = u
+                .as_slice_mut()
+                .unwrap_or_else(|| unreachable!("a step of a new array is one slice"));
+            operator
+                .apply(pressure.view(), u)
+                .map_err(|e| NodeError::new(format!("displacement of load step {step}: {e}")))?;
+        }
+        Ok(Some(displacements.into_dyn()))
+    }
+
+    /// The influence operator of the contact's grid (`shape`, and the spacings among the
+    /// metrics of its artifact `contact`), material and boundary, as the solver had it.
+    fn displacement_operator(
+        &self,
+        contact: &Artifact,
+        shape: (usize, usize),
+    ) -> Result<DisplacementOperator, NodeError> {
         let metric = |name: &str| match contact.metric(name).map(|f| &f.value) {
             Some(Value::Float(v)) => Ok(*v),
             _ => Err(NodeError::new(format!("contact node: no {name}"))),
         };
-        let gap = CompositeGap::from_gap_array(z.mapv(|h| -h).view(), metric(DX)?, metric(DY)?)
-            .map_err(|e| NodeError::new(format!("gap: {e}")))?;
-        Ok(ContactProblem::new(gap, self.material, self.boundary()))
+        DisplacementOperator::new(
+            shape,
+            (metric(DX)?, metric(DY)?),
+            &self.material,
+            self.boundary(),
+        )
+        .map_err(|e| NodeError::new(format!("influence operator: {e}")))
     }
 
     /// Solves the load steps in order, each warm-started from the previous one (as
@@ -143,6 +195,73 @@ pub(super) fn no_fields(name: &str) -> NodeError {
     NodeError::new(format!(
         "the contact node holds no '{name}' array: run it with `fields: true`"
     ))
+}
+
+/// The approach (m), nominal pressure (Pa) and contact area share of load step `step` from the
+/// contact's load curve, and its number of steps.
+fn step_values(contact: &Artifact, step: usize) -> Result<(f64, f64, f64, usize), NodeError> {
+    let curve = contact
+        .tables
+        .get(tables::LOAD_CURVE)
+        .ok_or_else(|| NodeError::new("the contact has no load curve"))?;
+    let column = |name: &str| match curve.columns.iter().find(|c| c.name == name) {
+        Some(c) => match &c.data {
+            ColumnData::Float(v) => v.get(step).copied().ok_or_else(|| {
+                NodeError::new(format!(
+                    "the contact has {} load steps, not a step {step}",
+                    v.len()
+                ))
+            }),
+            _ => Err(NodeError::new(format!(
+                "load curve column {name} is not a float"
+            ))),
+        },
+        None => Err(NodeError::new(format!(
+            "the load curve has no column {name}"
+        ))),
+    };
+    Ok((
+        column(APPROACH)?,
+        column(NOMINAL_PRESSURE)?,
+        column(AREA_FRACTION)?,
+        curve.rows(),
+    ))
+}
+
+/// The pressure map and the fields of `reuse` (maps of another step on the grid `shape`) to be
+/// overwritten, or new ones.
+fn reused(reuse: Option<StepMaps>, shape: (usize, usize)) -> (Array2<f64>, ContactFields) {
+    match reuse {
+        Some(maps) if maps.pressure.dim() == shape => (
+            maps.pressure,
+            ContactFields {
+                pressure: None,
+                gap: Some(maps.gap),
+                deformation_first: Some(maps.deformation_lower),
+                deformation_second: maps.deformation_upper,
+                plastic_penetration: Some(maps.plastic_penetration),
+            },
+        ),
+        _ => (Array2::zeros(shape), ContactFields::default()),
+    }
+}
+
+/// The displacement of earlier load step `step` among the contact's [`STEP_DISPLACEMENTS`].
+fn earlier_displacement(contact: &Artifact, step: usize) -> Result<ArrayView2<'_, f64>, NodeError> {
+    let all = contact
+        .arrays
+        .get(STEP_DISPLACEMENTS)
+        .ok_or_else(|| no_fields(STEP_DISPLACEMENTS))?
+        .view()
+        .into_dimensionality::<Ix3>()
+        .map_err(|e| NodeError::new(format!("contact array {STEP_DISPLACEMENTS}: {e}")))?;
+    if step >= all.len_of(Axis(0)) {
+        return Err(NodeError::new(format!(
+            "the contact holds the displacements of {} earlier load steps, not of step {step}",
+            all.len_of(Axis(0))
+        )));
+    }
+    Ok(all.index_axis_move(Axis(0), step))
 }
 
 /// The map called `name` of `artifact`.

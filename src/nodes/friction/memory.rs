@@ -10,33 +10,24 @@ const BYTES_PER_MAP_POINT: u64 = 3 * 8;
 /// The result rows and the law's tables, whatever the grid.
 const FIXED_BYTES: u64 = 1 << 20;
 
-/// Peak bytes per point for the maps of one earlier load step, derived while that step's friction
-/// is computed (`ContactTask::step_maps`): the gap, both deformations, the plastic penetration and
-/// the pressure, 5 f64, and the influence operator's kernel and transform buffers, 7 f64 more,
-/// beside the worker threads' scratch.
-const BYTES_PER_DERIVED_STEP_POINT: u64 = 12 * 8;
+/// Peak bytes per point for the maps of the earlier load steps (`ContactTask::step_maps`): the
+/// pressure, gap, both deformations and the plastic penetration, 5 f64, allocated once and
+/// overwritten at every step. The convolution each step needs is the contact's, done once for
+/// all its consumers and charged to the contact's artifact.
+const BYTES_PER_STEP_MAP_POINT: u64 = 5 * 8;
 
-/// Peak bytes of deriving earlier load steps' maps whatever the grid: the influence operator's
-/// plans.
-const DERIVED_STEP_FIXED_BYTES: u64 = 12 << 20;
-
-/// The peak memory of a friction node with `setup`, bytes, where deriving a load step's maps adds
-/// the worker threads' `scratch` (bytes per point, `nodes::thread_scratch_bytes_per_point`); an
-/// upper bound of the process's peak less its base and the contact's maps (figures:
-/// docs/robustness.md, "Memory").
-pub(super) fn estimate(setup: &MethodSetup, scratch: u64) -> u64 {
+/// The peak memory of a friction node with `setup`, bytes; an upper bound of the process's peak
+/// less its base and the contact's maps (figures: docs/robustness.md, "Memory").
+pub(super) fn estimate(setup: &MethodSetup) -> u64 {
     let contact = match setup {
         MethodSetup::Statistical { .. } => return FIXED_BYTES,
         MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } => contact,
     };
     let points = contact.task.points();
-    let (fixed, per_point) = if contact.task.step_count() > 1 {
-        (
-            FIXED_BYTES + DERIVED_STEP_FIXED_BYTES,
-            BYTES_PER_MAP_POINT + BYTES_PER_DERIVED_STEP_POINT + scratch,
-        )
+    let per_point = if contact.task.step_count() > 1 {
+        BYTES_PER_MAP_POINT + BYTES_PER_STEP_MAP_POINT
     } else {
-        (FIXED_BYTES, BYTES_PER_MAP_POINT)
+        BYTES_PER_MAP_POINT
     };
-    fixed.saturating_add(points.saturating_mul(per_point))
+    FIXED_BYTES.saturating_add(points.saturating_mul(per_point))
 }

@@ -14,9 +14,10 @@
 //! * **Coefficient**: μ_s = Σ Q_i/(Σ P_i − F_a) of the section; forces are scaled to
 //!   `nominal_area` like the per-summit method (μ_s is invariant under that scaling).
 //! * **Load steps**: every step of the contact (`friction_curve`, one row each); the earlier
-//!   steps' maps are derived from their stored pressure by one convolution each
-//!   (`ContactTask::step_maps`), the final step's read as the contact stores them. The row and
-//!   the spots table are the final step's.
+//!   steps' maps are assembled from their stored pressure and the displacement the contact
+//!   convolved once for all its consumers (`ContactTask::step_maps`), into the same arrays at
+//!   every step; the final step's are read as the contact stores them. The row and the spots
+//!   table are the final step's.
 //! * **Trust**: the load shares beyond the law's fit, without a radius, on merged spots under a
 //!   radius-based law, on one-pixel spots, the adhesion share F_a/F_n, spot-area and local-μ
 //!   quantiles over the spots (the validity rules flag the shares above their bounds).
@@ -89,14 +90,20 @@ pub(super) fn compute(
 ) -> Result<Vec<Vec<Field>>, NodeError> {
     let n = step_nominal_pressures(artifact)?.len();
     let mut rows = Vec::with_capacity(n);
+    let mut maps = None;
     for step in 0..n - 1 {
-        let row = contact
+        let step_maps = contact
             .task
-            .step_maps(artifact, step)
-            .and_then(|maps| step_row(task, &maps.view(artifact)?, section))
+            .step_maps(artifact, step, maps.take())
+            .map_err(|e| at_step(e, step, n))?;
+        let row = step_maps
+            .view(artifact)
+            .and_then(|view| step_row(task, &view, section))
             .map_err(|e| at_step(e, step, n))?;
         rows.push(row.0);
+        maps = Some(step_maps);
     }
+    drop(maps);
     let fields = ContactView::of(artifact)?;
     let (metrics, found) = step_row(task, &fields, section)?;
     rows.push(metrics);

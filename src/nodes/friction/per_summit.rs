@@ -20,9 +20,10 @@
 //!   μ_s is invariant under that scaling and is the whole-surface estimate.
 //! * **Area**: `real_area`/`area_fraction` are the contact node's (points with p > 0), scaled to A_n.
 //! * **Load steps**: every step of the contact (`friction_curve`, one row each) on the same
-//!   summits; the earlier steps' maps are derived from their stored pressure by one
-//!   convolution each (`ContactTask::step_maps`), the final step's read as the contact stores
-//!   them. The row and the summits table are the final step's.
+//!   summits; the earlier steps' maps are assembled from their stored pressure and the
+//!   displacement the contact convolved once for all its consumers (`ContactTask::step_maps`),
+//!   into the same arrays at every step; the final step's are read as the contact stores them.
+//!   The row and the summits table are the final step's.
 //! * **ψ**: the plasticity index of the identified summits, (2E/(πKH))·√(σ_s/R̄) with σ_s the std
 //!   of their heights and R̄ their mean radius.
 
@@ -102,14 +103,20 @@ pub(super) fn compute(
     };
     let n = step_nominal_pressures(artifact)?.len();
     let mut rows = Vec::with_capacity(n);
+    let mut step_maps = None;
     for step in 0..n - 1 {
-        let row = contact
+        let m = contact
             .task
-            .step_maps(artifact, step)
-            .and_then(|m| step_row(task, &m.view(artifact)?, &on))
+            .step_maps(artifact, step, step_maps.take())
+            .map_err(|e| at_step(e, step, n))?;
+        let row = m
+            .view(artifact)
+            .and_then(|view| step_row(task, &view, &on))
             .map_err(|e| at_step(e, step, n))?;
         rows.push(row.0);
+        step_maps = Some(m);
     }
+    drop(step_maps);
     let (metrics, contacts, result) = step_row(task, &maps, &on)?;
     rows.push(metrics);
     if summits_table {

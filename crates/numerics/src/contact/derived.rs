@@ -9,11 +9,16 @@
 //! to round-off (bit for bit where both run the same transforms); [`assemble_fields`] is the one
 //! place that turns `p`, `g` and `u` into [`ContactFields`], for the solver and for this
 //! recomputation alike.
+//!
+//! A caller deriving several steps of one contact splits the work: the convolution `u = K p` of
+//! each step by one [`DisplacementOperator`] (built once: its kernel and plans serve every
+//! step), and the fields from `u` by [`fields_from_displacement`], into arrays reused from one
+//! step to the next. The result is [`fields_from_pressure`]'s, bit for bit.
 
-use ndarray::{Array2, ArrayView2};
+use ndarray::{Array2, ArrayView2, CowArray, Ix2};
 
 use super::error::ContactError;
-use super::influence::InfluenceOperator;
+use super::influence::{Boundary, InfluenceOperator};
 use super::load_curve::ContactFields;
 use super::material::ContactMaterial;
 use super::options::FieldRequest;
@@ -27,25 +32,160 @@ pub(crate) fn assemble_fields(
     material: &ContactMaterial,
     request: FieldRequest,
 ) -> ContactFields {
+    let mut fields = ContactFields::default();
+    write_fields(
+        &mut fields,
+        shape,
+        (&|i| p[i], &|i| g[i], &|i| u[i]),
+        material,
+        request,
+    );
+    fields
+}
+
+/// The per-point values of a step's pressure `p` (Pa), gap `g` and composite displacement `u`
+/// (m) at the flat index `iy·nx + ix`.
+type PointValues<'a> = (
+    &'a dyn Fn(usize) -> f64,
+    &'a dyn Fn(usize) -> f64,
+    &'a dyn Fn(usize) -> f64,
+);
+
+/// The requested fields of [`assemble_fields`] written into `fields`: an array of the grid's
+/// shape is overwritten in place, any other one replaced; a field not requested is `None`.
+fn write_fields(
+    fields: &mut ContactFields,
+    shape: (usize, usize),
+    (p, g, u): PointValues<'_>,
+    material: &ContactMaterial,
+    request: FieldRequest,
+) {
     let plim = material.flow_pressure();
     let share = material.first_body_share();
-    let grid =
-        |f: &dyn Fn(usize) -> f64| Array2::from_shape_fn(shape, |(iy, ix)| f(iy * shape.1 + ix));
-    ContactFields {
-        pressure: request.pressure.then(|| grid(&|i| p[i])),
-        gap: request.gap.then(|| grid(&|i| g[i])),
-        deformation_first: request.deformation.then(|| grid(&|i| u[i] * share)),
-        deformation_second: request.deformation.then(|| grid(&|i| u[i] * (1.0 - share))),
-        plastic_penetration: request.plastic_penetration.then(|| {
-            grid(&|i| {
-                if p[i] >= plim {
-                    (-g[i]).max(0.0)
-                } else {
-                    0.0
-                }
-            })
-        }),
+    fill(&mut fields.pressure, request.pressure, shape, p);
+    fill(&mut fields.gap, request.gap, shape, g);
+    fill(
+        &mut fields.deformation_first,
+        request.deformation,
+        shape,
+        &|i| u(i) * share,
+    );
+    fill(
+        &mut fields.deformation_second,
+        request.deformation,
+        shape,
+        &|i| u(i) * (1.0 - share),
+    );
+    fill(
+        &mut fields.plastic_penetration,
+        request.plastic_penetration,
+        shape,
+        &|i| {
+            if p(i) >= plim {
+                (-g(i)).max(0.0)
+            } else {
+                0.0
+            }
+        },
+    );
+}
+
+/// `slot` set to the `shape` grid of `f` at every flat index `iy·nx + ix` (its own array reused
+/// when it has that shape), or to `None` when not `wanted`.
+fn fill(
+    slot: &mut Option<Array2<f64>>,
+    wanted: bool,
+    shape: (usize, usize),
+    f: &dyn Fn(usize) -> f64,
+) {
+    if !wanted {
+        *slot = None;
+        return;
     }
+    if let Some(values) = slot
+        .as_mut()
+        .filter(|a| a.dim() == shape)
+        .and_then(|a| a.as_slice_mut())
+    {
+        for (i, v) in values.iter_mut().enumerate() {
+            *v = f(i);
+        }
+        return;
+    }
+    *slot = Some(Array2::from_shape_fn(
+        shape,
+        |(iy, ix)| f(iy * shape.1 + ix),
+    ));
+}
+
+/// `u = K p` on one grid by the solver's influence operator in double precision, built once (its
+/// kernel, plans and buffers) for the pressures of any number of load steps: a convolution keeps
+/// nothing of the one before, so each result equals that of a newly built operator, bit for bit.
+#[derive(Debug)]
+pub struct DisplacementOperator {
+    operator: InfluenceOperator,
+    /// `(ny, nx)`.
+    shape: (usize, usize),
+}
+
+impl DisplacementOperator {
+    /// The operator of a `shape = (ny, nx)` grid of spacing `(dx, dy)` (m), the composite modulus
+    /// of `material` and `boundary`, as the solver builds it.
+    pub fn new(
+        shape: (usize, usize),
+        (dx, dy): (f64, f64),
+        material: &ContactMaterial,
+        boundary: Boundary,
+    ) -> Result<Self, ContactError> {
+        let (ny, nx) = shape;
+        let operator = InfluenceOperator::new(
+            nx,
+            ny,
+            dx,
+            dy,
+            material.composite_modulus(),
+            boundary,
+            false,
+        )?;
+        Ok(Self { operator, shape })
+    }
+
+    /// The operator of `problem`'s grid, material and boundary.
+    pub fn of_problem(problem: &ContactProblem) -> Result<Self, ContactError> {
+        let gap = problem.gap();
+        Self::new(
+            (gap.ny(), gap.nx()),
+            (gap.dx(), gap.dy()),
+            problem.material(),
+            problem.boundary(),
+        )
+    }
+
+    /// `displacement = K pressure`: the composite displacement (m, `ny · nx` values row-major) of
+    /// `pressure` (Pa, `[[iy, ix]]`). An error when either is not on the operator's grid or a
+    /// transform fails.
+    pub fn apply(
+        &mut self,
+        pressure: ArrayView2<f64>,
+        displacement: &mut [f64],
+    ) -> Result<(), ContactError> {
+        let shape = self.shape;
+        if pressure.dim() != shape || displacement.len() != shape.0 * shape.1 {
+            return Err(ContactError::FieldShape {
+                expected: shape,
+                got: pressure.dim(),
+            });
+        }
+        let p = pressure.as_standard_layout();
+        self.operator.apply(values(&p), displacement)?;
+        Ok(())
+    }
+}
+
+/// The values of a standard-layout array, row-major.
+fn values<'a>(a: &'a CowArray<'_, f64, Ix2>) -> &'a [f64] {
+    a.as_slice()
+        .unwrap_or_else(|| unreachable!("a standard-layout array is one slice"))
 }
 
 /// The requested fields of the converged step of `problem` whose pressure is `pressure` (Pa,
@@ -67,18 +207,9 @@ pub fn fields_from_pressure(
             got: pressure.dim(),
         });
     }
-    let mut operator = InfluenceOperator::new(
-        gap.nx(),
-        gap.ny(),
-        gap.dx(),
-        gap.dy(),
-        problem.material().composite_modulus(),
-        problem.boundary(),
-        false,
-    )?;
     let p: Vec<f64> = pressure.iter().copied().collect();
     let mut u = vec![0.0; p.len()];
-    operator.apply(&p, &mut u)?;
+    DisplacementOperator::of_problem(problem)?.apply(pressure, &mut u)?;
     let g: Vec<f64> = gap
         .gap()
         .iter()
@@ -91,6 +222,52 @@ pub fn fields_from_pressure(
         problem.material(),
         request,
     ))
+}
+
+/// [`fields_from_pressure`]'s fields of a step from its `pressure` (Pa) and its composite
+/// displacement `u = K p` (m, [`DisplacementOperator::apply`]), all `[[iy, ix]]` on one grid:
+/// the gap `g = g₀ + u − δ` with `g₀ = max z − z` of the composite height `z` the contact was
+/// solved on (as [`super::CompositeGap`] makes it), at the approach `approach` (m), then the
+/// fields as [`assemble_fields`] makes them, bit for bit. Written into `fields`, whose arrays are
+/// overwritten in place where they have the grid's shape (a caller deriving several steps
+/// allocates them once). An error when the maps are not on one grid.
+pub fn fields_from_displacement(
+    composite_height: ArrayView2<f64>,
+    pressure: ArrayView2<f64>,
+    displacement: ArrayView2<f64>,
+    approach: f64,
+    material: &ContactMaterial,
+    request: FieldRequest,
+    fields: &mut ContactFields,
+) -> Result<(), ContactError> {
+    let shape = composite_height.dim();
+    for got in [pressure.dim(), displacement.dim()] {
+        if got != shape {
+            return Err(ContactError::FieldShape {
+                expected: shape,
+                got,
+            });
+        }
+    }
+    let top = composite_height
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    let (z, p, u) = (
+        composite_height.as_standard_layout(),
+        pressure.as_standard_layout(),
+        displacement.as_standard_layout(),
+    );
+    let (z, p, u) = (values(&z), values(&p), values(&u));
+    let gap = |i: usize| (top - z[i]) + u[i] - approach;
+    write_fields(
+        fields,
+        shape,
+        (&|i| p[i], &gap, &|i| u[i]),
+        material,
+        request,
+    );
+    Ok(())
 }
 
 #[cfg(test)]
@@ -187,6 +364,60 @@ mod tests {
                     let d = relative_difference(a.as_ref().unwrap(), b.as_ref().unwrap());
                     assert!(d <= 1e-12, "{boundary:?} {flow_pressure} {name}: {d:e}");
                 }
+            }
+        }
+    }
+
+    /// One operator applied to every step's pressure in turn, and the fields assembled from its
+    /// displacement into the arrays of the step before, equal the fields a new operator derives
+    /// for each step alone, bit for bit (elastic and capped, periodic and isolated).
+    #[test]
+    fn one_operator_for_all_steps_gives_each_steps_fields_bit_for_bit() {
+        let (lower, upper) = (rough(5, 40), rough(6, 40));
+        for (boundary, flow_pressure) in [
+            (Boundary::Periodic, 2e9),
+            (Boundary::NonPeriodic, f64::INFINITY),
+        ] {
+            let composite = lower.heights() + upper.heights();
+            let gap = CompositeGap::from_surfaces(&lower, &upper).unwrap();
+            let material = ContactMaterial::against_rigid_flat(110e9, flow_pressure).unwrap();
+            let problem = ContactProblem::new(gap, material, boundary);
+            let options = SolverOptions {
+                fields: FieldRequest::ALL,
+                ..SolverOptions::default()
+            };
+            let mut solver = ContactSolver::new(problem.clone(), options).unwrap();
+            let curve = solver.solve_load_steps(&[2e7, 1e8, 3e8]).unwrap();
+            let mut operator = DisplacementOperator::of_problem(&problem).unwrap();
+            let mut reused = ContactFields::default();
+            for step in &curve.steps {
+                let pressure = step.fields.as_ref().unwrap().pressure.as_ref().unwrap();
+                let mut u = Array2::zeros(pressure.dim());
+                operator
+                    .apply(pressure.view(), u.as_slice_mut().unwrap())
+                    .unwrap();
+                fields_from_displacement(
+                    composite.view(),
+                    pressure.view(),
+                    u.view(),
+                    step.approach,
+                    &material,
+                    FieldRequest::ALL,
+                    &mut reused,
+                )
+                .unwrap();
+                let alone = fields_from_pressure(
+                    &problem,
+                    pressure.view(),
+                    step.approach,
+                    FieldRequest::ALL,
+                )
+                .unwrap();
+                assert_eq!(
+                    reused, alone,
+                    "{boundary:?}, step at {} Pa",
+                    step.nominal_pressure
+                );
             }
         }
     }

@@ -29,7 +29,7 @@ mod workspace;
 
 pub use crate::fft2::{FftFailure, RealFft2d};
 pub use crate::materials::MaterialError;
-pub use derived::fields_from_pressure;
+pub use derived::{fields_from_displacement, fields_from_pressure, DisplacementOperator};
 pub use error::ContactError;
 pub use gap::{CompositeGap, GapError, GapSource};
 pub use influence::Boundary;

@@ -60,6 +60,8 @@ pub struct SpotLabels {
     labels: Array2<u32>,
     count: usize,
     periodic: bool,
+    /// The points of every spot, gathered once for everything that walks the spots.
+    members: Members,
 }
 
 impl SpotLabels {
@@ -79,6 +81,11 @@ impl SpotLabels {
     /// Whether the spots were joined across the edges of a periodic grid.
     pub fn periodic(&self) -> bool {
         self.periodic
+    }
+
+    /// The points of every spot.
+    pub(crate) fn members(&self) -> &Members {
+        &self.members
     }
 
     /// Spot id of the point `(iy, ix)`; `None` out of contact or out of the grid.
@@ -261,10 +268,12 @@ pub fn label_spots(
             .copied()
             .unwrap_or(SpotLabels::OUTSIDE)
     });
+    let members = Members::gather(&labels, count);
     Ok(SpotLabels {
         labels,
         count,
         periodic,
+        members,
     })
 }
 
@@ -299,7 +308,7 @@ pub fn measure_spots(
     check_shape("pressure", shape, pressure.dim())?;
     check_shape("composite_height", shape, composite_height.dim())?;
     let spacing = (require_positive("dx", dx)?, require_positive("dy", dy)?);
-    let members = Members::gather(labels);
+    let members = &labels.members;
     let spot = SpotInput {
         labels,
         pressure,
@@ -329,23 +338,26 @@ fn check_shape(
 }
 
 /// The points of every spot in raster order, as flat indices `iy·nx + ix` grouped by spot.
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Members {
     start: Vec<usize>,
     points: Vec<u32>,
 }
 
 impl Members {
-    pub(crate) fn gather(labels: &SpotLabels) -> Self {
-        let mut start = vec![0usize; labels.count + 1];
-        for &l in labels.labels.iter().filter(|&&l| l != SpotLabels::OUTSIDE) {
+    /// The members of the `count` spots of `labels` (ids `0..count`, [`SpotLabels::OUTSIDE`]
+    /// out of contact).
+    fn gather(labels: &Array2<u32>, count: usize) -> Self {
+        let mut start = vec![0usize; count + 1];
+        for &l in labels.iter().filter(|&&l| l != SpotLabels::OUTSIDE) {
             start[l as usize + 1] += 1;
         }
-        for id in 0..labels.count {
+        for id in 0..count {
             start[id + 1] += start[id];
         }
         let mut next = start.clone();
-        let mut points = vec![0u32; start[labels.count]];
-        for (at, &l) in labels.labels.iter().enumerate() {
+        let mut points = vec![0u32; start[count]];
+        for (at, &l) in labels.iter().enumerate() {
             if l != SpotLabels::OUTSIDE {
                 points[next[l as usize]] = at as u32;
                 next[l as usize] += 1;

@@ -37,7 +37,7 @@
 use rayon::prelude::*;
 
 use crate::friction::bodies::ContactBodies;
-use crate::friction::contact_spots::{step, Members, SpotLabels};
+use crate::friction::contact_spots::{step, SpotLabels};
 use crate::friction::error::{require_positive, FrictionError};
 use crate::friction::laws::spot::{FrontGeometry, SlidingDirection};
 use crate::materials::Side;
@@ -324,7 +324,7 @@ pub fn front_geometry(
         spacing,
         tolerance: 1e-9 * dx.min(dy),
     };
-    let members = Members::gather(labels);
+    let members = labels.members();
     (0..labels.count())
         .into_par_iter()
         .map_init(Vec::new, |ring, id| front.measure(id, members.of(id), ring))
