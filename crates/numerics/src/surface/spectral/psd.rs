@@ -174,23 +174,37 @@ pub fn radial_psd_of(p: &Periodogram, map: &HeightMap) -> PsdTable {
     let mut weight = vec![0.0; bins];
     let mut modes = vec![0usize; bins];
     let wavenumbers = p.wavenumbers();
-    for ((j, i), c) in p.c.indexed_iter() {
-        let q = wavenumbers[p.mirrored_row(j)][i];
-        if q == 0.0 || q > q_max {
-            continue;
-        }
-        let k = (q / dq + 0.5).floor() as usize;
-        if let (Some(sq), Some(sc), Some(w), Some(m)) = (
-            sum_q.get_mut(k),
-            sum_c.get_mut(k),
-            weight.get_mut(k),
-            modes.get_mut(k),
-        ) {
+    // The annulus of each |q| (`u32::MAX`: outside 0 < |q| ≤ q_max), in parallel.
+    let annuli: Vec<Vec<u32>> = wavenumbers
+        .par_iter()
+        .map(|row| {
+            row.iter()
+                .map(|&q| {
+                    if q == 0.0 || q > q_max {
+                        u32::MAX
+                    } else {
+                        (q / dq + 0.5).floor() as u32
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    for (j, power) in p.c.rows().into_iter().enumerate() {
+        let mirrored = p.mirrored_row(j);
+        let cells = power
+            .iter()
+            .zip(&wavenumbers[mirrored])
+            .zip(&annuli[mirrored]);
+        for (i, ((&c, &q), &k)) in cells.enumerate() {
+            let k = k as usize;
+            if k >= bins {
+                continue;
+            }
             let mult = p.multiplicity(i);
-            *sq += mult * q;
-            *sc += mult * c;
-            *w += mult;
-            *m += mult as usize;
+            sum_q[k] += mult * q;
+            sum_c[k] += mult * c;
+            weight[k] += mult;
+            modes[k] += mult as usize;
         }
     }
     let mut table = PsdTable {
