@@ -1,6 +1,6 @@
 //! [`RealFft2d`] for `ndarray` grids, with the half spectrum in the natural layout `[ky][kx]`.
 
-use ndarray::Array2;
+use ndarray::{Array2, ArrayView2};
 use realfft::num_complex::Complex;
 
 use super::transpose::transpose_all;
@@ -30,6 +30,28 @@ pub(crate) fn inverse_real_2d(
     half: &Array2<Complex<f64>>,
     nx: usize,
 ) -> Result<Array2<f64>, FftFailure> {
+    let standard = half.as_standard_layout();
+    let values = contiguous(standard.view(), nx)?;
+    inverse_into_grid(half.nrows(), nx, |fft, out| {
+        fft.inverse_natural(values, out)
+    })
+}
+
+/// [`inverse_real_2d`] of a real half spectrum (a power spectrum, say): the same bits as the
+/// inverse of its complex image with zero imaginary parts, without building that image.
+pub(crate) fn inverse_real_spectrum_2d(
+    half: &Array2<f64>,
+    nx: usize,
+) -> Result<Array2<f64>, FftFailure> {
+    let standard = half.as_standard_layout();
+    let values = contiguous(standard.view(), nx)?;
+    inverse_into_grid(half.nrows(), nx, |fft, out| {
+        fft.inverse_natural_real(values, out)
+    })
+}
+
+/// The values of a `[ny, nx/2 + 1]` half spectrum in standard layout.
+fn contiguous<T>(half: ArrayView2<'_, T>, nx: usize) -> Result<&[T], FftFailure> {
     let (ny, nxh) = half.dim();
     if nxh != nx / 2 + 1 || nx == 0 || ny == 0 {
         return Err(FftFailure::new(format!(
@@ -37,12 +59,18 @@ pub(crate) fn inverse_real_2d(
             nx / 2 + 1
         )));
     }
-    let standard = half.as_standard_layout();
-    let values = standard
-        .as_slice()
-        .ok_or_else(|| FftFailure::new("half spectrum is not contiguous"))?;
+    half.to_slice()
+        .ok_or_else(|| FftFailure::new("half spectrum is not contiguous"))
+}
+
+/// The `[ny, nx]` grid that `inverse` writes with a transform planned for it.
+fn inverse_into_grid(
+    ny: usize,
+    nx: usize,
+    inverse: impl FnOnce(&mut RealFft2d, &mut [f64]) -> Result<(), FftFailure>,
+) -> Result<Array2<f64>, FftFailure> {
     let mut fft = RealFft2d::new(nx, ny);
     let mut out = vec![0.0; nx * ny];
-    fft.inverse_natural(values, &mut out)?;
+    inverse(&mut fft, &mut out)?;
     Array2::from_shape_vec((ny, nx), out).map_err(|e| FftFailure::new(e.to_string()))
 }

@@ -17,6 +17,7 @@
 
 use std::sync::Arc;
 
+use rayon::prelude::*;
 use realfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
@@ -31,7 +32,7 @@ mod transpose;
 
 pub use fast_length::fast_even_length;
 
-pub(crate) use grid::{forward_real_2d, inverse_real_2d};
+pub(crate) use grid::{forward_real_2d, inverse_real_2d, inverse_real_spectrum_2d};
 use padded::{PaddedColumns, PADDED_TILE};
 pub use real::Real;
 use rows::{dense_rows, Copy};
@@ -161,6 +162,32 @@ impl RealFft2d {
     /// inverse transforms are the same either way.
     pub fn for_convolution(nx: usize, ny: usize) -> Self {
         Self::in_precision(nx, ny, true)
+    }
+
+    /// [`RealFft2d::inverse_natural`] of a real spectrum in the natural layout (imaginary parts
+    /// zero), converted while it is transposed into the column buffer in tiles of `TILE`
+    /// columns.
+    pub(crate) fn inverse_natural_real(
+        &mut self,
+        spectrum: &[f64],
+        output: &mut [f64],
+    ) -> Result<(), FftFailure> {
+        self.check_len("spectrum", spectrum.len(), self.spectrum_len())?;
+        self.check_len("output", output.len(), self.nx * self.ny)?;
+        let (ny, nxc) = (self.ny, self.nxc);
+        self.cols
+            .par_chunks_mut(ny * TILE)
+            .enumerate()
+            .for_each(|(t, tile)| {
+                let width = tile.len() / ny;
+                for ky in 0..ny {
+                    let row = &spectrum[ky * nxc + t * TILE..][..width];
+                    for (k, &v) in row.iter().enumerate() {
+                        tile[k * ny + ky] = Complex::new(v, 0.0);
+                    }
+                }
+            });
+        self.inverse_of_cols(output)
     }
 
     /// The convolution kernel of the real spectral kernel `spectral` (layout `[kx][ky]`,

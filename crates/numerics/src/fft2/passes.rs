@@ -16,6 +16,13 @@ use super::{
     ChunkBuffers, ColumnPass, FftFailure, Real, RealFft2d, RowSink, RowSource, TILE, TILE_ROWS,
 };
 
+/// `true` when every value of `values` is zero.
+fn is_zero<T: Real>(values: &[Complex<T>]) -> bool {
+    values
+        .iter()
+        .all(|c| c.re == T::zero() && c.im == T::zero())
+}
+
 impl<T: Real> RealFft2d<T> {
     /// Rows per parallel work chunk for a block of `rows` rows: a multiple of the rows
     /// transformed together, so that every row is paired with the same row whatever the
@@ -145,6 +152,9 @@ impl<T: Real> RealFft2d<T> {
                             let weights = &kernel[tile_col * ny..][..width * ny];
                             tile.iter_mut().zip(weights).for_each(|(c, &w)| *c *= w);
                         }
+                        // The inverse of an all-zero tile (a spectrum cut off above some
+                        // kx) is zero: nothing to transform.
+                        ColumnPass::Inverse if is_zero(tile) => continue,
                         ColumnPass::Inverse => {}
                     }
                     inv.process_with_scratch(tile, &mut scratch[..inv_len]);

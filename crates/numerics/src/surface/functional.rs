@@ -24,7 +24,7 @@
 //!   `∫ₚ¹ (Smc(p) − Smc(mr)) dmr` on the step curve. `Vmp = Vm(p)`, `Vmc = Vm(q) − Vm(p)`,
 //!   `Vvc = Vv(p) − Vv(q)`, `Vvv = Vv(q)` with the defaults `p = 10 %`, `q = 80 %`.
 
-use super::order::sort_descending;
+use super::order::deviations_descending;
 use super::HeightMap;
 
 /// Material ratio span of the equivalent straight line (ISO 13565-2: 40 %).
@@ -105,18 +105,23 @@ pub struct MaterialRatioCurve {
 impl MaterialRatioCurve {
     /// The curve of the valid points of `map`.
     pub fn of(map: &HeightMap) -> Result<Self, FunctionalError> {
-        Self::from_heights(map.heights().iter().copied())
+        match map.heights().as_slice() {
+            Some(heights) => Self::from_slice(heights),
+            None => Self::from_heights(map.heights().iter().copied()),
+        }
     }
 
     /// The curve of the non-`NaN` values of `heights`.
     pub fn from_heights(heights: impl Iterator<Item = f64>) -> Result<Self, FunctionalError> {
-        let mut z: Vec<f64> = heights.filter(|v| !v.is_nan()).collect();
+        Self::from_slice(&heights.collect::<Vec<f64>>())
+    }
+
+    /// The curve of the non-`NaN` values of `heights` (sorted by `order::deviations_descending`).
+    fn from_slice(heights: &[f64]) -> Result<Self, FunctionalError> {
+        let z = deviations_descending(heights);
         if z.len() < 3 {
             return Err(FunctionalError::TooFewPoints);
         }
-        let mean = z.iter().sum::<f64>() / z.len() as f64;
-        z.iter_mut().for_each(|v| *v -= mean);
-        sort_descending(&mut z);
         Ok(Self { heights: z })
     }
 
@@ -245,18 +250,43 @@ pub fn functional_parameters_of(
     options: FunctionalOptions,
 ) -> Result<FunctionalParameters, FunctionalError> {
     check_ratios(&options)?;
-    let (core_top, core_bottom) = curve.equivalent_line();
-    let smr1 = curve.ratio_above(core_top);
-    let smr2 = curve.ratio_at_or_above(core_bottom);
-    let peaks = curve.mean_excess_above(core_top);
-    let dales = curve.mean_deficit_below(core_bottom);
-    let triangle = |area: f64, base: f64| if base > 0.0 { 2.0 * area / base } else { 0.0 };
     let FunctionalOptions {
         sxp_p,
         sxp_q,
         volume_p,
         volume_q,
     } = options;
+    // The core and the volumes are independent passes over the curve: one thread each.
+    let ((core_top, core_bottom, peaks, dales), [vm_p, vm_q, vv_p, vv_q]) = rayon::join(
+        || {
+            let (top, bottom) = curve.equivalent_line();
+            let (peaks, dales) = rayon::join(
+                || curve.mean_excess_above(top),
+                || curve.mean_deficit_below(bottom),
+            );
+            (top, bottom, peaks, dales)
+        },
+        || {
+            let ((vm_p, vm_q), (vv_p, vv_q)) = rayon::join(
+                || {
+                    rayon::join(
+                        || curve.material_volume(volume_p),
+                        || curve.material_volume(volume_q),
+                    )
+                },
+                || {
+                    rayon::join(
+                        || curve.void_volume(volume_p),
+                        || curve.void_volume(volume_q),
+                    )
+                },
+            );
+            [vm_p, vm_q, vv_p, vv_q]
+        },
+    );
+    let smr1 = curve.ratio_above(core_top);
+    let smr2 = curve.ratio_at_or_above(core_bottom);
+    let triangle = |area: f64, base: f64| if base > 0.0 { 2.0 * area / base } else { 0.0 };
     Ok(FunctionalParameters {
         sk: core_top - core_bottom,
         spk: triangle(peaks, smr1),
@@ -264,10 +294,10 @@ pub fn functional_parameters_of(
         smr1,
         smr2,
         sxp: curve.height_at(sxp_p) - curve.height_at(sxp_q),
-        vmp: curve.material_volume(volume_p),
-        vmc: curve.material_volume(volume_q) - curve.material_volume(volume_p),
-        vvc: curve.void_volume(volume_p) - curve.void_volume(volume_q),
-        vvv: curve.void_volume(volume_q),
+        vmp: vm_p,
+        vmc: vm_q - vm_p,
+        vvc: vv_p - vv_q,
+        vvv: vv_q,
         core_top,
         core_bottom,
     })

@@ -335,8 +335,15 @@ pub fn generate_synthetic_surface_with_periodogram(
     let (map, half, scale) = synthesize(spec)?;
     let area = spec.lx * spec.ly;
     let factor = area * scale * scale;
+    let modes = half
+        .as_slice()
+        .ok_or_else(|| FftFailure::new("the half spectrum is not contiguous"))?;
+    let power = modes
+        .par_iter()
+        .map(|mode| factor * mode.norm_sqr())
+        .collect();
     let periodogram = Periodogram {
-        c: half.mapv(|mode| factor * mode.norm_sqr()),
+        c: Array2::from_shape_vec(half.dim(), power).map_err(|e| FftFailure::new(e.to_string()))?,
         dqx: 2.0 * PI / spec.lx,
         dqy: 2.0 * PI / spec.ly,
         nx: spec.nx,

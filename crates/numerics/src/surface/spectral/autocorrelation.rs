@@ -21,12 +21,13 @@
 //! not decay within the lag range. The correlation lengths along x and y use the same threshold on
 //! the lag axes (grid points, linear interpolation), so `Sal ≤ min(ξx, ξy)` up to interpolation.
 
-use ndarray::{s, Array2};
+use ndarray::Array2;
+use rayon::prelude::*;
 use realfft::num_complex::Complex64;
 
 use super::error::{require_complete, SpectralError};
 use super::psd::{Axis, Periodogram, Window};
-use crate::fft2::{fast_even_length, forward_real_2d, inverse_real_2d};
+use crate::fft2::{fast_even_length, forward_real_2d, inverse_real_2d, inverse_real_spectrum_2d};
 use crate::surface::HeightMap;
 
 /// ISO 25178-2 default threshold `s` for Sal and Str.
@@ -39,7 +40,9 @@ pub enum AcfBoundary {
     ZeroPadded,
 }
 
-/// Normalised areal ACF on a centred lag grid: `values[[hy + iy, hx + ix]] = f(ix·dx, iy·dy)`.
+/// Normalised areal ACF on a periodic lag grid of `rows × cols` values: the lag `(ix, iy)`,
+/// `|ix| ≤ hx`, `|iy| ≤ hy`, is at `values[[iy mod rows, ix mod cols]]` (negative lags wrapped,
+/// as a circular correlation leaves them), so the periodic ACF is kept as the transform gives it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Autocorrelation {
     values: Array2<f64>,
@@ -108,7 +111,10 @@ pub fn autocorrelation(
     power.mapv_inplace(|v| Complex64::new(v.norm_sqr(), 0.0));
     let circular = inverse_real_2d(&power, px)?;
     drop(power);
-    centred_lags(&circular, boundary, map)
+    match boundary {
+        AcfBoundary::Periodic => normalised(circular, map),
+        AcfBoundary::ZeroPadded => normalised(overlap_averaged_lags(&circular, map), map),
+    }
 }
 
 /// The periodic ACF ([`AcfBoundary::Periodic`]) of `map` from its unwindowed periodogram: by
@@ -125,39 +131,38 @@ pub fn periodic_autocorrelation_of(
         });
     }
     require_complete(map)?;
-    let power = p.c.mapv(|c| Complex64::new(c, 0.0));
-    let circular = inverse_real_2d(&power, map.nx())?;
-    drop(power);
-    centred_lags(&circular, AcfBoundary::Periodic, map)
+    normalised(inverse_real_spectrum_2d(&p.c, map.nx())?, map)
 }
 
-/// The normalised ACF on the centred lag grid from the circular correlation `circular` of the
-/// (padded) grid, each lag averaged over its overlap for [`AcfBoundary::ZeroPadded`]; each row
-/// of lags is two slices of a row of `circular`.
-fn centred_lags(
-    circular: &Array2<f64>,
-    boundary: AcfBoundary,
-    map: &HeightMap,
-) -> Result<Autocorrelation, SpectralError> {
+/// The lags `|ix| ≤ nx/2`, `|iy| ≤ ny/2` of the circular correlation `circular` of the
+/// zero-padded grid, each averaged over its overlap `(nx − |ix|)(ny − |iy|)`, on the periodic
+/// lag grid of `(2·hy + 1) × (2·hx + 1)` values.
+fn overlap_averaged_lags(circular: &Array2<f64>, map: &HeightMap) -> Array2<f64> {
     let (nx, ny) = (map.nx(), map.ny());
     let (py, px) = circular.dim();
     let (hx, hy) = (nx / 2, ny / 2);
-    let mut values = Array2::<f64>::zeros((2 * hy + 1, 2 * hx + 1));
-    for (row, mut lags) in values.rows_mut().into_iter().enumerate() {
-        let iy = row as isize - hy as isize;
-        let source = circular.row(iy.rem_euclid(py as isize) as usize);
-        // Lags −hx … −1 wrap around to the end of the row; 0 … hx start it (px ≥ nx > hx).
-        lags.slice_mut(s![..hx])
-            .assign(&source.slice(s![px - hx..]));
-        lags.slice_mut(s![hx..]).assign(&source.slice(s![..=hx]));
-        if boundary == AcfBoundary::ZeroPadded {
-            for (col, value) in lags.iter_mut().enumerate() {
-                let ix = col as isize - hx as isize;
-                *value /= ((nx - ix.unsigned_abs()) * (ny - iy.unsigned_abs())) as f64;
-            }
+    let (rows, cols) = (2 * hy + 1, 2 * hx + 1);
+    let signed = |index: usize, half: usize, len: usize| {
+        if index <= half {
+            index as isize
+        } else {
+            index as isize - len as isize
         }
-    }
-    let zero = values[[hy, hx]];
+    };
+    Array2::from_shape_fn((rows, cols), |(row, col)| {
+        let (iy, ix) = (signed(row, hy, rows), signed(col, hx, cols));
+        let source = [
+            iy.rem_euclid(py as isize) as usize,
+            ix.rem_euclid(px as isize) as usize,
+        ];
+        circular[source] / ((nx - ix.unsigned_abs()) * (ny - iy.unsigned_abs())) as f64
+    })
+}
+
+/// The ACF of `map` from its unnormalised periodic lag grid `values` (lag 0 at `[0, 0]`):
+/// every lag divided by lag 0.
+fn normalised(mut values: Array2<f64>, map: &HeightMap) -> Result<Autocorrelation, SpectralError> {
+    let zero = values[[0, 0]];
     if !(zero > 0.0 && zero.is_finite()) {
         return Err(SpectralError::FlatSurface);
     }
@@ -166,8 +171,8 @@ fn centred_lags(
         values,
         dx: map.dx(),
         dy: map.dy(),
-        hx,
-        hy,
+        hx: map.nx() / 2,
+        hy: map.ny() / 2,
     })
 }
 
@@ -176,22 +181,17 @@ impl Autocorrelation {
     /// `[0, 0]`, negative lags wrapped), e.g. a model ACF; spacings in metres.
     pub fn from_periodic_lags(periodic: &Array2<f64>, dx: f64, dy: f64) -> Self {
         let (ny, nx) = periodic.dim();
-        let (hx, hy) = (nx / 2, ny / 2);
-        let values = Array2::from_shape_fn((2 * hy + 1, 2 * hx + 1), |(row, col)| {
-            let iy = (row as isize - hy as isize).rem_euclid(ny as isize) as usize;
-            let ix = (col as isize - hx as isize).rem_euclid(nx as isize) as usize;
-            periodic[[iy, ix]]
-        });
         Self {
-            values,
+            values: periodic.to_owned(),
             dx,
             dy,
-            hx,
-            hy,
+            hx: nx / 2,
+            hy: ny / 2,
         }
     }
 
-    /// Centred lag grid `[[hy + iy, hx + ix]]`.
+    /// The periodic lag grid (see [`Autocorrelation`]): lag `(ix, iy)` at
+    /// `[iy mod rows, ix mod cols]`.
     pub fn values(&self) -> &Array2<f64> {
         &self.values
     }
@@ -208,9 +208,13 @@ impl Autocorrelation {
 
     /// ACF at lag index `(ix, iy)`, `None` outside the lag range.
     pub fn at(&self, ix: isize, iy: isize) -> Option<f64> {
-        let row = usize::try_from(iy + self.hy as isize).ok()?;
-        let col = usize::try_from(ix + self.hx as isize).ok()?;
-        self.values.get((row, col)).copied()
+        if ix.unsigned_abs() > self.hx || iy.unsigned_abs() > self.hy {
+            return None;
+        }
+        let (rows, cols) = self.values.dim();
+        let row = iy.rem_euclid(rows as isize) as usize;
+        let col = ix.rem_euclid(cols as isize) as usize;
+        Some(self.values[[row, col]])
     }
 
     /// Bilinear interpolation at lag `(tx, ty)` in metres, `None` outside the lag range.
@@ -326,21 +330,39 @@ impl Autocorrelation {
         None
     }
 
-    /// Radially averaged ACF (see [`RadialAcf`]).
+    /// Radially averaged ACF (see [`RadialAcf`]). The lags are summed row by row from
+    /// `(−hx, −hy)`, the order of the centred lag grid; the bin of a lag depends on `|ix|` and
+    /// `|iy|` only (`|τ|` is `hypot` of the lag's components, even in each), so the bins of one
+    /// quadrant are computed first, in parallel, and serve all four.
     pub fn radial(&self) -> RadialAcf {
         let width = self.dx.max(self.dy);
         let (mx, my) = self.max_lag();
         let r_max = mx.min(my);
         let bins = (r_max / width + 0.5).floor() as usize + 1;
+        let (hx, hy) = (self.hx, self.hy);
+        let quadrant: Vec<Vec<usize>> = (0..=hy)
+            .into_par_iter()
+            .map(|ay| {
+                let ty = ay as f64 * self.dy;
+                (0..=hx)
+                    .map(|ax| ((ax as f64 * self.dx).hypot(ty) / width + 0.5).floor() as usize)
+                    .collect()
+            })
+            .collect();
         let mut sum = vec![0.0; bins];
         let mut count = vec![0usize; bins];
-        for ((row, col), value) in self.values.indexed_iter() {
-            let tx = (col as f64 - self.hx as f64) * self.dx;
-            let ty = (row as f64 - self.hy as f64) * self.dy;
-            let k = (tx.hypot(ty) / width + 0.5).floor() as usize;
-            if let (Some(s), Some(c)) = (sum.get_mut(k), count.get_mut(k)) {
-                *s += value;
-                *c += 1;
+        let (rows, cols) = self.values.dim();
+        for iy in -(hy as isize)..=hy as isize {
+            let stored = self.values.row(iy.rem_euclid(rows as isize) as usize);
+            let bins_of = &quadrant[iy.unsigned_abs()];
+            // Lags −hx … −1 are the last hx values of the stored row, then 0 … hx its first.
+            let negative = (cols - hx..cols).zip((1..=hx).rev());
+            for (col, ax) in negative.chain((0..=hx).map(|ax| (ax, ax))) {
+                let k = bins_of[ax];
+                if k < bins {
+                    sum[k] += stored[col];
+                    count[k] += 1;
+                }
             }
         }
         let mut radial = RadialAcf {

@@ -17,6 +17,8 @@
 
 use std::f64::consts::PI;
 
+use rayon::prelude::*;
+
 use super::error::SpectralError;
 use super::psd::{periodogram, Periodogram, Window};
 use crate::surface::HeightMap;
@@ -38,6 +40,31 @@ pub struct TextureDirection {
     pub angular_spectrum: Vec<f64>,
 }
 
+/// The bin of a mode that is not counted.
+const NO_BIN: u8 = u8::MAX;
+
+/// The 1° bin of `arg q` of each mode of half-grid row `j` with `0 < |q| ≤ q_max`, [`NO_BIN`]
+/// for the others and for modes without power (a synthetic surface's beyond its cutoff: no
+/// angle needed).
+fn angle_bins(p: &Periodogram, j: usize, q_max: f64) -> Vec<u8> {
+    p.c.row(j)
+        .iter()
+        .enumerate()
+        .map(|(i, &c)| {
+            if c == 0.0 {
+                return NO_BIN;
+            }
+            let (qx, qy) = p.wavevector(j, i);
+            let q = qx.hypot(qy);
+            if q == 0.0 || q > q_max {
+                return NO_BIN;
+            }
+            let degrees = qy.atan2(qx).to_degrees().rem_euclid(180.0);
+            ((degrees.round() as usize) % 180) as u8
+        })
+        .collect()
+}
+
 /// Computes Std of a complete height map (see module docs).
 pub fn texture_direction(
     map: &HeightMap,
@@ -52,18 +79,17 @@ pub fn texture_direction_of(
     map: &HeightMap,
 ) -> Result<TextureDirection, SpectralError> {
     let q_max = (PI / map.dx()).min(PI / map.dy());
+    // The bins of the modes in parallel, then their power summed in row-major order.
+    let bins: Vec<Vec<u8>> = (0..p.c.nrows())
+        .into_par_iter()
+        .map(|j| angle_bins(p, j, q_max))
+        .collect();
     let mut aps = vec![0.0; 180];
-    // Modes without power add nothing (a synthetic surface's beyond its cutoff): no angle needed.
-    for ((j, i), c) in p.c.indexed_iter().filter(|(_, c)| **c != 0.0) {
-        let (qx, qy) = p.wavevector(j, i);
-        let q = qx.hypot(qy);
-        if q == 0.0 || q > q_max {
-            continue;
-        }
-        let degrees = qy.atan2(qx).to_degrees().rem_euclid(180.0);
-        let bin = (degrees.round() as usize) % 180;
-        if let Some(slot) = aps.get_mut(bin) {
-            *slot += p.multiplicity(i) * c;
+    for (bins, power) in bins.iter().zip(p.c.rows()) {
+        for (i, (&bin, c)) in bins.iter().zip(power).enumerate() {
+            if bin != NO_BIN {
+                aps[usize::from(bin)] += p.multiplicity(i) * c;
+            }
         }
     }
     let total: f64 = aps.iter().sum();

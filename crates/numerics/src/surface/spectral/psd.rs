@@ -17,6 +17,7 @@
 //! spurious `q^−4` tail in 2-D), which the 2-D separable Hann window suppresses.
 
 use ndarray::Array2;
+use rayon::prelude::*;
 use std::f64::consts::PI;
 
 use super::error::{require_complete, SpectralError};
@@ -66,6 +67,35 @@ impl Periodogram {
             j as f64 - ny as f64
         };
         (i as f64 * self.dqx, ky * self.dqy)
+    }
+
+    /// The row of `|ky|` for half-grid row `j`: `j` up to `ny/2`, `ny − j` above (the rows of
+    /// `ky` and `−ky` hold wavevectors of equal magnitude).
+    pub fn mirrored_row(&self, j: usize) -> usize {
+        let ny = self.c.nrows();
+        if 2 * j <= ny {
+            j
+        } else {
+            ny - j
+        }
+    }
+
+    /// `|q| = hypot(qx, qy)` (rad/m) of the half-grid cells of rows `0 ..= ny/2`, computed in
+    /// parallel: cell `(j, i)` has `wavenumbers[self.mirrored_row(j)][i]`, the same bits as
+    /// `hypot` of [`Periodogram::wavevector`] (`qy` of row `ny − j` is exactly `−qy` of row `j`,
+    /// and `hypot` is even in each argument).
+    pub fn wavenumbers(&self) -> Vec<Vec<f64>> {
+        (0..=self.c.nrows() / 2)
+            .into_par_iter()
+            .map(|j| {
+                (0..self.c.ncols())
+                    .map(|i| {
+                        let (qx, qy) = self.wavevector(j, i);
+                        qx.hypot(qy)
+                    })
+                    .collect()
+            })
+            .collect()
     }
 
     /// Multiplicity of half-grid column `i` in the full spectrum: 2 for the columns whose
@@ -133,7 +163,8 @@ pub fn radial_psd(map: &HeightMap, window: Window) -> Result<PsdTable, SpectralE
 }
 
 /// [`radial_psd`] of a periodogram already computed from `map` (one FFT shared by several
-/// statistics).
+/// statistics). The modes are summed in the periodogram's row-major order; their `|q|` come
+/// from [`Periodogram::wavenumbers`].
 pub fn radial_psd_of(p: &Periodogram, map: &HeightMap) -> PsdTable {
     let dq = p.dqx.max(p.dqy);
     let q_max = (PI / map.dx()).min(PI / map.dy());
@@ -142,24 +173,38 @@ pub fn radial_psd_of(p: &Periodogram, map: &HeightMap) -> PsdTable {
     let mut sum_c = vec![0.0; bins];
     let mut weight = vec![0.0; bins];
     let mut modes = vec![0usize; bins];
-    for ((j, i), c) in p.c.indexed_iter() {
-        let (qx, qy) = p.wavevector(j, i);
-        let q = qx.hypot(qy);
-        if q == 0.0 || q > q_max {
-            continue;
-        }
-        let k = (q / dq + 0.5).floor() as usize;
-        if let (Some(sq), Some(sc), Some(w), Some(m)) = (
-            sum_q.get_mut(k),
-            sum_c.get_mut(k),
-            weight.get_mut(k),
-            modes.get_mut(k),
-        ) {
+    let wavenumbers = p.wavenumbers();
+    // The annulus of each |q| (`u32::MAX`: outside 0 < |q| ≤ q_max), in parallel.
+    let annuli: Vec<Vec<u32>> = wavenumbers
+        .par_iter()
+        .map(|row| {
+            row.iter()
+                .map(|&q| {
+                    if q == 0.0 || q > q_max {
+                        u32::MAX
+                    } else {
+                        (q / dq + 0.5).floor() as u32
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    for (j, power) in p.c.rows().into_iter().enumerate() {
+        let mirrored = p.mirrored_row(j);
+        let cells = power
+            .iter()
+            .zip(&wavenumbers[mirrored])
+            .zip(&annuli[mirrored]);
+        for (i, ((&c, &q), &k)) in cells.enumerate() {
+            let k = k as usize;
+            if k >= bins {
+                continue;
+            }
             let mult = p.multiplicity(i);
-            *sq += mult * q;
-            *sc += mult * c;
-            *w += mult;
-            *m += mult as usize;
+            sum_q[k] += mult * q;
+            sum_c[k] += mult * c;
+            weight[k] += mult;
+            modes[k] += mult as usize;
         }
     }
     let mut table = PsdTable {
