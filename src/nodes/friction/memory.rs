@@ -11,23 +11,32 @@ const BYTES_PER_MAP_POINT: u64 = 3 * 8;
 const FIXED_BYTES: u64 = 1 << 20;
 
 /// Peak bytes per point for the maps of the earlier load steps (`ContactTask::step_maps`): the
-/// pressure, gap, both deformations and the plastic penetration, 5 f64, allocated once and
-/// overwritten at every step. The convolution each step needs is the contact's, done once for
-/// all its consumers and charged to the contact's artifact.
-const BYTES_PER_STEP_MAP_POINT: u64 = 5 * 8;
+/// bound measured when each node still convolved every earlier step itself (12 f64 per point:
+/// five maps, the influence operator's kernel and transform buffers), kept although the node
+/// now assembles the five maps into arrays allocated once from the contact's shared
+/// displacements, because it is the bound a measurement backs (docs/robustness.md, "Memory").
+const BYTES_PER_STEP_MAP_POINT: u64 = 12 * 8;
 
-/// The peak memory of a friction node with `setup`, bytes; an upper bound of the process's peak
-/// less its base and the contact's maps (figures: docs/robustness.md, "Memory").
-pub(super) fn estimate(setup: &MethodSetup) -> u64 {
+/// Peak bytes of the earlier load steps' maps whatever the grid (measured with the bound above).
+const STEP_MAP_FIXED_BYTES: u64 = 12 << 20;
+
+/// The peak memory of a friction node with `setup`, bytes, where the earlier load steps' maps add
+/// the worker threads' `scratch` (bytes per point, `nodes::thread_scratch_bytes_per_point`); an
+/// upper bound of the process's peak less its base and the contact's maps (figures:
+/// docs/robustness.md, "Memory").
+pub(super) fn estimate(setup: &MethodSetup, scratch: u64) -> u64 {
     let contact = match setup {
         MethodSetup::Statistical { .. } => return FIXED_BYTES,
         MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } => contact,
     };
     let points = contact.task.points();
-    let per_point = if contact.task.step_count() > 1 {
-        BYTES_PER_MAP_POINT + BYTES_PER_STEP_MAP_POINT
+    let (fixed, per_point) = if contact.task.step_count() > 1 {
+        (
+            FIXED_BYTES + STEP_MAP_FIXED_BYTES,
+            BYTES_PER_MAP_POINT + BYTES_PER_STEP_MAP_POINT + scratch,
+        )
     } else {
-        BYTES_PER_MAP_POINT
+        (FIXED_BYTES, BYTES_PER_MAP_POINT)
     };
-    FIXED_BYTES.saturating_add(points.saturating_mul(per_point))
+    fixed.saturating_add(points.saturating_mul(per_point))
 }

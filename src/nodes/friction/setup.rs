@@ -147,7 +147,10 @@ pub(super) fn instantiate(
         input_flags: input_flag.into_iter().collect(),
         input_roles: spec.upstream().iter().map(|r| r.role).collect(),
         adhesion,
-        memory_estimate: super::memory::estimate(&setup),
+        memory_estimate: super::memory::estimate(
+            &setup,
+            crate::nodes::thread_scratch_bytes_per_point(),
+        ),
         setup,
     })
 }
