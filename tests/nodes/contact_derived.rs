@@ -2,14 +2,12 @@
 //! solver's: the final step's, as the engine derives them for a consumer of a cached contact,
 //! and every earlier step's, from `ContactTask::step_maps`.
 
-use std::collections::BTreeMap;
-
 use asperity::engine::artifact::Artifact;
 use asperity::engine::plan::Plan;
 use asperity::nodes::{ContactTask, StepMaps};
 use ndarray::{ArrayD, ArrayView2, Ix2};
 
-use crate::nodes_common::study;
+use crate::nodes_common::{compute_all, study};
 
 /// Two rough bodies of different materials (both deform, differently), an elastic–plastic
 /// contact solved over three load steps, and the same contact stopped after each earlier step.
@@ -47,20 +45,6 @@ nodes:
         contact("c2", "5 MPa, 20 MPa"),
         contact("c3", "5 MPa, 20 MPa, 60 MPa")
     )
-}
-
-/// Every node of the plan computed, by name.
-fn compute_all(plan: &Plan) -> BTreeMap<String, Artifact> {
-    let mut done: Vec<Artifact> = Vec::new();
-    for node in &plan.nodes {
-        let inputs: Vec<&Artifact> = node.upstream.iter().map(|(_, u)| &done[*u]).collect();
-        done.push(node.task.compute(&inputs).unwrap());
-    }
-    plan.nodes
-        .iter()
-        .map(|n| n.names[0].clone())
-        .zip(done)
-        .collect()
 }
 
 /// The largest difference of two maps relative to the largest magnitude of the first.

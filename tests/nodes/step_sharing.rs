@@ -4,8 +4,6 @@
 //! each step themselves, and the maps they give equal, bit for bit, those a consumer derives
 //! alone from the step's pressure (the unshared path, `contact::fields_from_pressure`).
 
-use std::collections::BTreeMap;
-
 use asperity::contact::{
     fields_from_pressure, Boundary, CompositeGap, ContactMaterial, ContactProblem, FieldRequest,
 };
@@ -17,7 +15,7 @@ use asperity::materials::{find_material, BodyMaterial, MaterialPair};
 use asperity::nodes::ContactTask;
 use ndarray::{Array2, Axis, Ix2, Ix3};
 
-use crate::nodes_common::study;
+use crate::nodes_common::{compute_all, study};
 
 /// Two rough bodies in contact over three load steps with fields, read by two per-spot nodes
 /// (one ploughing: the deformed bodies' fronts) and a per-summit node.
@@ -46,20 +44,6 @@ nodes:
 "#;
 
 const CONSUMERS: [&str; 3] = ["spot", "plough", "summit"];
-
-/// Every node of the plan computed in plan order, by name.
-fn compute_all(plan: &Plan) -> BTreeMap<String, Artifact> {
-    let mut done: Vec<Artifact> = Vec::new();
-    for node in &plan.nodes {
-        let inputs: Vec<&Artifact> = node.upstream.iter().map(|(_, u)| &done[*u]).collect();
-        done.push(node.task.compute(&inputs).unwrap());
-    }
-    plan.nodes
-        .iter()
-        .map(|n| n.names[0].clone())
-        .zip(done)
-        .collect()
-}
 
 fn index(plan: &Plan, name: &str) -> usize {
     plan.nodes.iter().position(|n| n.names[0] == name).unwrap()

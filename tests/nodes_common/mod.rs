@@ -2,7 +2,9 @@
 //! and read the outcomes' metrics and tables.
 #![allow(dead_code)]
 
-use asperity::engine::artifact::ColumnData;
+use std::collections::BTreeMap;
+
+use asperity::engine::artifact::{Artifact, ColumnData};
 use asperity::engine::cache::Cache;
 use asperity::engine::execute::{execute, ExecuteOptions, NoProgress, NodeOutcome, RunReport};
 use asperity::engine::plan::Plan;
@@ -51,6 +53,20 @@ pub fn rough_and_smooth(name: &str, nodes: &str) -> String {
         "study: {name}\nnodes:{ROUGH_AND_SMOOTH}{}",
         nodes.trim_start_matches('\n')
     )
+}
+
+/// Every node of the plan computed in plan order (no engine, no cache), by name.
+pub fn compute_all(plan: &Plan) -> BTreeMap<String, Artifact> {
+    let mut done: Vec<Artifact> = Vec::new();
+    for node in &plan.nodes {
+        let inputs: Vec<&Artifact> = node.upstream.iter().map(|(_, u)| &done[*u]).collect();
+        done.push(node.task.compute(&inputs).unwrap());
+    }
+    plan.nodes
+        .iter()
+        .map(|n| n.names[0].clone())
+        .zip(done)
+        .collect()
 }
 
 pub fn plan_error(text: &str) -> String {
