@@ -10,11 +10,10 @@ const BYTES_PER_MAP_POINT: u64 = 3 * 8;
 /// The result rows and the law's tables, whatever the grid.
 const FIXED_BYTES: u64 = 1 << 20;
 
-/// Peak bytes per point for the maps of the earlier load steps (`ContactTask::step_maps`): the
-/// bound measured when each node still convolved every earlier step itself (12 f64 per point:
-/// five maps, the influence operator's kernel and transform buffers), kept although the node
-/// now assembles the five maps into arrays allocated once from the contact's shared
-/// displacements, because it is the bound a measurement backs (docs/robustness.md, "Memory").
+/// Peak bytes per point for the maps of the earlier load steps (`ContactTask::step_maps`, five
+/// maps assembled into arrays allocated once): a measured upper bound, 12 f64 per point, that
+/// also covers an influence operator and its transform buffers; the five maps alone are 5 f64,
+/// a count no measurement backs yet (docs/robustness.md, "Memory").
 const BYTES_PER_STEP_MAP_POINT: u64 = 12 * 8;
 
 /// Peak bytes of the earlier load steps' maps whatever the grid (measured with the bound above).
