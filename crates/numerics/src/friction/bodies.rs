@@ -198,6 +198,20 @@ impl<'a> ContactBodies<'a> {
         }
     }
 
+    /// Row `iy` of the undeformed outward heights of `side` into `out` (length `nx`): the same
+    /// values as [`Self::height`] at each point, for a pass over whole rows.
+    pub fn height_row(&self, side: Side, iy: usize, out: &mut [f64]) {
+        let composite = self.maps.composite_height.row(iy);
+        let upper = self.maps.upper_height.as_ref().map(|z| z.row(iy));
+        for (ix, z) in out.iter_mut().enumerate() {
+            let upper = upper.map_or(0.0, |u| u[ix]);
+            *z = match side {
+                Side::Lower => composite[ix] - upper,
+                Side::Upper => upper,
+            };
+        }
+    }
+
     /// The deformed outward surface w_b = z_b − u_b − s_b u_pl of `side` at `(iy, ix)`.
     pub fn deformed(&self, side: Side, at: (usize, usize)) -> f64 {
         let (elastic, share) = match side {
