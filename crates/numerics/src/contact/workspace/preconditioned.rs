@@ -146,11 +146,11 @@ mod tests {
         };
         let mut dense = vec![0.0; n];
         op.precondition_rows_into(&fill, &mut dense, &copy).unwrap();
-        for i in 0..n {
-            if ws.p[i] > 0.0 {
-                assert_eq!(ws.w[i].to_bits(), dense[i].to_bits(), "point {i}");
+        for (i, ((&p, &w), &d)) in ws.p.iter().zip(&ws.w).zip(&dense).enumerate() {
+            if p > 0.0 {
+                assert_eq!(w.to_bits(), d.to_bits(), "point {i}");
             } else {
-                assert!(ws.w[i].is_nan(), "point {i} out of contact was written");
+                assert!(w.is_nan(), "point {i} out of contact was written");
             }
         }
     }
