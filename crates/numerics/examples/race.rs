@@ -20,7 +20,9 @@
 //! Each repetition builds a fresh `ContactSolver` (timed in `setup_s`: FFT plans, influence
 //! kernel, work arrays) and solves once (timed in `solve_s`: `ContactSolver::solve` from its
 //! cold start to the converged load step, area fraction included). Thread count: rayon's
-//! (`RAYON_NUM_THREADS`).
+//! (`RAYON_NUM_THREADS`). On Linux `solve_cpu_s` is the CPU time of the process's threads during
+//! each solve (from `/proc/self/task/*/schedstat`): unlike the wall time it leaves out the time
+//! the solver waited for a core, so A/B comparisons on a loaded machine use it.
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -155,14 +157,18 @@ fn run() -> Result<String, String> {
     };
     let mut setups = Vec::with_capacity(args.repeat);
     let mut solves = Vec::with_capacity(args.repeat);
+    let mut cpu = Vec::with_capacity(args.repeat);
     let mut step = None;
     for _ in 0..args.repeat {
         let start = Instant::now();
         let mut solver = ContactSolver::new(problem.clone(), options).map_err(|e| e.to_string())?;
         setups.push(start.elapsed().as_secs_f64());
-        let start = Instant::now();
+        let (start, cpu_start) = (Instant::now(), process_cpu_seconds());
         let result = solver.solve(args.pressure).map_err(|e| e.to_string())?;
         solves.push(start.elapsed().as_secs_f64());
+        if let (Some(a), Some(b)) = (cpu_start, process_cpu_seconds()) {
+            cpu.push(b - a);
+        }
         step = Some(result);
     }
     let step = step.ok_or("no solve ran")?;
@@ -173,9 +179,14 @@ fn run() -> Result<String, String> {
             .collect::<Vec<_>>()
             .join(", ")
     };
+    let cpu = if cpu.len() == solves.len() {
+        format!(", \"solve_cpu_s\": [{}]", list(&cpu))
+    } else {
+        String::new()
+    };
     Ok(format!(
         "{{\"area_fraction\": {}, \"iterations\": {}, \"coarse_iterations\": {}, \
-         \"residual\": {:e}, \"setup_s\": [{}], \"solve_s\": [{}]}}",
+         \"residual\": {:e}, \"setup_s\": [{}], \"solve_s\": [{}]{cpu}}}",
         step.area_fraction,
         step.iterations,
         step.coarse_iterations,
@@ -183,4 +194,17 @@ fn run() -> Result<String, String> {
         list(&setups),
         list(&solves)
     ))
+}
+
+/// CPU time in seconds of all threads of this process so far: the sum of the first field
+/// (nanoseconds on a CPU) of `/proc/self/task/<tid>/schedstat`; `None` where that is not
+/// readable (not Linux, or schedstats off).
+fn process_cpu_seconds() -> Option<f64> {
+    let mut total = 0u64;
+    for task in std::fs::read_dir("/proc/self/task").ok()? {
+        let path = task.ok()?.path().join("schedstat");
+        let text = std::fs::read_to_string(path).ok()?;
+        total += text.split_whitespace().next()?.parse::<u64>().ok()?;
+    }
+    Some(total as f64 * 1e-9)
 }

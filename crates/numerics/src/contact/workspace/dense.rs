@@ -65,35 +65,45 @@ fn contact_rows<'a>(blocks: &'a [Block], values: &'a [f64]) -> impl RowSource + 
 }
 
 /// Rows holding `value(i)` at the contact points `i` and 0 elsewhere: row `r` of
-/// `nx = row.len()` points holds the points `r·nx .. (r + 1)·nx` (a row may span two blocks); a
-/// row whose values are all zero reports `false`, as the dense rows do.
+/// `nx = row.len()` points holds the points `r·nx .. (r + 1)·nx`; a row whose values are all
+/// zero reports `false`, as the dense rows do.
 pub(super) fn list_rows<'a>(
     blocks: &'a [Block],
     value: impl Fn(usize) -> f64 + Sync + 'a,
 ) -> impl RowSource + 'a {
     move |r: usize, row: &mut [f64]| {
-        let nx = row.len();
-        let (start, end) = (r * nx, (r + 1) * nx);
+        let start = r * row.len();
         row.fill(0.0);
         let mut nonzero = false;
-        for (b, block) in blocks
-            .iter()
-            .enumerate()
-            .take(end.div_ceil(BLOCK))
-            .skip(start / BLOCK)
-        {
+        for i in row_contact_points(blocks, r, row.len()) {
+            let v = value(i);
+            row[i - start] = v;
+            nonzero |= v != 0.0;
+        }
+        nonzero
+    }
+}
+
+/// The contact points of row `r` of a grid of rows of `nx` points (the points
+/// `r·nx .. (r + 1)·nx`, which may span two blocks), ascending.
+pub(super) fn row_contact_points(
+    blocks: &[Block],
+    r: usize,
+    nx: usize,
+) -> impl Iterator<Item = usize> + '_ {
+    let (start, end) = (r * nx, (r + 1) * nx);
+    blocks
+        .iter()
+        .enumerate()
+        .take(end.div_ceil(BLOCK))
+        .skip(start / BLOCK)
+        .flat_map(move |(b, block)| {
             let base = b * BLOCK;
             let first = block
                 .contact
                 .partition_point(|&l| base + (l as usize) < start);
-            for i in contact_points(base, &block.contact[first..]).take_while(|&i| i < end) {
-                let v = value(i);
-                row[i - start] = v;
-                nonzero |= v != 0.0;
-            }
-        }
-        nonzero
-    }
+            contact_points(base, &block.contact[first..]).take_while(move |&i| i < end)
+        })
 }
 
 impl Workspace {
