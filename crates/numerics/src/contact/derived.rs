@@ -219,7 +219,7 @@ impl DisplacementOperator {
         boundary: Boundary,
     ) -> Result<Self, ContactError> {
         let (ny, nx) = shape;
-        let operator = InfluenceOperator::new(
+        let operator = InfluenceOperator::double_only(
             nx,
             ny,
             dx,
