@@ -14,8 +14,6 @@
 //! cached contact: equal to the solver's maps to round-off (1e-12 of each map's largest value,
 //! tested), at a few per cent of the solve's cost.
 
-use std::time::Instant;
-
 use serde::Deserialize;
 
 use super::contact_view::{
@@ -26,8 +24,8 @@ use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
 use super::validity;
 use crate::contact::{
-    fields_from_pressure, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
-    FieldRequest, HeightsView, SolverOptions, MAX_TOLERANCE, MIN_TOLERANCE,
+    fields_from_pressure, Boundary, ContactMaterial, ContactSolver, FieldRequest, SolverOptions,
+    MAX_TOLERANCE, MIN_TOLERANCE,
 };
 use crate::engine::artifact::Artifact;
 use crate::engine::node::{ArrayStorage, NodeError, NodeTask, UpstreamRef};
@@ -43,11 +41,13 @@ use crate::vocabulary::{roles, tables};
 
 mod memory;
 mod results;
+mod setup;
 mod steps;
 
 use memory::memory_estimate;
 pub use results::final_step_metrics;
 use results::{load_curve_table, store_fields};
+use setup::StageClock;
 use steps::array2;
 
 pub(crate) use crate::vocabulary::kinds::CONTACT as KIND;
@@ -502,34 +502,6 @@ impl NodeTask for ContactTask {
     }
 }
 
-/// The wall time of a contact's stages, each logged as a debug event when it ends (`-vv`).
-struct StageClock {
-    started: Instant,
-    last: Instant,
-}
-
-impl StageClock {
-    fn start() -> Self {
-        let now = Instant::now();
-        Self {
-            started: now,
-            last: now,
-        }
-    }
-
-    /// Ends the stage `name` (begun when the one before ended).
-    fn stage(&mut self, name: &str) {
-        let now = Instant::now();
-        tracing::debug!(
-            stage = name,
-            seconds = (now - self.last).as_secs_f64(),
-            since_start = (now - self.started).as_secs_f64(),
-            "contact stage"
-        );
-        self.last = now;
-    }
-}
-
 /// The flags the upstream surfaces give a contact: a grid too coarse to resolve a contact spot,
 /// a composite slope beyond the half-space theory's small-slope assumption.
 fn input_flags(inputs: &[&Artifact]) -> Result<Vec<String>, NodeError> {
@@ -553,82 +525,4 @@ fn input_flags(inputs: &[&Artifact]) -> Result<Vec<String>, NodeError> {
     .into_iter()
     .flatten()
     .collect())
-}
-
-/// The contact problem of a task's upstream surfaces, with what the outputs need of it.
-struct ProblemSetup {
-    problem: ContactProblem,
-    composite_modulus: f64,
-    /// (dx, dy) of the grid (m).
-    spacing: (f64, f64),
-}
-
-/// The heights and spacing of the surface `input` (`role` names it in errors).
-fn heights<'a>(input: &'a Artifact, role: &str) -> Result<HeightsView<'a>, NodeError> {
-    let view = SurfaceView::of(input, role)?;
-    let heights = view
-        .heights
-        .ok_or_else(|| NodeError::new(format!("{role} surface: no height array")))?;
-    Ok(HeightsView {
-        heights,
-        dx: view.dx,
-        dy: view.dy,
-    })
-}
-
-impl ContactTask {
-    /// The gap of the upstream surface(s), read in place (the gap is the one new map), the
-    /// material pair and the boundary.
-    fn problem(&self, inputs: &[&Artifact]) -> Result<ProblemSetup, NodeError> {
-        let (lower, upper) = self.surfaces(inputs)?;
-        let gap = CompositeGap::from_height_views(lower, upper)
-            .map_err(|e| NodeError::new(format!("gap: {e}")))?;
-        Ok(ProblemSetup {
-            problem: ContactProblem::new(gap, self.material, self.boundary()),
-            composite_modulus: self.material.composite_modulus(),
-            spacing: (lower.dx, lower.dy),
-        })
-    }
-
-    /// The lower surface and the upper one (none against a flat).
-    fn surfaces<'a>(
-        &self,
-        inputs: &[&'a Artifact],
-    ) -> Result<(HeightsView<'a>, Option<HeightsView<'a>>), NodeError> {
-        let lower = heights(
-            inputs
-                .first()
-                .ok_or_else(|| NodeError::new("no lower surface"))?,
-            "lower",
-        )?;
-        let upper = match (self.material.pair().upper(), inputs.get(1)) {
-            (Some(_), Some(input)) => Some(heights(input, "upper")?),
-            _ => None,
-        };
-        Ok((lower, upper))
-    }
-
-    /// The composite height z₁ + z₂ the contact was solved on (the lower heights against a
-    /// flat) and the upper body's heights z₂, as arrays of `artifact`, from the surfaces.
-    fn store_heights(
-        &self,
-        inputs: &[&Artifact],
-        artifact: &mut Artifact,
-    ) -> Result<(), NodeError> {
-        let (lower, upper) = self.surfaces(inputs)?;
-        let composite = match upper {
-            Some(upper) => {
-                artifact.arrays.insert(
-                    String::from(HEIGHT_UPPER),
-                    upper.heights.to_owned().into_dyn(),
-                );
-                &lower.heights + &upper.heights
-            }
-            None => lower.heights.to_owned(),
-        };
-        artifact
-            .arrays
-            .insert(String::from(COMPOSITE_HEIGHT), composite.into_dyn());
-        Ok(())
-    }
 }
