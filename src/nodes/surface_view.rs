@@ -7,7 +7,6 @@ use ndarray::{ArrayView2, Ix2};
 use crate::engine::artifact::Artifact;
 use crate::engine::node::NodeError;
 use crate::engine::value::Value;
-use crate::surface::HeightMap;
 
 /// The height array (m, `[[iy, ix]]`).
 pub(crate) use crate::vocabulary::arrays::HEIGHTS;
@@ -60,15 +59,6 @@ impl<'a> SurfaceView<'a> {
             dy: float(DY).ok_or_else(|| fail(format!("no {DY}")))?,
             moments,
         })
-    }
-
-    /// The heights as a height map (copied), or an error naming `role`.
-    pub(crate) fn height_map(&self, role: &str) -> Result<HeightMap, NodeError> {
-        let fail = |m: String| NodeError::new(format!("{role} surface: {m}"));
-        let heights = self
-            .heights
-            .ok_or_else(|| fail(String::from("no height array")))?;
-        HeightMap::new(heights.to_owned(), self.dx, self.dy).map_err(|e| fail(e.to_string()))
     }
 
     /// The section's area nx·dx · ny·dy (m²).

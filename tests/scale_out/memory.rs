@@ -19,7 +19,7 @@ const BUDGET_MIB: u64 = 110;
 const ALLOWANCE_MIB: u64 = 8;
 
 /// Four seeds of a 512² surface in contact with a flat, with fields, and a per-spot friction
-/// node on each contact: 12 instances; a contact's estimate is 66 MiB with four threads.
+/// node on each contact: 12 instances; a contact's estimate is 50 MiB with four threads.
 fn study(dir: &Path) -> PathBuf {
     let path = dir.join("memory.yaml");
     std::fs::write(
@@ -131,17 +131,17 @@ fn the_memory_budget_bounds_the_peak_of_the_process_and_the_run_completes() {
 fn a_node_that_cannot_fit_the_budget_fails_naming_itself_its_estimate_and_the_flag() {
     let dir = tempdir("memory-too-small");
     let study = study(&dir);
-    let small = run_measured(&dir, &study, "small", &["--memory-mib", "100"]);
+    let small = run_measured(&dir, &study, "small", &["--memory-mib", "85"]);
     assert_eq!(small.code, Some(2), "stderr: {}", small.stderr);
     for needed in [
         "failed: contact node 'contact'",
-        "needs about 66 MiB of memory",
-        "exceeds the run's budget of 100 MiB: raise `--memory-mib` to at least",
+        "needs about 50 MiB of memory",
+        "exceeds the run's budget of 85 MiB: raise `--memory-mib` to at least",
     ] {
         assert!(small.stderr.contains(needed), "stderr: {}", small.stderr);
     }
     assert!(
-        small.peak_mib <= 100 + ALLOWANCE_MIB,
+        small.peak_mib <= 85 + ALLOWANCE_MIB,
         "peak {} MiB",
         small.peak_mib
     );

@@ -24,15 +24,14 @@ use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
 use super::validity;
 use crate::contact::{
-    fields_from_pressure, Boundary, CompositeGap, ContactMaterial, ContactProblem, ContactSolver,
-    FieldRequest, SolverOptions, MAX_TOLERANCE, MIN_TOLERANCE,
+    fields_from_pressure, Boundary, ContactMaterial, ContactSolver, FieldRequest, SolverOptions,
+    MAX_TOLERANCE, MIN_TOLERANCE,
 };
 use crate::engine::artifact::Artifact;
 use crate::engine::node::{ArrayStorage, NodeError, NodeTask, UpstreamRef};
 use crate::engine::study::{Param, ResolveContext, SourceLocation, SpannedName, SpecError};
 use crate::engine::value::{Field, Value};
 use crate::materials::{bounds, MaterialPair};
-use crate::surface::HeightMap;
 use crate::units::{format_number, Dimension, Pressure, Quantity};
 use crate::vocabulary::contact_parameters::{
     of_side, FIELDS, FLOW_PRESSURE, PERIODIC, TOLERANCE, YOUNGS_MODULUS,
@@ -42,11 +41,13 @@ use crate::vocabulary::{roles, tables};
 
 mod memory;
 mod results;
+mod setup;
 mod steps;
 
 use memory::memory_estimate;
 pub use results::final_step_metrics;
 use results::{load_curve_table, store_fields};
+use setup::StageClock;
 use steps::array2;
 
 pub(crate) use crate::vocabulary::kinds::CONTACT as KIND;
@@ -381,10 +382,6 @@ impl ContactTask {
     }
 }
 
-fn height_map(input: &Artifact, role: &str) -> Result<HeightMap, NodeError> {
-    SurfaceView::of(input, role)?.height_map(role)
-}
-
 impl NodeTask for ContactTask {
     fn as_any(&self) -> &dyn std::any::Any {
         self
@@ -427,11 +424,15 @@ impl NodeTask for ContactTask {
         inputs: &[&Artifact],
         artifact: &mut Artifact,
     ) -> Result<(), NodeError> {
-        let setup = self.problem(inputs)?;
         let approach = match artifact.metric(APPROACH).map(|f| &f.value) {
             Some(Value::Float(v)) => *v,
             _ => return Err(NodeError::new("contact node: no approach")),
         };
+        let shape = array2(artifact, PRESSURE)?.dim();
+        if let Some(u) = self.earlier_displacements(artifact, shape)? {
+            artifact.arrays.insert(String::from(STEP_DISPLACEMENTS), u);
+        }
+        let setup = self.problem(inputs)?;
         let fields = fields_from_pressure(
             &setup.problem,
             array2(artifact, PRESSURE)?,
@@ -439,42 +440,34 @@ impl NodeTask for ContactTask {
             DERIVED_FIELDS,
         )
         .map_err(|e| NodeError::new(format!("maps of the final load step: {e}")))?;
+        drop(setup);
         store_fields(artifact, fields);
-        if let Some(u) = self.earlier_displacements(artifact)? {
-            artifact.arrays.insert(String::from(STEP_DISPLACEMENTS), u);
-        }
-        if let Some(z) = setup.composite {
-            artifact
-                .arrays
-                .insert(String::from(COMPOSITE_HEIGHT), z.into_dyn());
-        }
-        if let Some(z) = setup.upper {
-            artifact
-                .arrays
-                .insert(String::from(HEIGHT_UPPER), z.into_dyn());
-        }
-        Ok(())
+        self.store_heights(inputs, artifact)
     }
 
+    /// Solves the load steps; with fields, the final step's maps come from the consumed solver
+    /// and the earlier steps' displacements are convolved before those maps are assembled, so
+    /// the node never holds the solver beside the maps (the stages' times are debug events).
     fn compute(&self, inputs: &[&Artifact]) -> Result<Artifact, NodeError> {
         let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
+        let mut clock = StageClock::start();
         let setup = self.problem(inputs)?;
+        clock.stage("gap");
+        let (composite_modulus, spacing) = (setup.composite_modulus, setup.spacing);
         let options = SolverOptions {
             tolerance: self.tolerance,
             ..SolverOptions::default()
         };
         let mut solver =
             ContactSolver::new(setup.problem, options).map_err(|e| fail("solver", &e))?;
+        clock.stage("influence operator and plans");
         let steps = self.pressures.len();
         let mut earlier = Vec::new();
         let curve = self.solve_steps(&mut solver, |i, solver| {
-            let request = FieldRequest {
-                pressure: true,
-                ..FieldRequest::NONE
-            };
+            clock.stage(&format!("load step {i}"));
             if self.fields && i + 1 < steps {
-                if let Some(p) = solver.last_fields(request).and_then(|f| f.pressure) {
-                    earlier.push((step_pressure_name(i), contact_points(p.view())));
+                if let Some(p) = solver.last_pressure() {
+                    earlier.push((step_pressure_name(i), contact_points(p)));
                 }
             }
         })?;
@@ -483,34 +476,28 @@ impl NodeTask for ContactTask {
             .last()
             .ok_or_else(|| NodeError::new("no load step was solved"))?;
         let mut artifact = Artifact {
-            metrics: final_step_metrics(last, setup.composite_modulus, setup.spacing),
+            metrics: final_step_metrics(last, composite_modulus, spacing),
             ..Artifact::default()
         };
         artifact
             .tables
             .insert(String::from(tables::LOAD_CURVE), load_curve_table(&curve));
-        if let Some(z) = setup.composite {
-            artifact
-                .arrays
-                .insert(String::from(COMPOSITE_HEIGHT), z.into_dyn());
-        }
-        if let Some(z) = setup.upper {
-            artifact
-                .arrays
-                .insert(String::from(HEIGHT_UPPER), z.into_dyn());
-        }
         if self.fields {
-            let fields = solver
-                .into_last_fields(FieldRequest::ALL)
+            let solution = solver
+                .into_last_solution()
                 .ok_or_else(|| NodeError::new("the final load step left no fields"))?;
-            store_fields(&mut artifact, fields);
             artifact.arrays.extend(earlier);
-            if let Some(u) = self.earlier_displacements(&artifact)? {
+            if let Some(u) = self.earlier_displacements(&artifact, solution.shape())? {
                 artifact.arrays.insert(String::from(STEP_DISPLACEMENTS), u);
             }
+            clock.stage("earlier steps' displacements");
+            store_fields(&mut artifact, solution.into_fields(FieldRequest::ALL));
+            self.store_heights(inputs, &mut artifact)?;
+            clock.stage("final step's maps and heights");
         }
         artifact.flags = input_flags(inputs)?;
         validity::check_artifact(KIND, &mut artifact)?;
+        clock.stage("checks");
         Ok(artifact)
     }
 }
@@ -538,53 +525,4 @@ fn input_flags(inputs: &[&Artifact]) -> Result<Vec<String>, NodeError> {
     .into_iter()
     .flatten()
     .collect())
-}
-
-/// The contact problem of a task's upstream surfaces, with what the outputs need of it.
-struct ProblemSetup {
-    problem: ContactProblem,
-    composite_modulus: f64,
-    /// (dx, dy) of the grid (m).
-    spacing: (f64, f64),
-    /// z₁ + z₂ (or the lower heights against a flat), kept when the fields are.
-    composite: Option<ndarray::Array2<f64>>,
-    /// z₂ of an upper surface, kept when the fields are.
-    upper: Option<ndarray::Array2<f64>>,
-}
-
-impl ContactTask {
-    /// The gap of the upstream surface(s), the material pair and the boundary.
-    fn problem(&self, inputs: &[&Artifact]) -> Result<ProblemSetup, NodeError> {
-        let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
-        let lower = height_map(
-            inputs
-                .first()
-                .ok_or_else(|| NodeError::new("no lower surface"))?,
-            "lower",
-        )?;
-        let (gap, composite, upper) = match (self.material.pair().upper(), inputs.get(1)) {
-            (Some(_), Some(input)) => {
-                let upper = height_map(input, "upper")?;
-                let gap =
-                    CompositeGap::from_surfaces(&lower, &upper).map_err(|e| fail("gap", &e))?;
-                (
-                    gap,
-                    self.fields.then(|| lower.heights() + upper.heights()),
-                    self.fields.then(|| upper.heights().clone()),
-                )
-            }
-            _ => (
-                CompositeGap::against_flat(&lower).map_err(|e| fail("gap", &e))?,
-                self.fields.then(|| lower.heights().clone()),
-                None,
-            ),
-        };
-        Ok(ProblemSetup {
-            problem: ContactProblem::new(gap, self.material, self.boundary()),
-            composite_modulus: self.material.composite_modulus(),
-            spacing: (lower.dx(), lower.dy()),
-            composite,
-            upper,
-        })
-    }
 }

@@ -90,18 +90,18 @@ impl ContactTask {
 
     /// The composite displacement `u = K p` (m) of every load step before the final one, from
     /// the steps' pressure in `contact` (this contact's artifact, with the final step's metrics
-    /// and every step's pressure), by one operator for all steps: the [`STEP_DISPLACEMENTS`]
+    /// and every earlier step's pressure) on its grid `shape = (ny, nx)`, by one operator for all steps: the [`STEP_DISPLACEMENTS`]
     /// array, `[[step, iy, ix]]`, which every consumer of the contact reads instead of
     /// convolving the steps itself. `None` without fields or earlier steps.
     pub(super) fn earlier_displacements(
         &self,
         contact: &Artifact,
+        shape: (usize, usize),
     ) -> Result<Option<ArrayD<f64>>, NodeError> {
         let earlier = self.pressures.len().saturating_sub(1);
         if !self.fields || earlier == 0 {
             return Ok(None);
         }
-        let shape = array2(contact, PRESSURE)?.dim();
         let mut operator = self.displacement_operator(contact, shape)?;
         let mut displacements = Array3::zeros((earlier, shape.0, shape.1));
         let mut pressure = Array2::zeros(shape);

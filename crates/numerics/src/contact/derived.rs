@@ -16,6 +16,7 @@
 //! step to the next. The result is [`fields_from_pressure`]'s, bit for bit.
 
 use ndarray::{Array2, ArrayView2, CowArray, Ix2};
+use rayon::prelude::*;
 
 use super::error::ContactError;
 use super::influence::{Boundary, InfluenceOperator};
@@ -23,6 +24,10 @@ use super::load_curve::ContactFields;
 use super::material::ContactMaterial;
 use super::options::FieldRequest;
 use super::problem::ContactProblem;
+
+/// Points per parallel chunk of the field passes (each value is computed alone, so the fields do
+/// not depend on the thread count).
+const CHUNK: usize = 1 << 14;
 
 /// The requested fields of a step from its pressure `p` (Pa), gap `g` and composite displacement
 /// `u` (m), each `ny × nx` row-major, `shape = (ny, nx)`.
@@ -33,70 +38,132 @@ pub(crate) fn assemble_fields(
     request: FieldRequest,
 ) -> ContactFields {
     let mut fields = ContactFields::default();
-    write_fields(
-        &mut fields,
-        shape,
-        (&|i| p[i], &|i| g[i], &|i| u[i]),
-        material,
-        request,
-    );
+    write_fields(&mut fields, shape, (p, |i| g[i], u), material, request);
     fields
 }
 
-/// The per-point values of a step's pressure `p` (Pa), gap `g` and composite displacement `u`
-/// (m) at the flat index `iy·nx + ix`.
-type PointValues<'a> = (
-    &'a dyn Fn(usize) -> f64,
-    &'a dyn Fn(usize) -> f64,
-    &'a dyn Fn(usize) -> f64,
-);
+/// The pressure `p` (Pa), gap `g` and composite displacement `u` (m) of a converged step, each
+/// `ny × nx` row-major, owned: what a consumed solver leaves ([`super::ContactSolver::
+/// into_last_solution`]). Its fields ([`Self::into_fields`]) are [`assemble_fields`]'s, bit for
+/// bit, in the arrays of `p`, `g` and `u` themselves: only the plastic penetration and the
+/// second body's deformation are new arrays.
+#[derive(Debug)]
+pub struct StepSolution {
+    shape: (usize, usize),
+    p: Vec<f64>,
+    g: Vec<f64>,
+    u: Vec<f64>,
+    material: ContactMaterial,
+}
 
-/// The requested fields of [`assemble_fields`] written into `fields`: an array of the grid's
-/// shape is overwritten in place, any other one replaced; a field not requested is `None`.
+impl StepSolution {
+    /// The solution `[p, g, u]` on the grid `shape = (ny, nx)` of a contact of `material`.
+    pub(crate) fn new(
+        shape: (usize, usize),
+        [p, g, u]: [Vec<f64>; 3],
+        material: ContactMaterial,
+    ) -> Self {
+        Self {
+            shape,
+            p,
+            g,
+            u,
+            material,
+        }
+    }
+
+    /// The grid, `(ny, nx)`.
+    pub fn shape(&self) -> (usize, usize) {
+        self.shape
+    }
+
+    /// The requested fields, the pressure, gap and first body's deformation in the arrays of
+    /// `p`, `g` and `u` (the deformation `u · c₁/(c₁ + c₂)` scaled in place).
+    pub fn into_fields(self, request: FieldRequest) -> ContactFields {
+        let Self {
+            shape,
+            p,
+            g,
+            mut u,
+            material,
+        } = self;
+        let plim = material.flow_pressure();
+        let share = material.first_body_share();
+        let grid = |values: Vec<f64>| {
+            Array2::from_shape_vec(shape, values)
+                .unwrap_or_else(|_| unreachable!("ny · nx values of the solver"))
+        };
+        let plastic_penetration = request
+            .plastic_penetration
+            .then(|| new_grid(shape, |i| plastic(p[i], g[i], plim)));
+        let deformation_second = request
+            .deformation
+            .then(|| new_grid(shape, |i| u[i] * (1.0 - share)));
+        let deformation_first = request.deformation.then(|| {
+            u.par_iter_mut().for_each(|v| *v *= share);
+            grid(u)
+        });
+        ContactFields {
+            pressure: request.pressure.then(|| grid(p)),
+            gap: request.gap.then(|| grid(g)),
+            deformation_first,
+            deformation_second,
+            plastic_penetration,
+        }
+    }
+}
+
+/// The plastic penetration of a point of pressure `p` and gap `g`: `max(0, −g)` where `p = p_lim`
+/// (the pressure reaches the cap), 0 elsewhere.
+fn plastic(p: f64, g: f64, plim: f64) -> f64 {
+    if p >= plim {
+        (-g).max(0.0)
+    } else {
+        0.0
+    }
+}
+
+/// The requested fields of [`assemble_fields`] written into `fields` from `p`, the gap `g(i)` at
+/// the flat index `i = iy·nx + ix` and `u`: an array of the grid's shape is overwritten in place,
+/// any other one replaced; a field not requested is `None`.
 fn write_fields(
     fields: &mut ContactFields,
     shape: (usize, usize),
-    (p, g, u): PointValues<'_>,
+    (p, g, u): (&[f64], impl Fn(usize) -> f64 + Sync + Copy, &[f64]),
     material: &ContactMaterial,
     request: FieldRequest,
 ) {
     let plim = material.flow_pressure();
     let share = material.first_body_share();
-    fill(&mut fields.pressure, request.pressure, shape, p);
+    fill(&mut fields.pressure, request.pressure, shape, |i| p[i]);
     fill(&mut fields.gap, request.gap, shape, g);
     fill(
         &mut fields.deformation_first,
         request.deformation,
         shape,
-        &|i| u(i) * share,
+        |i| u[i] * share,
     );
     fill(
         &mut fields.deformation_second,
         request.deformation,
         shape,
-        &|i| u(i) * (1.0 - share),
+        |i| u[i] * (1.0 - share),
     );
     fill(
         &mut fields.plastic_penetration,
         request.plastic_penetration,
         shape,
-        &|i| {
-            if p(i) >= plim {
-                (-g(i)).max(0.0)
-            } else {
-                0.0
-            }
-        },
+        |i| plastic(p[i], g(i), plim),
     );
 }
 
-/// `slot` set to the `shape` grid of `f` at every flat index `iy·nx + ix` (its own array reused
-/// when it has that shape), or to `None` when not `wanted`.
+/// `slot` set to the `shape` grid of `f` at every flat index `iy·nx + ix` (its own array
+/// overwritten when it has that shape), or to `None` when not `wanted`.
 fn fill(
     slot: &mut Option<Array2<f64>>,
     wanted: bool,
     shape: (usize, usize),
-    f: &dyn Fn(usize) -> f64,
+    f: impl Fn(usize) -> f64 + Sync,
 ) {
     if !wanted {
         *slot = None;
@@ -107,15 +174,29 @@ fn fill(
         .filter(|a| a.dim() == shape)
         .and_then(|a| a.as_slice_mut())
     {
-        for (i, v) in values.iter_mut().enumerate() {
-            *v = f(i);
-        }
+        values
+            .par_chunks_mut(CHUNK)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                let base = c * CHUNK;
+                for (k, v) in chunk.iter_mut().enumerate() {
+                    *v = f(base + k);
+                }
+            });
         return;
     }
-    *slot = Some(Array2::from_shape_fn(
-        shape,
-        |(iy, ix)| f(iy * shape.1 + ix),
-    ));
+    *slot = Some(new_grid(shape, f));
+}
+
+/// A new `shape` grid of `f` at every flat index, each value written once (no zeroing pass).
+fn new_grid(shape: (usize, usize), f: impl Fn(usize) -> f64 + Sync) -> Array2<f64> {
+    let mut values = Vec::new();
+    (0..shape.0 * shape.1)
+        .into_par_iter()
+        .with_min_len(CHUNK)
+        .map(&f)
+        .collect_into_vec(&mut values);
+    Array2::from_shape_vec(shape, values).unwrap_or_else(|_| unreachable!("ny · nx values"))
 }
 
 /// `u = K p` on one grid by the solver's influence operator in double precision, built once (its
@@ -138,7 +219,7 @@ impl DisplacementOperator {
         boundary: Boundary,
     ) -> Result<Self, ContactError> {
         let (ny, nx) = shape;
-        let operator = InfluenceOperator::new(
+        let operator = InfluenceOperator::double_only(
             nx,
             ny,
             dx,
@@ -207,21 +288,21 @@ pub fn fields_from_pressure(
             got: pressure.dim(),
         });
     }
-    let p: Vec<f64> = pressure.iter().copied().collect();
+    let p = pressure.as_standard_layout().into_owned();
     let mut u = vec![0.0; p.len()];
-    DisplacementOperator::of_problem(problem)?.apply(pressure, &mut u)?;
-    let g: Vec<f64> = gap
-        .gap()
-        .iter()
+    DisplacementOperator::of_problem(problem)?.apply(p.view(), &mut u)?;
+    let g0 = gap.gap();
+    let g0 = g0
+        .as_slice()
+        .unwrap_or_else(|| unreachable!("a gap is one slice"));
+    let mut g = Vec::new();
+    g0.par_iter()
+        .with_min_len(CHUNK)
         .zip(&u)
         .map(|(&g0, &ui)| g0 + ui - approach)
-        .collect();
-    Ok(assemble_fields(
-        shape,
-        (&p, &g, &u),
-        problem.material(),
-        request,
-    ))
+        .collect_into_vec(&mut g);
+    let p = p.into_raw_vec_and_offset().0;
+    Ok(StepSolution::new(shape, [p, g, u], *problem.material()).into_fields(request))
 }
 
 /// [`fields_from_pressure`]'s fields of a step from its `pressure` (Pa) and its composite
@@ -260,13 +341,7 @@ pub fn fields_from_displacement(
     );
     let (z, p, u) = (values(&z), values(&p), values(&u));
     let gap = |i: usize| (top - z[i]) + u[i] - approach;
-    write_fields(
-        fields,
-        shape,
-        (&|i| p[i], &gap, &|i| u[i]),
-        material,
-        request,
-    );
+    write_fields(fields, shape, (p, gap, u), material, request);
     Ok(())
 }
 
@@ -420,6 +495,53 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// On a grid of several parallel chunks, with saturated, free and zero pressures: the fields
+    /// in new arrays, in reused arrays and moved out of a solution are the point formulas, bit
+    /// for bit.
+    #[test]
+    fn every_path_writes_the_point_formulas_on_a_grid_of_several_chunks() {
+        let shape = (300, 131);
+        let n = shape.0 * shape.1;
+        assert!(n > 2 * CHUNK);
+        let material = ContactMaterial::from_young_poisson(210e9, 0.3, 70e9, 0.33, 5e8).unwrap();
+        let (plim, share) = (material.flow_pressure(), material.first_body_share());
+        let wave = |i: usize, k: f64| ((i as f64) * k).sin();
+        let p: Vec<f64> = (0..n)
+            .map(|i| (plim * 1.2 * wave(i, 0.37)).max(0.0).min(plim))
+            .collect();
+        let g: Vec<f64> = (0..n).map(|i| 1e-7 * wave(i, 0.11)).collect();
+        let u: Vec<f64> = (0..n).map(|i| 3e-7 * wave(i, 0.013)).collect();
+        let grid =
+            |f: &dyn Fn(usize) -> f64| Array2::from_shape_fn(shape, |(y, x)| f(y * shape.1 + x));
+        let expected = ContactFields {
+            pressure: Some(grid(&|i| p[i])),
+            gap: Some(grid(&|i| g[i])),
+            deformation_first: Some(grid(&|i| u[i] * share)),
+            deformation_second: Some(grid(&|i| u[i] * (1.0 - share))),
+            plastic_penetration: Some(grid(&|i| if p[i] >= plim { (-g[i]).max(0.0) } else { 0.0 })),
+        };
+        assert!(p.contains(&plim) && p.iter().any(|&v| v > 0.0 && v < plim));
+        let fresh = assemble_fields(shape, (&p, &g, &u), &material, FieldRequest::ALL);
+        assert_eq!(fresh, expected);
+        let mut reused = ContactFields {
+            pressure: Some(Array2::from_elem(shape, 9.0)),
+            gap: Some(Array2::from_elem(shape, 9.0)),
+            deformation_first: Some(Array2::from_elem(shape, 9.0)),
+            deformation_second: Some(Array2::from_elem((3, 3), 9.0)),
+            plastic_penetration: None,
+        };
+        write_fields(
+            &mut reused,
+            shape,
+            (&p, |i| g[i], &u),
+            &material,
+            FieldRequest::ALL,
+        );
+        assert_eq!(reused, expected);
+        let moved = StepSolution::new(shape, [p, g, u], material).into_fields(FieldRequest::ALL);
+        assert_eq!(moved, expected);
     }
 
     #[test]

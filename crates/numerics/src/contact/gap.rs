@@ -1,6 +1,8 @@
 //! Composite initial gap of two rough surfaces on one grid.
 
-use ndarray::{Array2, ArrayView2, Zip};
+use std::sync::Arc;
+
+use ndarray::{Array2, ArrayView2};
 
 use crate::surface::HeightMap;
 
@@ -65,12 +67,39 @@ pub enum GapError {
 /// of two rough surfaces equals that of one surface of height `z` against a rigid flat)
 /// `g₀ = max z − z`. The gap is symmetric in the two surfaces.
 ///
-/// Indexing is `[[iy, ix]]` with `x` fastest, as in [`HeightMap`].
+/// Indexing is `[[iy, ix]]` with `x` fastest, as in [`HeightMap`]. The values are held once and
+/// shared (a clone and the solver's workspace read the same array).
 #[derive(Debug, Clone, PartialEq)]
 pub struct CompositeGap {
-    gap: Array2<f64>,
+    /// `g₀`, `ny · nx` values row-major.
+    gap: Arc<Vec<f64>>,
+    nx: usize,
+    ny: usize,
     dx: f64,
     dy: f64,
+}
+
+/// One body's heights (m, `[[iy, ix]]`, as in [`HeightMap`]) on a grid of spacing `dx`, `dy`
+/// (m), borrowed: what [`CompositeGap::from_height_views`] reads without copying a map.
+#[derive(Debug, Clone, Copy)]
+pub struct HeightsView<'a> {
+    /// Heights in m.
+    pub heights: ArrayView2<'a, f64>,
+    /// Pixel spacing along x in m.
+    pub dx: f64,
+    /// Pixel spacing along y in m.
+    pub dy: f64,
+}
+
+impl<'a> HeightsView<'a> {
+    /// The heights and spacing of `map`.
+    pub fn of(map: &'a HeightMap) -> Self {
+        Self {
+            heights: map.heights().view(),
+            dx: map.dx(),
+            dy: map.dy(),
+        }
+    }
 }
 
 fn first_non_finite(z: ArrayView2<f64>, source_name: GapSource) -> Result<(), GapError> {
@@ -85,35 +114,59 @@ fn first_non_finite(z: ArrayView2<f64>, source_name: GapSource) -> Result<(), Ga
     }
 }
 
+/// The values of `a` row-major: its own buffer when it holds exactly them in that order (an
+/// array made in standard layout), else a copy.
+fn row_major_values(a: Array2<f64>) -> Vec<f64> {
+    let len = a.len();
+    if a.is_standard_layout() {
+        let (values, offset) = a.into_raw_vec_and_offset();
+        if values.len() == len && offset.unwrap_or(0) == 0 {
+            return values;
+        }
+        let start = offset.unwrap_or(0);
+        return values[start..start + len].to_vec();
+    }
+    a.iter().copied().collect()
+}
+
 impl CompositeGap {
     /// Gap of two rough surfaces on the same grid (same `nx`, `ny`, `dx`, `dy`).
     pub fn from_surfaces(first: &HeightMap, second: &HeightMap) -> Result<Self, GapError> {
-        if first.nx() != second.nx()
-            || first.ny() != second.ny()
-            || first.dx() != second.dx()
-            || first.dy() != second.dy()
-        {
-            return Err(GapError::GridMismatch {
-                nx1: first.nx(),
-                ny1: first.ny(),
-                dx1: first.dx(),
-                dy1: first.dy(),
-                nx2: second.nx(),
-                ny2: second.ny(),
-                dx2: second.dx(),
-                dy2: second.dy(),
-            });
-        }
-        first_non_finite(first.heights().view(), GapSource::FirstSurface)?;
-        first_non_finite(second.heights().view(), GapSource::SecondSurface)?;
-        let composite = first.heights() + second.heights();
-        Self::from_composite_height(composite, first.dx(), first.dy())
+        Self::from_height_views(HeightsView::of(first), Some(HeightsView::of(second)))
     }
 
     /// Gap of one rough surface against a rigid (or elastic) flat.
     pub fn against_flat(surface: &HeightMap) -> Result<Self, GapError> {
-        first_non_finite(surface.heights().view(), GapSource::FirstSurface)?;
-        Self::from_composite_height(surface.heights().clone(), surface.dx(), surface.dy())
+        Self::from_height_views(HeightsView::of(surface), None)
+    }
+
+    /// [`Self::from_surfaces`] of two borrowed height maps, or [`Self::against_flat`] of `first`
+    /// without `second`: the composite height `z₁ + z₂` is the one array allocated (it becomes
+    /// the gap in place).
+    pub fn from_height_views(
+        first: HeightsView<'_>,
+        second: Option<HeightsView<'_>>,
+    ) -> Result<Self, GapError> {
+        first_non_finite(first.heights, GapSource::FirstSurface)?;
+        let Some(second) = second else {
+            return Self::from_composite_height(first.heights.to_owned(), first.dx, first.dy);
+        };
+        let ((ny1, nx1), (ny2, nx2)) = (first.heights.dim(), second.heights.dim());
+        if (nx1, ny1, first.dx, first.dy) != (nx2, ny2, second.dx, second.dy) {
+            return Err(GapError::GridMismatch {
+                nx1,
+                ny1,
+                dx1: first.dx,
+                dy1: first.dy,
+                nx2,
+                ny2,
+                dx2: second.dx,
+                dy2: second.dy,
+            });
+        }
+        first_non_finite(second.heights, GapSource::SecondSurface)?;
+        let composite = &first.heights + &second.heights;
+        Self::from_composite_height(composite, first.dx, first.dy)
     }
 
     /// Gap given directly in metres (e.g. `r²/2R` for a sphere); it is shifted so that
@@ -137,7 +190,13 @@ impl CompositeGap {
         // A sum of two finite heights can still overflow to infinity, and so can the squares of
         // finite gaps in their rms, on which every residual of the solver is scaled.
         first_non_finite(gap.view(), GapSource::GapArray)?;
-        let gap = Self { gap, dx, dy };
+        let gap = Self {
+            gap: Arc::new(row_major_values(gap)),
+            nx,
+            ny,
+            dx,
+            dy,
+        };
         if !gap.rms().is_finite() {
             let span = gap.gap.iter().copied().fold(0.0f64, f64::max);
             return Err(GapError::Overflow { span });
@@ -146,18 +205,24 @@ impl CompositeGap {
     }
 
     /// Initial gap in metres, `[[iy, ix]]`.
-    pub fn gap(&self) -> &Array2<f64> {
-        &self.gap
+    pub fn gap(&self) -> ArrayView2<'_, f64> {
+        ArrayView2::from_shape((self.ny, self.nx), &self.gap)
+            .unwrap_or_else(|_| unreachable!("ny · nx values"))
+    }
+
+    /// The gap's values, `ny · nx` row-major, shared with this gap (no copy).
+    pub(crate) fn shared_values(&self) -> Arc<Vec<f64>> {
+        Arc::clone(&self.gap)
     }
 
     /// Number of points along x.
     pub fn nx(&self) -> usize {
-        self.gap.ncols()
+        self.nx
     }
 
     /// Number of points along y.
     pub fn ny(&self) -> usize {
-        self.gap.nrows()
+        self.ny
     }
 
     /// Pixel spacing along x in metres.
@@ -172,10 +237,11 @@ impl CompositeGap {
 
     /// Root-mean-square deviation of the gap about its mean in metres (the composite `S_q`).
     pub fn rms(&self) -> f64 {
-        let n = self.gap.len() as f64;
-        let mean = self.gap.sum() / n;
+        let gap = self.gap();
+        let n = gap.len() as f64;
+        let mean = gap.sum() / n;
         let mut sum_sq = 0.0;
-        Zip::from(&self.gap).for_each(|&g| sum_sq += (g - mean) * (g - mean));
+        gap.for_each(|&g| sum_sq += (g - mean) * (g - mean));
         (sum_sq / n).sqrt()
     }
 }
@@ -193,7 +259,19 @@ mod tests {
         let ba = CompositeGap::from_surfaces(&b, &a).unwrap();
         assert_eq!(ab, ba);
         // z = [[1, 0], [2, 1]] ⇒ g₀ = 2 − z.
-        assert_eq!(ab.gap(), &array![[1.0, 2.0], [0.0, 1.0]]);
+        assert_eq!(ab.gap(), array![[1.0, 2.0], [0.0, 1.0]]);
+    }
+
+    /// A gap array in column-major order gives the gap of the same array in row-major order.
+    #[test]
+    fn a_column_major_gap_array_gives_the_same_gap() {
+        let rows = Array2::from_shape_fn((3, 4), |(y, x)| (y * 4 + x) as f64 * 0.5);
+        let columns = rows.t().as_standard_layout().into_owned();
+        let from_rows = CompositeGap::from_gap_array(rows.view(), 1.0, 2.0).unwrap();
+        let from_columns = CompositeGap::from_gap_array(columns.t(), 1.0, 2.0).unwrap();
+        assert_eq!(from_rows, from_columns);
+        assert_eq!(from_rows.gap(), rows);
+        assert_eq!((from_rows.nx(), from_rows.ny()), (4, 3));
     }
 
     #[test]

@@ -195,31 +195,13 @@ impl InfluenceOperator {
         boundary: Boundary,
         preconditioner: bool,
     ) -> Result<Self, FftFailure> {
-        let (fft, kernel, inverse_kernel) = match boundary {
-            Boundary::Periodic => {
-                periodic_kernels(nx, ny, dx, dy, composite_modulus, preconditioner)?
-            }
-            Boundary::NonPeriodic => {
-                non_periodic_kernels(nx, ny, dx, dy, composite_modulus, preconditioner)?
-            }
-        };
-        let single = single_transforms(&fft, &kernel, inverse_kernel.as_deref());
-        let mut operator = Self {
-            double: Transforms {
-                fft,
-                kernel,
-                inverse_kernel,
-            },
-            single,
-            precision: Precision::Double,
-            kept: Precision::Double,
-            nx,
-            ny,
-            boundary,
-            coefficients: Vec::new(),
-            coefficient_stride: 0,
-            transforms: 0,
-        };
+        let mut operator =
+            Self::double_only(nx, ny, dx, dy, composite_modulus, boundary, preconditioner)?;
+        operator.single = single_transforms(
+            &operator.double.fft,
+            &operator.double.kernel,
+            operator.double.inverse_kernel.as_deref(),
+        );
         let mut impulse = vec![0.0; nx * ny];
         let mut response = vec![0.0; nx * ny];
         impulse[0] = 1.0;
@@ -236,6 +218,44 @@ impl InfluenceOperator {
             .collect();
         operator.coefficient_stride = stride;
         Ok(operator)
+    }
+
+    /// [`Self::new`]'s operator in double precision only and without the coefficients: what
+    /// [`Self::apply`] needs (`derived::DisplacementOperator`), without the single-precision
+    /// transforms and the impulse response.
+    pub(crate) fn double_only(
+        nx: usize,
+        ny: usize,
+        dx: f64,
+        dy: f64,
+        composite_modulus: f64,
+        boundary: Boundary,
+        preconditioner: bool,
+    ) -> Result<Self, FftFailure> {
+        let (fft, kernel, inverse_kernel) = match boundary {
+            Boundary::Periodic => {
+                periodic_kernels(nx, ny, dx, dy, composite_modulus, preconditioner)?
+            }
+            Boundary::NonPeriodic => {
+                non_periodic_kernels(nx, ny, dx, dy, composite_modulus, preconditioner)?
+            }
+        };
+        Ok(Self {
+            double: Transforms {
+                fft,
+                kernel,
+                inverse_kernel,
+            },
+            single: None,
+            precision: Precision::Double,
+            kept: Precision::Double,
+            nx,
+            ny,
+            boundary,
+            coefficients: Vec::new(),
+            coefficient_stride: 0,
+            transforms: 0,
+        })
     }
 
     /// Whether the operator has single-precision transforms (its kernels fit their range,

@@ -251,8 +251,13 @@ mod tests {
         let n = 64;
         let plim = 10.0;
         let start = |u0: f64| {
-            let mut ws =
-                Workspace::new((0..n).map(|i| (n - 1 - i) as f64 * 1e-6).collect(), 8, plim);
+            let mut ws = Workspace::new(
+                (0..n)
+                    .map(|i| (n - 1 - i) as f64 * 1e-6)
+                    .collect::<Vec<_>>(),
+                8,
+                plim,
+            );
             ws.p[62] = 4.0;
             ws.p[63] = 4.0;
             ws.u[0] = u0;

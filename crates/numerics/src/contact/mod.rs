@@ -29,9 +29,11 @@ mod workspace;
 
 pub use crate::fft2::{FftFailure, RealFft2d};
 pub use crate::materials::MaterialError;
-pub use derived::{fields_from_displacement, fields_from_pressure, DisplacementOperator};
+pub use derived::{
+    fields_from_displacement, fields_from_pressure, DisplacementOperator, StepSolution,
+};
 pub use error::ContactError;
-pub use gap::{CompositeGap, GapError, GapSource};
+pub use gap::{CompositeGap, GapError, GapSource, HeightsView};
 pub use influence::Boundary;
 pub use load_curve::{ContactFields, LoadCurve, LoadStep};
 pub use material::ContactMaterial;

@@ -1,10 +1,11 @@
 //! The load-stepped contact solver: problem definition, warm starts, step results.
 
+use ndarray::ArrayView2;
 use rayon::prelude::*;
 
 use super::approach_search;
 use super::constrained_cg::{self, CgOutcome, CgSettings, Control};
-use super::derived;
+use super::derived::{self, StepSolution};
 use super::error::ContactError;
 use super::influence::InfluenceOperator;
 use super::load_curve::{ContactFields, LoadCurve, LoadStep};
@@ -91,7 +92,7 @@ impl ContactSolver {
             preconditions(&options, problem.material()),
         )?;
         let workspace = Workspace::new(
-            gap.gap().iter().copied().collect(),
+            gap.shared_values(),
             gap.nx(),
             problem.material().flow_pressure(),
         );
@@ -409,11 +410,27 @@ impl ContactSolver {
         self.last_nominal.map(|_| self.fields_of_workspace(request))
     }
 
+    /// The pressure (Pa, `[[iy, ix]]`) of the last converged step, borrowed from the solver
+    /// (`None` as for [`Self::last_fields`]).
+    pub fn last_pressure(&self) -> Option<ArrayView2<'_, f64>> {
+        self.last_nominal?;
+        let shape = (self.problem.gap().ny(), self.problem.gap().nx());
+        ArrayView2::from_shape(shape, &self.workspace.p).ok()
+    }
+
     /// The requested fields of the last converged step, as [`Self::last_fields`] gives them, from
-    /// a solver no longer needed: its operator, transforms and every other workspace array are
-    /// released before the fields are assembled, so the caller's peak holds the fields beside
-    /// three grid arrays (pressure, gap, displacement) instead of beside the whole solver.
+    /// a solver no longer needed ([`Self::into_last_solution`], then
+    /// [`StepSolution::into_fields`]): the pressure, gap and displacement arrays become fields.
     pub fn into_last_fields(self, request: FieldRequest) -> Option<ContactFields> {
+        self.into_last_solution()
+            .map(|solution| solution.into_fields(request))
+    }
+
+    /// The pressure, gap and displacement of the last converged step from a solver no longer
+    /// needed: its operator, transforms, problem and every other workspace array are released,
+    /// so the caller holds three grid arrays instead of the whole solver (`None` as for
+    /// [`Self::last_fields`]).
+    pub fn into_last_solution(self) -> Option<StepSolution> {
         self.last_nominal?;
         let shape = (self.problem.gap().ny(), self.problem.gap().nx());
         let material = *self.problem.material();
@@ -424,12 +441,10 @@ impl ContactSolver {
             ..
         } = self;
         drop((operator, problem));
-        let [p, g, u] = workspace.into_solution();
-        Some(derived::assemble_fields(
+        Some(StepSolution::new(
             shape,
-            (&p, &g, &u),
-            &material,
-            request,
+            workspace.into_solution(),
+            material,
         ))
     }
 

@@ -527,10 +527,15 @@ fn the_fields_of_a_consumed_solver_are_those_it_returned() {
     let gap = westergaard_problem(128, 1e-6, 1e11, 2e9).gap().clone();
     let problem = || ContactProblem::new(gap.clone(), material, Boundary::Periodic);
     let fresh = ContactSolver::new(problem(), options(1e-10, FieldRequest::NONE)).unwrap();
+    assert!(fresh.last_pressure().is_none());
     assert!(fresh.into_last_fields(FieldRequest::ALL).is_none());
     let mut solver = ContactSolver::new(problem(), options(1e-10, FieldRequest::NONE)).unwrap();
     solver.solve(2e8).unwrap();
     let kept = solver.last_fields(FieldRequest::ALL).unwrap();
+    assert_eq!(
+        Some(solver.last_pressure().unwrap().to_owned()),
+        kept.pressure
+    );
     let consumed = solver.into_last_fields(FieldRequest::ALL).unwrap();
     let pairs = [
         (kept.pressure, consumed.pressure),

@@ -16,6 +16,8 @@
 //! threads. The lists are reused from iteration to iteration (no allocation once they reached
 //! their size).
 
+use std::sync::Arc;
+
 use rayon::prelude::*;
 
 use super::restricted_matrix::RestrictedMatrix;
@@ -167,8 +169,8 @@ fn is_free(p: f64, flow_pressure: f64) -> bool {
 /// Pressures, displacements, gaps and CG vectors of one grid, allocated once.
 #[derive(Debug)]
 pub(crate) struct Workspace {
-    /// Initial gap `g₀` in m.
-    pub g0: Vec<f64>,
+    /// Initial gap `g₀` in m, shared with the problem's gap (read only: not a copy of it).
+    pub g0: Arc<Vec<f64>>,
     /// `g₀` at the points out of contact (`p = 0`), `+∞` at the contact points: the dense passes
     /// over the points out of contact read this one array instead of `g₀` and `p`.
     g0_out: Vec<f64>,
@@ -208,12 +210,13 @@ impl Workspace {
     }
 
     /// The workspace of a grid of `g0.len()` points in rows of `nx`, pressures capped at `plim`.
-    pub(crate) fn new(g0: Vec<f64>, nx: usize, plim: f64) -> Self {
+    pub(crate) fn new(g0: impl Into<Arc<Vec<f64>>>, nx: usize, plim: f64) -> Self {
+        let g0 = g0.into();
         let n = g0.len();
         let nx = nx.max(1);
         let blocks = n.div_ceil(BLOCK).max(1);
         Self {
-            g0_out: g0.clone(),
+            g0_out: g0.to_vec(),
             g0,
             p: vec![0.0; n],
             u: vec![0.0; n],
