@@ -64,7 +64,8 @@ use rand_core::{Rng, SeedableRng};
 use rayon::prelude::*;
 use realfft::num_complex::Complex64;
 
-use super::spectral::{Periodogram, Window};
+use super::model_psd::ModelPsd;
+use super::spectral::{InverseTransform, Periodogram, Window};
 use super::{HeightMap, HeightMapError};
 use crate::fft2::{inverse_real_2d, FftFailure};
 
@@ -275,43 +276,7 @@ impl SyntheticSurfaceSpec {
 
     /// Unnormalised model PSD `C(q)/C0` at wavevector `(qx, qy)` in rad/m (see module docs).
     pub fn psd_shape(&self, qx: f64, qy: f64) -> f64 {
-        let q2 = qx * qx + qy * qy;
-        if q2 == 0.0 {
-            return 0.0;
-        }
-        if let Some(cutoff) = self.short_wavelength_cutoff {
-            let qs = 2.0 * PI / cutoff;
-            if q2 > qs * qs {
-                return 0.0;
-            }
-        }
-        let (lu, lv) = self.correlation_lengths();
-        let (s, c) = self.anisotropy.map_or(0.0, |a| a.angle).sin_cos();
-        let ku = (qx * c + qy * s) * lu / (2.0 * PI);
-        let kv = (-qx * s + qy * c) * lv / (2.0 * PI);
-        let kappa2 = ku * ku + kv * kv;
-        if kappa2 < 1.0 {
-            1.0
-        } else {
-            kappa2.powf(-(1.0 + self.hurst))
-        }
-    }
-
-    /// Model PSD shape of half-spectrum mode `(i, j)` (`kx = i ≥ 0`, row `j` as in the FFT).
-    /// On the Nyquist row the aliased `±qy` are one mode: mean of both.
-    fn mode_shape(&self, i: usize, j: usize) -> f64 {
-        let qx = 2.0 * PI * i as f64 / self.lx;
-        let ky = if 2 * j <= self.ny {
-            j as f64
-        } else {
-            j as f64 - self.ny as f64
-        };
-        let qy = 2.0 * PI * ky / self.ly;
-        if 2 * j == self.ny {
-            0.5 * (self.psd_shape(qx, qy) + self.psd_shape(qx, -qy))
-        } else {
-            self.psd_shape(qx, qy)
-        }
+        ModelPsd::of(self).shape(qx, qy)
     }
 }
 
@@ -332,7 +297,16 @@ pub fn generate_synthetic_surface(
 pub fn generate_synthetic_surface_with_periodogram(
     spec: &SyntheticSurfaceSpec,
 ) -> Result<(HeightMap, Periodogram), SyntheticError> {
-    let (map, half, scale) = synthesize(spec)?;
+    generate_synthetic_surface_with_spectrum(spec).map(|(map, periodogram, _)| (map, periodogram))
+}
+
+/// [`generate_synthetic_surface_with_periodogram`] with the inverse transform the heights came
+/// from, planned for the surface's grid, for the statistics' own inverse transforms (the
+/// periodic autocorrelation: [`super::spectral::periodic_autocorrelation_with`]).
+pub fn generate_synthetic_surface_with_spectrum(
+    spec: &SyntheticSurfaceSpec,
+) -> Result<(HeightMap, Periodogram, InverseTransform), SyntheticError> {
+    let (map, half, scale, transform) = synthesize(spec)?;
     let area = spec.lx * spec.ly;
     let factor = area * scale * scale;
     let modes = half
@@ -349,17 +323,17 @@ pub fn generate_synthetic_surface_with_periodogram(
         nx: spec.nx,
         window: Window::None,
     };
-    Ok((map, periodogram))
+    Ok((map, periodogram, transform))
 }
 
 /// ChaCha words (`u32`) each mode draws: two `u64`, one pair of normal deviates.
 const WORDS_PER_MODE: u128 = 4;
 
-/// The surface, its half spectrum of modes `Ẑ` (before normalisation) and the normalisation
-/// factor `s` (heights = `s·(F⁻¹Ẑ − mean)`).
+/// The surface, its half spectrum of modes `Ẑ` (before normalisation), the normalisation
+/// factor `s` (heights = `s·(F⁻¹Ẑ − mean)`) and the inverse transform planned for its grid.
 fn synthesize(
     spec: &SyntheticSurfaceSpec,
-) -> Result<(HeightMap, Array2<Complex64>, f64), SyntheticError> {
+) -> Result<(HeightMap, Array2<Complex64>, f64, InverseTransform), SyntheticError> {
     spec.validate()?;
     let (nx, ny) = (spec.nx, spec.ny);
     let nxh = nx / 2 + 1;
@@ -371,6 +345,12 @@ fn synthesize(
     // chunk holds consecutive modes: within a row the stream of its `ky` is read on, and at the
     // start of a row or past modes without power (which stay zero and draw nothing) it is moved
     // to the mode's position, so every mode's deviates are those of its position.
+    // The modes beyond the cutoff are not evaluated: their shape is 0.
+    let model = ModelPsd::of(spec);
+    let ends: Vec<usize> = (0..ny)
+        .into_par_iter()
+        .map(|j| model.modes_within_cutoff(j))
+        .collect();
     let modes: Vec<Complex64> = (0..ny * nxh)
         .into_par_iter()
         .with_min_len(nxh)
@@ -378,7 +358,7 @@ fn synthesize(
             || ModeStream::new(&base),
             |stream, index| {
                 let (j, i) = (index / nxh, index % nxh);
-                let shape = spec.mode_shape(i, j);
+                let shape = if i < ends[j] { model.mode(i, j) } else { 0.0 };
                 if shape == 0.0 {
                     return Complex64::new(0.0, 0.0);
                 }
@@ -396,23 +376,25 @@ fn synthesize(
         Array2::from_shape_vec((ny, nxh), modes).map_err(|e| FftFailure::new(e.to_string()))?;
     enforce_hermitian_columns(&mut half, nx);
 
-    let mut z = inverse_real_2d(&half, nx)?;
+    let mut transform = InverseTransform::new(nx, ny);
+    let mut z = transform.complex(&half, Vec::new())?;
     let n = (nx * ny) as f64;
     let mean = z.sum() / n;
-    let rms = (z.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt();
+    let heights = z
+        .as_slice_mut()
+        .ok_or_else(|| FftFailure::new("the inverse transform is not contiguous"))?;
+    // In the heights' (row-major) order, as over the array's elements.
+    let rms = (heights.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt();
     if !(rms > 0.0 && rms.is_finite()) {
         return Err(SyntheticError::NoSpectralContent);
     }
     let scale = spec.sq / rms;
-    let heights = z
-        .as_slice_mut()
-        .ok_or_else(|| FftFailure::new("the inverse transform is not contiguous"))?;
     // The heights and their mean square must be finite, or every statistic of the map is not.
     if !normalise(heights, mean, scale).is_finite() {
         return Err(SyntheticError::HeightsOverflow { sq: spec.sq });
     }
     let (dx, dy) = spec.spacing();
-    Ok((HeightMap::new(z, dx, dy)?, half, scale))
+    Ok((HeightMap::new(z, dx, dy)?, half, scale, transform))
 }
 
 /// Values per parallel chunk of [`normalise`].
@@ -477,8 +459,9 @@ impl ModeStream {
 pub fn model_autocorrelation(spec: &SyntheticSurfaceSpec) -> Result<Array2<f64>, SyntheticError> {
     spec.validate()?;
     let (nx, ny) = (spec.nx, spec.ny);
+    let model = ModelPsd::of(spec);
     let half = Array2::from_shape_fn((ny, nx / 2 + 1), |(j, i)| {
-        Complex64::new(spec.mode_shape(i, j), 0.0)
+        Complex64::new(model.mode(i, j), 0.0)
     });
     let acf = inverse_real_2d(&half, nx)?;
     let zero_lag = acf.first().copied().unwrap_or(0.0);
@@ -550,7 +533,7 @@ mod tests {
             rng.set_stream(mode_stream(j, ny));
             let mut next_drawn = 0;
             for (i, mode) in row.iter_mut().enumerate() {
-                let shape = spec.mode_shape(i, j);
+                let shape = ModelPsd::of(spec).mode(i, j);
                 if shape == 0.0 {
                     continue;
                 }
@@ -616,7 +599,7 @@ mod tests {
             (2, 3, None),
         ] {
             let spec = spec(nx, ny, cutoff, 101 + nx as u64);
-            let (map, half, _) = synthesize(&spec).unwrap();
+            let (map, half, _, _) = synthesize(&spec).unwrap();
             let expected = modes_reference(&spec);
             let mut reference_half = Array2::from_shape_vec((ny, nx / 2 + 1), expected).unwrap();
             enforce_hermitian_columns(&mut reference_half, nx);

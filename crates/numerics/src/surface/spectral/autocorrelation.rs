@@ -28,6 +28,7 @@ use rayon::prelude::*;
 use realfft::num_complex::Complex64;
 
 use super::error::{require_complete, SpectralError};
+use super::inverse::InverseTransform;
 use super::psd::{Axis, Periodogram, Window};
 use crate::fft2::{fast_even_length, forward_real_2d, inverse_real_2d, inverse_real_spectrum_2d};
 use crate::surface::HeightMap;
@@ -127,13 +128,31 @@ pub fn periodic_autocorrelation_of(
     p: &Periodogram,
     map: &HeightMap,
 ) -> Result<Autocorrelation, SpectralError> {
+    require_unwindowed_complete(p, map)?;
+    normalised(inverse_real_spectrum_2d(&p.c, map.nx())?, map)
+}
+
+/// [`periodic_autocorrelation_of`] through a transform already planned for `map`'s grid (a
+/// synthetic surface's), its lags written into `buffer`'s memory where it holds `nx·ny` values
+/// (a grid a statistic no longer needs): the same values, without a new plan or new pages.
+pub fn periodic_autocorrelation_with(
+    p: &Periodogram,
+    map: &HeightMap,
+    transform: &mut InverseTransform,
+    buffer: Vec<f64>,
+) -> Result<Autocorrelation, SpectralError> {
+    require_unwindowed_complete(p, map)?;
+    normalised(transform.real(&p.c, buffer)?, map)
+}
+
+/// The periodic ACF needs an unwindowed periodogram of a complete map.
+fn require_unwindowed_complete(p: &Periodogram, map: &HeightMap) -> Result<(), SpectralError> {
     if p.window != Window::None {
         return Err(SpectralError::Windowed {
             what: "the periodic autocorrelation",
         });
     }
-    require_complete(map)?;
-    normalised(inverse_real_spectrum_2d(&p.c, map.nx())?, map)
+    require_complete(map)
 }
 
 /// The lags `|ix| ≤ nx/2`, `|iy| ≤ ny/2` of the circular correlation `circular` of the
