@@ -357,7 +357,7 @@ fn synthesize(
         .map_init(
             || ModeStream::new(&base),
             |stream, index| {
-                let (j, i) = (index / nxh, index % nxh);
+                let (j, i) = stream.locate(index, nxh);
                 let shape = if i < ends[j] { model.mode(i, j) } else { 0.0 };
                 if shape == 0.0 {
                     return Complex64::new(0.0, 0.0);
@@ -426,6 +426,8 @@ struct ModeStream {
     rng: ChaCha8Rng,
     /// The row `j` and the mode `i` the stream is positioned at (`None` before the first).
     next: Option<(usize, usize)>,
+    /// The flat index and `(j, i)` of the last mode located.
+    last: Option<(usize, usize, usize)>,
 }
 
 impl ModeStream {
@@ -433,7 +435,20 @@ impl ModeStream {
         Self {
             rng: base.clone(),
             next: None,
+            last: None,
         }
+    }
+
+    /// `(j, i) = (index / nxh, index % nxh)`: a chunk's modes come in order, so after the first
+    /// the next one is one step on (no division per mode).
+    fn locate(&mut self, index: usize, nxh: usize) -> (usize, usize) {
+        let (j, i) = match self.last {
+            Some((last, j, i)) if index == last + 1 && i + 1 < nxh => (j, i + 1),
+            Some((last, j, _)) if index == last + 1 => (j + 1, 0),
+            _ => (index / nxh, index % nxh),
+        };
+        self.last = Some((index, j, i));
+        (j, i)
     }
 
     /// The pair of normal deviates of mode `i` of row `j` (of `ny` rows): its ChaCha stream
@@ -612,6 +627,23 @@ mod tests {
             );
             let heights: Vec<u64> = map.heights().iter().map(|v| v.to_bits()).collect();
             assert_eq!(heights, heights_reference(&spec), "{nx} × {ny}: heights");
+        }
+    }
+
+    /// [`ModeStream::locate`] gives the row and column of every flat index, in order, after a
+    /// jump and across row ends.
+    #[test]
+    fn modes_are_located_by_steps_and_jumps() {
+        let base = ChaCha8Rng::from_seed([0u8; 32]);
+        for nxh in [1, 2, 5] {
+            let mut stream = ModeStream::new(&base);
+            for index in (0..40).chain(57..70).chain([3, 4, 100]) {
+                assert_eq!(
+                    stream.locate(index, nxh),
+                    (index / nxh, index % nxh),
+                    "{nxh}"
+                );
+            }
         }
     }
 
