@@ -21,8 +21,6 @@
 //! not decay within the lag range. The correlation lengths along x and y use the same threshold on
 //! the lag axes (grid points, linear interpolation), so `Sal ≤ min(ξx, ξy)` up to interpolation.
 
-use std::ops::Range;
-
 use ndarray::Array2;
 use rayon::prelude::*;
 use realfft::num_complex::Complex64;
@@ -360,10 +358,7 @@ impl Autocorrelation {
     /// Radially averaged ACF (see [`RadialAcf`]). The lags are summed row by row from
     /// `(−hx, −hy)`, the order of the centred lag grid; the bin of a lag depends on `|ix|` and
     /// `|iy|` only (`|τ|` is `hypot` of the lag's components, even in each), so the bins of one
-    /// quadrant are computed first, in parallel, and serve all four. The bins are summed in
-    /// groups of consecutive bins, in parallel ([`Autocorrelation::annulus_sums`]): each bin's
-    /// lags are still added in the order of the lag grid, so the sums do not depend on the
-    /// grouping or the thread count.
+    /// quadrant are computed first, in parallel, and serve all four.
     pub fn radial(&self) -> RadialAcf {
         let width = self.dx.max(self.dy);
         let (mx, my) = self.max_lag();
@@ -379,31 +374,27 @@ impl Autocorrelation {
                     .collect()
             })
             .collect();
-        let sorted = quadrant.iter().all(|row| row.is_sorted());
-        let groups = RADIAL_GROUPS_PER_THREAD * rayon::current_num_threads();
-        self.radial_in_groups(&quadrant, sorted, bins, groups)
-    }
-
-    /// [`Autocorrelation::radial`] from the bins of one quadrant, `bins` bins summed in at most
-    /// `groups` groups.
-    fn radial_in_groups(
-        &self,
-        quadrant: &[Vec<usize>],
-        sorted: bool,
-        bins: usize,
-        groups: usize,
-    ) -> RadialAcf {
-        let width = self.dx.max(self.dy);
-        let sums: Vec<(Vec<f64>, Vec<usize>)> = annulus_groups(bins, groups)
-            .into_par_iter()
-            .map(|bins| self.annulus_sums(quadrant, sorted, bins))
-            .collect();
+        let mut sum = vec![0.0; bins];
+        let mut count = vec![0usize; bins];
+        let (rows, cols) = self.values.dim();
+        for iy in -(hy as isize)..=hy as isize {
+            let stored = self.values.row(iy.rem_euclid(rows as isize) as usize);
+            let bins_of = &quadrant[iy.unsigned_abs()];
+            // Lags −hx … −1 are the last hx values of the stored row, then 0 … hx its first.
+            let negative = (cols - hx..cols).zip((1..=hx).rev());
+            for (col, ax) in negative.chain((0..=hx).map(|ax| (ax, ax))) {
+                let k = bins_of[ax];
+                if k < bins {
+                    sum[k] += stored[col];
+                    count[k] += 1;
+                }
+            }
+        }
         let mut radial = RadialAcf {
             r: Vec::new(),
             acf: Vec::new(),
         };
-        let all = sums.iter().flat_map(|(sum, count)| sum.iter().zip(count));
-        for (k, (s, c)) in all.enumerate() {
+        for (k, (s, c)) in sum.iter().zip(&count).enumerate() {
             if *c > 0 {
                 radial.r.push(k as f64 * width);
                 radial.acf.push(s / *c as f64);
@@ -411,67 +402,6 @@ impl Autocorrelation {
         }
         radial
     }
-
-    /// The sum and count of the lags of each bin of `bins` (bin indices from `quadrant`, the
-    /// bin of lag `(±ax, ±ay)` at `quadrant[ay][ax]`), each bin's lags added in the order of the
-    /// lag grid: rows from `−hy`, within a row from `−hx`. Where every row of the quadrant is
-    /// non-decreasing in `ax` (`sorted`; `hypot` grows with `|ix|`), a group's lags in a row are
-    /// one run of `ax` on each side of `ix = 0` and only that run is read; otherwise the whole
-    /// row is.
-    fn annulus_sums(
-        &self,
-        quadrant: &[Vec<usize>],
-        sorted: bool,
-        bins: Range<usize>,
-    ) -> (Vec<f64>, Vec<usize>) {
-        let mut sum = vec![0.0; bins.len()];
-        let mut count = vec![0usize; bins.len()];
-        let (rows, cols) = self.values.dim();
-        let hy = self.hy as isize;
-        for iy in -hy..=hy {
-            let bins_of = &quadrant[iy.unsigned_abs()];
-            let (first, end) = if sorted {
-                (
-                    bins_of.partition_point(|&k| k < bins.start),
-                    bins_of.partition_point(|&k| k < bins.end),
-                )
-            } else {
-                (0, bins_of.len())
-            };
-            if first == end {
-                continue;
-            }
-            let stored = self.values.row(iy.rem_euclid(rows as isize) as usize);
-            // Lags −hx … −1 are the last hx values of the stored row, then 0 … hx its first.
-            let negative = (first.max(1)..end).rev().map(|ax| (cols - ax, ax));
-            for (col, ax) in negative.chain((first..end).map(|ax| (ax, ax))) {
-                let k = bins_of[ax];
-                if bins.contains(&k) {
-                    sum[k - bins.start] += stored[col];
-                    count[k - bins.start] += 1;
-                }
-            }
-        }
-        (sum, count)
-    }
-}
-
-/// Groups of the radial ACF's bins per rayon thread: more groups than threads balance a
-/// shared machine.
-const RADIAL_GROUPS_PER_THREAD: usize = 4;
-
-/// `bins` consecutive bins cut into at most `groups` ranges of about equal work: bin `k` holds
-/// about `2πk` lags, so the cuts are at `bins·√(g/groups)`.
-fn annulus_groups(bins: usize, groups: usize) -> Vec<Range<usize>> {
-    let groups = groups.max(1);
-    let mut cuts: Vec<usize> = (0..=groups)
-        .map(|g| ((bins as f64) * (g as f64 / groups as f64).sqrt()).round() as usize)
-        .collect();
-    cuts.dedup();
-    if let Some(last) = cuts.last_mut() {
-        *last = bins;
-    }
-    cuts.windows(2).map(|w| w[0]..w[1]).collect()
 }
 
 /// Step (m) of the decay search along the direction `(cos, sin)`: `min(dx, dy)/4`, or
@@ -510,103 +440,8 @@ mod tests {
         Autocorrelation::from_periodic_lags(&periodic, dx, dy)
     }
 
-    /// The radial ACF as it was computed before the bins were summed in groups: one pass over
-    /// the lag grid in its order.
-    fn radial_reference(acf: &Autocorrelation) -> RadialAcf {
-        let width = acf.dx.max(acf.dy);
-        let (mx, my) = acf.max_lag();
-        let bins = (mx.min(my) / width + 0.5).floor() as usize + 1;
-        let (hx, hy) = (acf.hx as isize, acf.hy as isize);
-        let (mut sum, mut count) = (vec![0.0; bins], vec![0usize; bins]);
-        for iy in -hy..=hy {
-            for ix in -hx..=hx {
-                let r =
-                    (ix.unsigned_abs() as f64 * acf.dx).hypot(iy.unsigned_abs() as f64 * acf.dy);
-                let k = (r / width + 0.5).floor() as usize;
-                if k < bins {
-                    sum[k] += acf.at(ix, iy).unwrap();
-                    count[k] += 1;
-                }
-            }
-        }
-        let mut radial = RadialAcf {
-            r: Vec::new(),
-            acf: Vec::new(),
-        };
-        for (k, (s, c)) in sum.iter().zip(&count).enumerate() {
-            if *c > 0 {
-                radial.r.push(k as f64 * width);
-                radial.acf.push(s / *c as f64);
-            }
-        }
-        radial
-    }
-
     fn bits(values: &[f64]) -> Vec<u64> {
         values.iter().map(|v| v.to_bits()).collect()
-    }
-
-    /// The radial ACF summed in groups of bins, narrowed to each group's runs or not, has the
-    /// bits of the one-pass sum: even and odd grids (periodic and overlap-sized lag grids),
-    /// equal and unequal spacings, values of both signs in no radial order, any number of groups.
-    #[test]
-    fn grouped_radial_acf_equals_the_one_pass_sum() {
-        let mut state = 0x2545_F491_4F6C_DD1Du64;
-        let mut uniform = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
-        for (rows, cols, dx, dy) in [
-            (64, 64, 1.0, 1.0),
-            (65, 63, 1.0, 1.0),
-            (33, 129, 2.5e-7, 1e-7),
-            (40, 24, 1e-6, 3e-6),
-            (3, 2, 1.0, 1.0),
-        ] {
-            let values = Array2::from_shape_fn((rows, cols), |_| uniform());
-            let acf = Autocorrelation::from_periodic_lags(&values, dx, dy);
-            let expected = radial_reference(&acf);
-            let got = acf.radial();
-            assert_eq!(bits(&got.r), bits(&expected.r), "{rows} × {cols}");
-            assert_eq!(bits(&got.acf), bits(&expected.acf), "{rows} × {cols}");
-            let width = dx.max(dy);
-            let quadrant: Vec<Vec<usize>> = (0..=acf.hy)
-                .map(|ay| {
-                    (0..=acf.hx)
-                        .map(|ax| {
-                            ((ax as f64 * dx).hypot(ay as f64 * dy) / width + 0.5).floor() as usize
-                        })
-                        .collect()
-                })
-                .collect();
-            let (mx, my) = acf.max_lag();
-            let bins = (mx.min(my) / width + 0.5).floor() as usize + 1;
-            for groups in [1, 2, 3, 8, 1000] {
-                for sorted in [true, false] {
-                    let grouped = acf.radial_in_groups(&quadrant, sorted, bins, groups);
-                    assert_eq!(bits(&grouped.acf), bits(&expected.acf), "{groups} {sorted}");
-                }
-            }
-        }
-    }
-
-    /// The groups of bins cover `0..bins` in order, without empty groups.
-    #[test]
-    fn annulus_groups_cover_the_bins() {
-        for bins in [1, 2, 7, 100, 1757] {
-            for groups in [0, 1, 3, 8, 5000] {
-                let cut = annulus_groups(bins, groups);
-                assert_eq!(cut.first().unwrap().start, 0);
-                assert_eq!(cut.last().unwrap().end, bins);
-                assert!(cut.windows(2).all(|w| w[0].end == w[1].start));
-                assert!(
-                    cut.iter().all(|g| !g.is_empty()),
-                    "{bins} {groups}: {cut:?}"
-                );
-            }
-        }
     }
 
     /// The normalisation divides every lag by lag 0, as `values / zero` does.
