@@ -6,9 +6,7 @@
 
 use std::f64::consts::PI;
 
-use super::synthetic::SyntheticSurfaceSpec;
-
-/// The PSD shape `C(q)/C0` of one [`SyntheticSurfaceSpec`] on its grid.
+/// The PSD shape `C(q)/C0` of one synthetic surface on its grid.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ModelPsd {
     nx: usize,
@@ -28,20 +26,29 @@ pub(crate) struct ModelPsd {
 }
 
 impl ModelPsd {
-    pub(crate) fn of(spec: &SyntheticSurfaceSpec) -> Self {
-        let (lu, lv) = spec.correlation_lengths();
-        let (sin, cos) = spec.anisotropy.map_or(0.0, |a| a.angle).sin_cos();
+    /// The model of an `nx × ny` grid of size `lx × ly` (m), short-wavelength cutoff `λ_s` (m),
+    /// roll-off wavelengths `(λ_u, λ_v)` (m) along and across the lay at `angle` (rad) from x
+    /// and Hurst exponent `hurst`.
+    pub(crate) fn new(
+        (nx, ny): (usize, usize),
+        (lx, ly): (f64, f64),
+        cutoff: Option<f64>,
+        (lu, lv): (f64, f64),
+        angle: f64,
+        hurst: f64,
+    ) -> Self {
+        let (sin, cos) = angle.sin_cos();
         Self {
-            nx: spec.nx,
-            ny: spec.ny,
-            lx: spec.lx,
-            ly: spec.ly,
-            cutoff_q: spec.short_wavelength_cutoff.map(|cutoff| 2.0 * PI / cutoff),
+            nx,
+            ny,
+            lx,
+            ly,
+            cutoff_q: cutoff.map(|cutoff| 2.0 * PI / cutoff),
             lu,
             lv,
             sin,
             cos,
-            exponent: -(1.0 + spec.hurst),
+            exponent: -(1.0 + hurst),
         }
     }
 
@@ -114,47 +121,36 @@ impl ModelPsd {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::surface::synthetic::Anisotropy;
+
+    /// The parameters of one test model: cutoff, roll-off wavelengths, angle, Hurst exponent.
+    struct Model {
+        cutoff: Option<f64>,
+        lengths: (f64, f64),
+        angle: f64,
+        hurst: f64,
+    }
 
     /// The shape as it was computed at every mode, every constant recomputed.
-    fn shape_reference(spec: &SyntheticSurfaceSpec, qx: f64, qy: f64) -> f64 {
+    fn shape_reference(m: &Model, qx: f64, qy: f64) -> f64 {
         let q2 = qx * qx + qy * qy;
         if q2 == 0.0 {
             return 0.0;
         }
-        if let Some(cutoff) = spec.short_wavelength_cutoff {
+        if let Some(cutoff) = m.cutoff {
             let qs = 2.0 * PI / cutoff;
             if q2 > qs * qs {
                 return 0.0;
             }
         }
-        let (lu, lv) = spec.correlation_lengths();
-        let (s, c) = spec.anisotropy.map_or(0.0, |a| a.angle).sin_cos();
+        let (lu, lv) = m.lengths;
+        let (s, c) = m.angle.sin_cos();
         let ku = (qx * c + qy * s) * lu / (2.0 * PI);
         let kv = (-qx * s + qy * c) * lv / (2.0 * PI);
         let kappa2 = ku * ku + kv * kv;
         if kappa2 < 1.0 {
             1.0
         } else {
-            kappa2.powf(-(1.0 + spec.hurst))
-        }
-    }
-
-    fn spec(nx: usize, ny: usize, cutoff: Option<f64>, angle: Option<f64>) -> SyntheticSurfaceSpec {
-        SyntheticSurfaceSpec {
-            nx,
-            ny,
-            lx: 1e-4,
-            ly: 0.7e-4,
-            sq: 1e-6,
-            hurst: 0.73,
-            correlation_length: 2e-5,
-            short_wavelength_cutoff: cutoff,
-            anisotropy: angle.map(|angle| Anisotropy {
-                aspect_ratio: 3.0,
-                angle,
-            }),
-            seed: 1,
+            kappa2.powf(-(1.0 + m.hurst))
         }
     }
 
@@ -166,18 +162,27 @@ mod tests {
     fn shapes_and_cutoff_ends_equal_the_per_mode_computation() {
         for (nx, ny) in [(64, 48), (63, 65), (2, 2)] {
             for cutoff in [None, Some(3e-6), Some(1e-5), Some(0.9e-4)] {
-                for angle in [None, Some(0.0), Some(0.4), Some(-2.0)] {
-                    let spec = spec(nx, ny, cutoff, angle);
-                    let model = ModelPsd::of(&spec);
+                for (lengths, angle) in [
+                    ((2e-5, 2e-5), 0.0),
+                    ((2e-5, 2e-5 / 3.0), 0.4),
+                    ((2e-5, 5e-6), -2.0),
+                ] {
+                    let m = Model {
+                        cutoff,
+                        lengths,
+                        angle,
+                        hurst: 0.73,
+                    };
+                    let model =
+                        ModelPsd::new((nx, ny), (1e-4, 0.7e-4), cutoff, lengths, angle, 0.73);
                     for j in 0..ny {
                         let end = model.modes_within_cutoff(j);
                         for i in 0..nx / 2 + 1 {
                             let (qx, qy) = model.wavevector(i, j);
                             let expected = if 2 * j == ny {
-                                0.5 * (shape_reference(&spec, qx, qy)
-                                    + shape_reference(&spec, qx, -qy))
+                                0.5 * (shape_reference(&m, qx, qy) + shape_reference(&m, qx, -qy))
                             } else {
-                                shape_reference(&spec, qx, qy)
+                                shape_reference(&m, qx, qy)
                             };
                             assert_eq!(model.mode(i, j).to_bits(), expected.to_bits());
                             let beyond = model.beyond_cutoff(qx * qx + qy * qy);
