@@ -24,10 +24,10 @@ use crate::friction::SummitStatistics as GwSummits;
 use crate::nodes::surface_view::{DX, DY, GRID_NX, GRID_NY, M0, M2, M4};
 use crate::nodes::validity;
 use crate::surface::spectral::{
-    autocorrelation, hurst_exponent_of, periodic_autocorrelation_of, periodogram, radial_psd_of,
+    autocorrelation, hurst_exponent_of, periodic_autocorrelation_with, periodogram, radial_psd_of,
     spectral_moments, spectral_moments_of, texture_direction_of, AcfBoundary, Autocorrelation,
-    HurstFitOptions, MomentMethod, Periodogram, PsdTable, SpectralMoments, Window,
-    ISO_ACF_THRESHOLD,
+    HurstFitOptions, InverseTransform, MomentMethod, Periodogram, PsdTable, SpectralMoments,
+    Window, ISO_ACF_THRESHOLD,
 };
 use crate::surface::{
     amplitude_statistics, find_summits, functional_parameters_of, Boundary, FunctionalOptions,
@@ -75,13 +75,13 @@ fn num(name: impl Into<Cow<'static, str>>, v: f64) -> Field {
     Field::float(name, v, Dimension::Dimensionless)
 }
 
-/// Computes every metric and table of `map`; `periodogram`, where the source has it (a
-/// synthetic surface's modes), is the unwindowed periodogram of `map` (else the spectra
-/// transform the heights).
+/// Computes every metric and table of `map`; `spectrum`, where the source has it (a synthetic
+/// surface's modes), is the unwindowed periodogram of `map` and the inverse transform planned
+/// for its grid (else the spectra transform the heights).
 pub(super) fn surface_report(
     map: &HeightMap,
     boundary: Boundary,
-    periodogram: Option<Periodogram>,
+    spectrum: Option<(Periodogram, InverseTransform)>,
 ) -> Result<SurfaceReport, NodeError> {
     let a = amplitude_statistics(map, boundary)
         .map_err(|e| NodeError::new(format!("statistics: {e}")))?;
@@ -112,9 +112,11 @@ pub(super) fn surface_report(
     // An overflowed or underflowed amplitude is the cause of whatever the spectra would report.
     validity::check_fields(validity::SURFACE, &metrics)?;
     let mut tables = BTreeMap::new();
-    functional_metrics(map, &mut metrics, &mut tables)?;
+    // The material ratio curve's memory (one value a point) then holds the autocorrelation.
+    let spare = functional_metrics(map, &mut metrics, &mut tables)?;
     if a.missing_count == 0 && a.sq > 0.0 {
-        spectral_metrics(map, boundary, periodogram, &mut metrics, &mut tables)?;
+        let source = Spectra { spectrum, spare };
+        spectral_metrics(map, boundary, source, &mut metrics, &mut tables)?;
     }
     summit_metrics(map, boundary, &mut metrics, &mut tables)?;
     Ok(SurfaceReport {
@@ -125,10 +127,17 @@ pub(super) fn surface_report(
     })
 }
 
+/// What the spectral statistics may take from before: the source's periodogram and inverse
+/// transform, and a buffer of one value a point no statistic needs any more.
+struct Spectra {
+    spectrum: Option<(Periodogram, InverseTransform)>,
+    spare: Vec<f64>,
+}
+
 fn spectral_metrics(
     map: &HeightMap,
     boundary: Boundary,
-    source_periodogram: Option<Periodogram>,
+    source: Spectra,
     metrics: &mut Vec<Field>,
     tables: &mut BTreeMap<String, Table>,
 ) -> Result<(), NodeError> {
@@ -137,9 +146,9 @@ fn spectral_metrics(
     let fail = |what: &str, e: &dyn std::fmt::Display| NodeError::new(format!("{what}: {e}"));
     // One periodogram serves the moments and the ACF (periodic maps: unwindowed), the texture
     // direction, the Hurst fit and the PSD table: the source's where it has one.
-    let p = match source_periodogram.filter(|p| p.window == window) {
-        Some(p) => p,
-        None => periodogram(map, window).map_err(|e| fail("PSD", &e))?,
+    let (p, transform) = match source.spectrum.filter(|(p, _)| p.window == window) {
+        Some((p, transform)) => (p, Some(transform)),
+        None => (periodogram(map, window).map_err(|e| fail("PSD", &e))?, None),
     };
     let psd = radial_psd_of(&p, map);
     let m = if periodic {
@@ -150,7 +159,8 @@ fn spectral_metrics(
     .map_err(|e| fail("spectral moments", &e))?;
     moment_metrics(&m, metrics);
     let acf = if periodic {
-        periodic_autocorrelation_of(&p, map)
+        let mut transform = transform.unwrap_or_else(|| InverseTransform::new(map.nx(), map.ny()));
+        periodic_autocorrelation_with(&p, map, &mut transform, source.spare)
     } else {
         autocorrelation(map, AcfBoundary::ZeroPadded)
     }
@@ -242,12 +252,13 @@ fn hurst_metrics(psd: &PsdTable, map: &HeightMap, window: Window, metrics: &mut 
 const MATERIAL_RATIO_SAMPLES: usize = 101;
 
 /// The ISO 25178-2 functional and volume parameters at the standard's default ratios
-/// (`surface::functional_parameters`) and the material ratio curve, over the valid points.
+/// (`surface::functional_parameters`) and the material ratio curve, over the valid points;
+/// returns the curve's memory.
 fn functional_metrics(
     map: &HeightMap,
     metrics: &mut Vec<Field>,
     tables: &mut BTreeMap<String, Table>,
-) -> Result<(), NodeError> {
+) -> Result<Vec<f64>, NodeError> {
     let fail = |e: &dyn std::fmt::Display| NodeError::new(format!("material ratio curve: {e}"));
     let curve = MaterialRatioCurve::of(map).map_err(|e| fail(&e))?;
     let f = functional_parameters_of(&curve, FunctionalOptions::default()).map_err(|e| fail(&e))?;
@@ -275,7 +286,7 @@ fn functional_metrics(
     );
     t.push_float(material_ratio_columns::HEIGHT, Dimension::Length, height);
     tables.insert(String::from(MATERIAL_RATIO_TABLE), t);
-    Ok(())
+    Ok(curve.into_heights())
 }
 
 fn summit_metrics(

@@ -9,10 +9,8 @@ use crate::engine::study::{ResolveContext, SpecError};
 use crate::engine::value::Field;
 use crate::nodes::surface_view::HEIGHTS;
 use crate::nodes::validity;
-use crate::surface::spectral::Periodogram;
-use crate::surface::synthetic::{
-    generate_synthetic_surface_with_periodogram, SyntheticSurfaceSpec,
-};
+use crate::surface::spectral::{InverseTransform, Periodogram};
+use crate::surface::synthetic::{generate_synthetic_surface_with_spectrum, SyntheticSurfaceSpec};
 use crate::surface::{amplitude_statistics, Boundary, HeightMap};
 use crate::vocabulary::surface_metrics::LATERAL_SCALE_WARNING;
 
@@ -106,9 +104,9 @@ struct SourceHeights {
     metrics: Vec<Field>,
     /// Sentences that flag the row (a height unit assumed).
     flags: Vec<String>,
-    /// The unwindowed periodogram, where the source has it without a transform (a synthetic
-    /// surface's modes).
-    periodogram: Option<Periodogram>,
+    /// The unwindowed periodogram and the inverse transform planned for the grid, where the
+    /// source has them (a synthetic surface's modes and its synthesis).
+    spectrum: Option<(Periodogram, InverseTransform)>,
 }
 
 /// Peak bytes per point of a synthetic surface node (and of a twin's grid): the heights, their
@@ -136,13 +134,13 @@ impl SurfaceTask {
     /// the source itself and the sentences that flag its row.
     fn heights(&self) -> Result<SourceHeights, NodeError> {
         match &self.source {
-            SurfaceSource::Synthetic(spec) => generate_synthetic_surface_with_periodogram(spec)
-                .map(|(map, p)| SourceHeights {
+            SurfaceSource::Synthetic(spec) => generate_synthetic_surface_with_spectrum(spec)
+                .map(|(map, p, transform)| SourceHeights {
                     map,
                     boundary: Boundary::Periodic,
                     metrics: Vec::new(),
                     flags: Vec::new(),
-                    periodogram: Some(p),
+                    spectrum: Some((p, transform)),
                 })
                 .map_err(|e| NodeError::new(e.to_string())),
             SurfaceSource::Measured(m) => m.load().map(|p| {
@@ -152,7 +150,7 @@ impl SurfaceTask {
                     boundary: Boundary::Open,
                     metrics: vec![source],
                     flags: p.flag.into_iter().collect(),
-                    periodogram: None,
+                    spectrum: None,
                 }
             }),
             SurfaceSource::Twin(t) => t.generate().map(|(map, metrics, flags)| SourceHeights {
@@ -160,7 +158,7 @@ impl SurfaceTask {
                 boundary: Boundary::Periodic,
                 metrics,
                 flags,
-                periodogram: None,
+                spectrum: None,
             }),
         }
     }
@@ -172,16 +170,17 @@ impl SurfaceTask {
 /// curve) and the flag of heights beyond the field of view, after the spacing is checked; and
 /// the lateral-scale warning (empty when the rms slope is plausible), which the node writes to
 /// the row of a measured map. `boundary` is [`Boundary::Periodic`] for a synthetic map,
-/// [`Boundary::Open`] for a measured one; `periodogram`, where the source has it without a
-/// transform (a synthetic surface's modes), is `map`'s unwindowed periodogram. The caller adds its own metrics and then checks the
+/// [`Boundary::Open`] for a measured one; `spectrum`, where the source has it without a
+/// transform (a synthetic surface's modes and synthesis), is `map`'s unwindowed periodogram and
+/// the inverse transform planned for its grid. The caller adds its own metrics and then checks the
 /// artifact with [`validity::check_artifact`].
 pub fn surface_artifact(
     map: &HeightMap,
     boundary: Boundary,
-    periodogram: Option<Periodogram>,
+    spectrum: Option<(Periodogram, InverseTransform)>,
 ) -> Result<(Artifact, String), NodeError> {
     validity::check_fields(KIND, &metrics::spacing_fields(map))?;
-    let report = metrics::surface_report(map, boundary, periodogram)?;
+    let report = metrics::surface_report(map, boundary, spectrum)?;
     let warning = lateral_scale_warning(report.sdq, map.dx(), map.dy());
     let flags = validity::cross::surface_size(
         report.sq,
@@ -272,9 +271,9 @@ impl NodeTask for SurfaceTask {
             boundary,
             metrics: source_metrics,
             flags: source_flags,
-            periodogram,
+            spectrum,
         } = self.heights()?;
-        let (mut artifact, warning) = surface_artifact(&map, boundary, periodogram)?;
+        let (mut artifact, warning) = surface_artifact(&map, boundary, spectrum)?;
         artifact.metrics.extend(source_metrics);
         if let SurfaceSource::Measured(_) = self.source {
             artifact

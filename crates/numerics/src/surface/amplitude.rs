@@ -13,6 +13,7 @@
 //! from [`crate::surface::gradient_statistics`] with central differences (ISO-style), and the
 //! forward-difference `rms_gradient` of SurfaceTopography is reported alongside.
 
+use super::gradient::rms_gradient;
 use super::{gradient_statistics, Boundary, DifferenceScheme, GradientError, HeightMap};
 
 /// Amplitude and hybrid statistics of one height map (lengths in metres).
@@ -122,11 +123,8 @@ pub fn amplitude_statistics(
         DifferenceScheme::Central,
         boundary,
     ));
-    let forward = optional(gradient_statistics(
-        map,
-        DifferenceScheme::Forward,
-        boundary,
-    ));
+    // Its only error: no point has the neighbours it needs.
+    let forward = rms_gradient(map, DifferenceScheme::Forward, boundary).ok();
     Ok(AmplitudeStatistics {
         valid_count: count,
         missing_count: map.nx() * map.ny() - count,
@@ -142,7 +140,7 @@ pub fn amplitude_statistics(
         sdr_percent: central.map(|g| g.1),
         gradient_point_count: central.map_or(0, |g| g.2),
         rms_gradient_forward: forward.map(|g| g.0),
-        forward_gradient_point_count: forward.map_or(0, |g| g.2),
+        forward_gradient_point_count: forward.map_or(0, |g| g.1),
     })
 }
 

@@ -125,6 +125,11 @@ impl MaterialRatioCurve {
         Ok(Self { heights: z })
     }
 
+    /// The curve's heights (descending), e.g. to reuse their memory once the curve is done with.
+    pub fn into_heights(self) -> Vec<f64> {
+        self.heights
+    }
+
     /// Number of valid points `N`.
     pub fn len(&self) -> usize {
         self.heights.len()

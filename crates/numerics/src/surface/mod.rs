@@ -8,6 +8,7 @@ mod functional;
 mod gradient;
 mod height_map;
 pub mod io;
+mod model_psd;
 mod order;
 mod resample;
 mod summits;

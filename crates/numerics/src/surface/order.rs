@@ -28,33 +28,60 @@ const SECOND_BUCKET_POINTS: usize = 32;
 /// `B − 1`). Subtraction, multiplication by a positive factor and truncation are monotone under
 /// rounding, so a larger `d` never lands in a later bucket, and the buckets in order, each
 /// sorted on its own, are the sorted sequence. The heights are scattered into
-/// [`FIRST_BUCKETS`] buckets; each is then sorted in cache, in parallel, by the same rule with
-/// buckets of about [`SECOND_BUCKET_POINTS`] points ([`sort_bucket`]). The result is unique, so
-/// it does not depend on the thread count. Small inputs, equal values and ranges that overflow
-/// take the plain sort.
+/// [`FIRST_BUCKETS`] buckets, chunk by chunk in parallel (each chunk of [`HISTOGRAM_CHUNK`]
+/// values into its own slots of each bucket, [`scatter_into_buckets`]); each bucket is then
+/// sorted in cache, in parallel, by the same rule with buckets of about
+/// [`SECOND_BUCKET_POINTS`] points ([`sort_bucket`]). A sorted bucket depends only on the values
+/// it holds, not on the order they arrived in, so the result is unique and does not depend on
+/// the thread count. The in-order sum of the mean runs beside the parallel count, minimum and
+/// maximum. Small inputs, equal values and ranges that overflow take the plain sort.
 pub(crate) fn deviations_descending(values: &[f64]) -> Vec<f64> {
-    let (count, min, max) = values
-        .par_iter()
-        .filter(|v| !v.is_nan())
-        .fold(
-            || (0usize, f64::INFINITY, f64::NEG_INFINITY),
-            |(n, lo, hi), &v| (n + 1, lo.min(v), hi.max(v)),
-        )
-        .reduce(
-            || (0, f64::INFINITY, f64::NEG_INFINITY),
-            |a, b| (a.0 + b.0, a.1.min(b.1), a.2.max(b.2)),
-        );
     let valid = || values.iter().copied().filter(|v| !v.is_nan());
+    let (sum, (count, min, max)) = rayon::join(
+        || valid().sum::<f64>(),
+        || {
+            values
+                .par_iter()
+                .filter(|v| !v.is_nan())
+                .fold(
+                    || (0usize, f64::INFINITY, f64::NEG_INFINITY),
+                    |(n, lo, hi), &v| (n + 1, lo.min(v), hi.max(v)),
+                )
+                .reduce(
+                    || (0, f64::INFINITY, f64::NEG_INFINITY),
+                    |a, b| (a.0 + b.0, a.1.min(b.1), a.2.max(b.2)),
+                )
+        },
+    );
     if count == 0 {
         return Vec::new();
     }
-    let mean = valid().sum::<f64>() / count as f64;
+    let mean = sum / count as f64;
     let Some(bucket) = Buckets::spanning(max - mean, min - mean, FIRST_BUCKETS, count) else {
         let mut z: Vec<f64> = valid().map(|v| v - mean).collect();
         sort_descending(&mut z);
         return z;
     };
-    let sizes = values
+    let mut sorted = vec![0.0; count];
+    let sizes = scatter_into_buckets(values, mean, &bucket, &mut sorted);
+    split(&mut sorted, &sizes)
+        .into_par_iter()
+        .for_each_init(Scratch::default, |scratch, part| sort_bucket(part, scratch));
+    sorted
+}
+
+/// Writes the deviations `v − mean` of the non-`NaN` `values` into `sorted` (as many values),
+/// bucket after bucket (each bucket's values in an order of no consequence), and returns the
+/// size of each bucket. Each chunk of [`HISTOGRAM_CHUNK`] values counts its values per bucket;
+/// bucket `b` of `sorted` is then cut into one part per chunk, of that chunk's count, and every
+/// chunk writes its values into its own parts, all chunks in parallel.
+fn scatter_into_buckets(
+    values: &[f64],
+    mean: f64,
+    bucket: &Buckets,
+    sorted: &mut [f64],
+) -> Vec<usize> {
+    let histograms: Vec<Vec<usize>> = values
         .par_chunks(HISTOGRAM_CHUNK)
         .map(|chunk| {
             let mut sizes = vec![0usize; bucket.count];
@@ -63,24 +90,35 @@ pub(crate) fn deviations_descending(values: &[f64]) -> Vec<f64> {
             }
             sizes
         })
-        .reduce(
-            || vec![0; bucket.count],
-            |mut a, b| {
-                a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
-                a
-            },
-        );
-    let mut sorted = vec![0.0; count];
-    let mut next = starts(&sizes);
-    for d in valid().map(|v| v - mean) {
-        let slot = &mut next[bucket.of(d)];
-        sorted[*slot] = d;
-        *slot += 1;
+        .collect();
+    let mut sizes = vec![0usize; bucket.count];
+    for histogram in &histograms {
+        sizes.iter_mut().zip(histogram).for_each(|(s, h)| *s += h);
     }
-    split(&mut sorted, &sizes)
-        .into_par_iter()
-        .for_each_init(Scratch::default, |scratch, part| sort_bucket(part, scratch));
-    sorted
+    let mut parts: Vec<Vec<&mut [f64]>> = histograms
+        .iter()
+        .map(|_| Vec::with_capacity(bucket.count))
+        .collect();
+    for (b, mut rest) in split(sorted, &sizes).into_iter().enumerate() {
+        for (chunk_parts, histogram) in parts.iter_mut().zip(&histograms) {
+            let (part, tail) = std::mem::take(&mut rest).split_at_mut(histogram[b]);
+            chunk_parts.push(part);
+            rest = tail;
+        }
+    }
+    values
+        .par_chunks(HISTOGRAM_CHUNK)
+        .zip(parts)
+        .for_each(|(chunk, mut parts)| {
+            let mut next = vec![0usize; bucket.count];
+            for &v in chunk.iter().filter(|v| !v.is_nan()) {
+                let d = v - mean;
+                let b = bucket.of(d);
+                parts[b][next[b]] = d;
+                next[b] += 1;
+            }
+        });
+    sizes
 }
 
 /// Working memory of [`sort_bucket`], kept by each parallel task.
@@ -319,6 +357,27 @@ mod tests {
             deviations_reference(&huge)
         );
         assert!(deviations_descending(&[f64::NAN]).is_empty());
+    }
+
+    /// Many chunks of the parallel scatter, one of them all missing and the last one short,
+    /// give the bits of the plain sort.
+    #[test]
+    fn chunks_scattered_in_parallel_equal_the_plain_sort() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut heights: Vec<f64> = (0..5 * HISTOGRAM_CHUNK + 123)
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2e-6
+            })
+            .collect();
+        heights[2 * HISTOGRAM_CHUNK..3 * HISTOGRAM_CHUNK].fill(f64::NAN);
+        heights[7] = 5e-6;
+        assert_eq!(
+            bits(&deviations_descending(&heights)),
+            deviations_reference(&heights)
+        );
     }
 
     /// Pseudo-random heights over many binades, with repeats, and values one ulp apart sort as

@@ -64,7 +64,8 @@ use rand_core::{Rng, SeedableRng};
 use rayon::prelude::*;
 use realfft::num_complex::Complex64;
 
-use super::spectral::{Periodogram, Window};
+use super::model_psd::ModelPsd;
+use super::spectral::{InverseTransform, Periodogram, Window};
 use super::{HeightMap, HeightMapError};
 use crate::fft2::{inverse_real_2d, FftFailure};
 
@@ -273,45 +274,21 @@ impl SyntheticSurfaceSpec {
         (self.correlation_length, self.correlation_length / ratio)
     }
 
-    /// Unnormalised model PSD `C(q)/C0` at wavevector `(qx, qy)` in rad/m (see module docs).
-    pub fn psd_shape(&self, qx: f64, qy: f64) -> f64 {
-        let q2 = qx * qx + qy * qy;
-        if q2 == 0.0 {
-            return 0.0;
-        }
-        if let Some(cutoff) = self.short_wavelength_cutoff {
-            let qs = 2.0 * PI / cutoff;
-            if q2 > qs * qs {
-                return 0.0;
-            }
-        }
-        let (lu, lv) = self.correlation_lengths();
-        let (s, c) = self.anisotropy.map_or(0.0, |a| a.angle).sin_cos();
-        let ku = (qx * c + qy * s) * lu / (2.0 * PI);
-        let kv = (-qx * s + qy * c) * lv / (2.0 * PI);
-        let kappa2 = ku * ku + kv * kv;
-        if kappa2 < 1.0 {
-            1.0
-        } else {
-            kappa2.powf(-(1.0 + self.hurst))
-        }
+    /// The model PSD of this surface on its grid.
+    fn model_psd(&self) -> ModelPsd {
+        ModelPsd::new(
+            (self.nx, self.ny),
+            (self.lx, self.ly),
+            self.short_wavelength_cutoff,
+            self.correlation_lengths(),
+            self.anisotropy.map_or(0.0, |a| a.angle),
+            self.hurst,
+        )
     }
 
-    /// Model PSD shape of half-spectrum mode `(i, j)` (`kx = i ≥ 0`, row `j` as in the FFT).
-    /// On the Nyquist row the aliased `±qy` are one mode: mean of both.
-    fn mode_shape(&self, i: usize, j: usize) -> f64 {
-        let qx = 2.0 * PI * i as f64 / self.lx;
-        let ky = if 2 * j <= self.ny {
-            j as f64
-        } else {
-            j as f64 - self.ny as f64
-        };
-        let qy = 2.0 * PI * ky / self.ly;
-        if 2 * j == self.ny {
-            0.5 * (self.psd_shape(qx, qy) + self.psd_shape(qx, -qy))
-        } else {
-            self.psd_shape(qx, qy)
-        }
+    /// Unnormalised model PSD `C(q)/C0` at wavevector `(qx, qy)` in rad/m (see module docs).
+    pub fn psd_shape(&self, qx: f64, qy: f64) -> f64 {
+        self.model_psd().shape(qx, qy)
     }
 }
 
@@ -332,7 +309,16 @@ pub fn generate_synthetic_surface(
 pub fn generate_synthetic_surface_with_periodogram(
     spec: &SyntheticSurfaceSpec,
 ) -> Result<(HeightMap, Periodogram), SyntheticError> {
-    let (map, half, scale) = synthesize(spec)?;
+    generate_synthetic_surface_with_spectrum(spec).map(|(map, periodogram, _)| (map, periodogram))
+}
+
+/// [`generate_synthetic_surface_with_periodogram`] with the inverse transform the heights came
+/// from, planned for the surface's grid, for the statistics' own inverse transforms (the
+/// periodic autocorrelation: [`super::spectral::periodic_autocorrelation_with`]).
+pub fn generate_synthetic_surface_with_spectrum(
+    spec: &SyntheticSurfaceSpec,
+) -> Result<(HeightMap, Periodogram, InverseTransform), SyntheticError> {
+    let (map, half, scale, transform) = synthesize(spec)?;
     let area = spec.lx * spec.ly;
     let factor = area * scale * scale;
     let modes = half
@@ -349,17 +335,17 @@ pub fn generate_synthetic_surface_with_periodogram(
         nx: spec.nx,
         window: Window::None,
     };
-    Ok((map, periodogram))
+    Ok((map, periodogram, transform))
 }
 
 /// ChaCha words (`u32`) each mode draws: two `u64`, one pair of normal deviates.
 const WORDS_PER_MODE: u128 = 4;
 
-/// The surface, its half spectrum of modes `Ẑ` (before normalisation) and the normalisation
-/// factor `s` (heights = `s·(F⁻¹Ẑ − mean)`).
+/// The surface, its half spectrum of modes `Ẑ` (before normalisation), the normalisation
+/// factor `s` (heights = `s·(F⁻¹Ẑ − mean)`) and the inverse transform planned for its grid.
 fn synthesize(
     spec: &SyntheticSurfaceSpec,
-) -> Result<(HeightMap, Array2<Complex64>, f64), SyntheticError> {
+) -> Result<(HeightMap, Array2<Complex64>, f64, InverseTransform), SyntheticError> {
     spec.validate()?;
     let (nx, ny) = (spec.nx, spec.ny);
     let nxh = nx / 2 + 1;
@@ -367,55 +353,130 @@ fn synthesize(
     key[..8].copy_from_slice(&spec.seed.to_le_bytes());
     let base = ChaCha8Rng::from_seed(key);
 
-    let mut modes = vec![Complex64::new(0.0, 0.0); ny * nxh];
-    modes.par_chunks_mut(nxh).enumerate().for_each(|(j, row)| {
-        let mut rng = base.clone();
-        rng.set_stream(mode_stream(j, ny));
-        // Modes without power stay zero and draw nothing; the stream is moved to the position
-        // of the next mode that has power, so every mode's deviates are those of its position.
-        let mut next_drawn = 0;
-        for (i, mode) in row.iter_mut().enumerate() {
-            let shape = spec.mode_shape(i, j);
-            if shape == 0.0 {
-                continue;
-            }
-            if next_drawn != i {
-                rng.set_word_pos(WORDS_PER_MODE * i as u128);
-            }
-            let (g1, g2) = standard_normal_pair(&mut rng);
-            next_drawn = i + 1;
-            let amplitude = shape.sqrt();
-            *mode = if self_conjugate(i, j, nx, ny) {
-                Complex64::new(amplitude * g1, 0.0)
-            } else {
-                Complex64::new(amplitude * g1, amplitude * g2) * FRAC_1_SQRT_2
-            };
-        }
-    });
+    // Collected in parallel straight into the vector (no pass that zeroes it first). A work
+    // chunk holds consecutive modes: within a row the stream of its `ky` is read on, and at the
+    // start of a row or past modes without power (which stay zero and draw nothing) it is moved
+    // to the mode's position, so every mode's deviates are those of its position.
+    // The modes beyond the cutoff are not evaluated: their shape is 0.
+    let model = spec.model_psd();
+    let ends: Vec<usize> = (0..ny)
+        .into_par_iter()
+        .map(|j| model.modes_within_cutoff(j))
+        .collect();
+    let modes: Vec<Complex64> = (0..ny * nxh)
+        .into_par_iter()
+        .with_min_len(nxh)
+        .map_init(
+            || ModeStream::new(&base),
+            |stream, index| {
+                let (j, i) = stream.locate(index, nxh);
+                let shape = if i < ends[j] { model.mode(i, j) } else { 0.0 };
+                if shape == 0.0 {
+                    return Complex64::new(0.0, 0.0);
+                }
+                let (g1, g2) = stream.deviates(j, i, ny);
+                let amplitude = shape.sqrt();
+                if self_conjugate(i, j, nx, ny) {
+                    Complex64::new(amplitude * g1, 0.0)
+                } else {
+                    Complex64::new(amplitude * g1, amplitude * g2) * FRAC_1_SQRT_2
+                }
+            },
+        )
+        .collect();
     let mut half =
         Array2::from_shape_vec((ny, nxh), modes).map_err(|e| FftFailure::new(e.to_string()))?;
     enforce_hermitian_columns(&mut half, nx);
 
-    let mut z = inverse_real_2d(&half, nx)?;
+    let mut transform = InverseTransform::new(nx, ny);
+    let mut z = transform.complex(&half, Vec::new())?;
     let n = (nx * ny) as f64;
     let mean = z.sum() / n;
-    let rms = (z.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt();
+    let heights = z
+        .as_slice_mut()
+        .ok_or_else(|| FftFailure::new("the inverse transform is not contiguous"))?;
+    // In the heights' (row-major) order, as over the array's elements.
+    let rms = (heights.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt();
     if !(rms > 0.0 && rms.is_finite()) {
         return Err(SyntheticError::NoSpectralContent);
     }
     let scale = spec.sq / rms;
-    let mut sum_of_squares = 0.0;
-    z.mapv_inplace(|v| {
-        let h = (v - mean) * scale;
-        sum_of_squares += h * h;
-        h
-    });
     // The heights and their mean square must be finite, or every statistic of the map is not.
-    if !sum_of_squares.is_finite() {
+    if !normalise(heights, mean, scale).is_finite() {
         return Err(SyntheticError::HeightsOverflow { sq: spec.sq });
     }
     let (dx, dy) = spec.spacing();
-    Ok((HeightMap::new(z, dx, dy)?, half, scale))
+    Ok((HeightMap::new(z, dx, dy)?, half, scale, transform))
+}
+
+/// Values per parallel chunk of [`normalise`].
+const NORMALISE_CHUNK: usize = 1 << 16;
+
+/// Sets every value `v` of `values` to `h = (v − mean)·scale`, in parallel, and returns `Σ h²`
+/// (chunk sums of [`NORMALISE_CHUNK`] values added in chunk order). Each height is one
+/// subtraction and one multiplication whatever the thread; the sum only says whether the
+/// heights' squares are finite (it is `N·Sq²` when they are).
+fn normalise(values: &mut [f64], mean: f64, scale: f64) -> f64 {
+    let sums: Vec<f64> = values
+        .par_chunks_mut(NORMALISE_CHUNK)
+        .map(|chunk| {
+            let mut sum_of_squares = 0.0;
+            for v in chunk {
+                let h = (*v - mean) * scale;
+                sum_of_squares += h * h;
+                *v = h;
+            }
+            sum_of_squares
+        })
+        .collect();
+    sums.iter().sum()
+}
+
+/// The random stream of one parallel work chunk of modes: `base` moved to the stream of the
+/// row and the position of the mode it is asked for, where it is not there already.
+struct ModeStream {
+    rng: ChaCha8Rng,
+    /// The row `j` and the mode `i` the stream is positioned at (`None` before the first).
+    next: Option<(usize, usize)>,
+    /// The flat index and `(j, i)` of the last mode located.
+    last: Option<(usize, usize, usize)>,
+}
+
+impl ModeStream {
+    fn new(base: &ChaCha8Rng) -> Self {
+        Self {
+            rng: base.clone(),
+            next: None,
+            last: None,
+        }
+    }
+
+    /// `(j, i) = (index / nxh, index % nxh)`: a chunk's modes come in order, so after the first
+    /// the next one is one step on (no division per mode).
+    fn locate(&mut self, index: usize, nxh: usize) -> (usize, usize) {
+        let (j, i) = match self.last {
+            Some((last, j, i)) if index == last + 1 && i + 1 < nxh => (j, i + 1),
+            Some((last, j, _)) if index == last + 1 => (j + 1, 0),
+            _ => (index / nxh, index % nxh),
+        };
+        self.last = Some((index, j, i));
+        (j, i)
+    }
+
+    /// The pair of normal deviates of mode `i` of row `j` (of `ny` rows): its ChaCha stream
+    /// [`mode_stream`], at word position `WORDS_PER_MODE · i`.
+    fn deviates(&mut self, j: usize, i: usize, ny: usize) -> (f64, f64) {
+        match self.next {
+            Some((row, mode)) if row == j && mode == i => {}
+            Some((row, _)) if row == j => self.rng.set_word_pos(WORDS_PER_MODE * i as u128),
+            _ => {
+                self.rng.set_stream(mode_stream(j, ny));
+                self.rng.set_word_pos(WORDS_PER_MODE * i as u128);
+            }
+        }
+        self.next = Some((j, i + 1));
+        standard_normal_pair(&mut self.rng)
+    }
 }
 
 /// Ensemble autocorrelation of the model, `R(τ)/R(0)` on the periodic lag grid `[[jy, ix]]`
@@ -425,8 +486,9 @@ fn synthesize(
 pub fn model_autocorrelation(spec: &SyntheticSurfaceSpec) -> Result<Array2<f64>, SyntheticError> {
     spec.validate()?;
     let (nx, ny) = (spec.nx, spec.ny);
+    let model = spec.model_psd();
     let half = Array2::from_shape_fn((ny, nx / 2 + 1), |(j, i)| {
-        Complex64::new(spec.mode_shape(i, j), 0.0)
+        Complex64::new(model.mode(i, j), 0.0)
     });
     let acf = inverse_real_2d(&half, nx)?;
     let zero_lag = acf.first().copied().unwrap_or(0.0);
@@ -479,3 +541,7 @@ fn standard_normal_pair(rng: &mut ChaCha8Rng) -> (f64, f64) {
     let (s, c) = (2.0 * PI * u2).sin_cos();
     (radius * c, radius * s)
 }
+
+#[cfg(test)]
+#[path = "synthetic_tests.rs"]
+mod tests;

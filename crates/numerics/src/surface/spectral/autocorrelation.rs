@@ -26,6 +26,7 @@ use rayon::prelude::*;
 use realfft::num_complex::Complex64;
 
 use super::error::{require_complete, SpectralError};
+use super::inverse::InverseTransform;
 use super::psd::{Axis, Periodogram, Window};
 use crate::fft2::{fast_even_length, forward_real_2d, inverse_real_2d, inverse_real_spectrum_2d};
 use crate::surface::HeightMap;
@@ -125,13 +126,31 @@ pub fn periodic_autocorrelation_of(
     p: &Periodogram,
     map: &HeightMap,
 ) -> Result<Autocorrelation, SpectralError> {
+    require_unwindowed_complete(p, map)?;
+    normalised(inverse_real_spectrum_2d(&p.c, map.nx())?, map)
+}
+
+/// [`periodic_autocorrelation_of`] through a transform already planned for `map`'s grid (a
+/// synthetic surface's), its lags written into `buffer`'s memory where it holds `nx·ny` values
+/// (a grid a statistic no longer needs): the same values, without a new plan or new pages.
+pub fn periodic_autocorrelation_with(
+    p: &Periodogram,
+    map: &HeightMap,
+    transform: &mut InverseTransform,
+    buffer: Vec<f64>,
+) -> Result<Autocorrelation, SpectralError> {
+    require_unwindowed_complete(p, map)?;
+    normalised(transform.real(&p.c, buffer)?, map)
+}
+
+/// The periodic ACF needs an unwindowed periodogram of a complete map.
+fn require_unwindowed_complete(p: &Periodogram, map: &HeightMap) -> Result<(), SpectralError> {
     if p.window != Window::None {
         return Err(SpectralError::Windowed {
             what: "the periodic autocorrelation",
         });
     }
-    require_complete(map)?;
-    normalised(inverse_real_spectrum_2d(&p.c, map.nx())?, map)
+    require_complete(map)
 }
 
 /// The lags `|ix| ≤ nx/2`, `|iy| ≤ ny/2` of the circular correlation `circular` of the
@@ -160,13 +179,19 @@ fn overlap_averaged_lags(circular: &Array2<f64>, map: &HeightMap) -> Array2<f64>
 }
 
 /// The ACF of `map` from its unnormalised periodic lag grid `values` (lag 0 at `[0, 0]`):
-/// every lag divided by lag 0.
+/// every lag divided by lag 0 (rows in parallel).
 fn normalised(mut values: Array2<f64>, map: &HeightMap) -> Result<Autocorrelation, SpectralError> {
     let zero = values[[0, 0]];
     if !(zero > 0.0 && zero.is_finite()) {
         return Err(SpectralError::FlatSurface);
     }
-    values /= zero;
+    let cols = values.ncols().max(1);
+    match values.as_slice_mut() {
+        Some(lags) => lags
+            .par_chunks_mut(cols)
+            .for_each(|row| row.iter_mut().for_each(|v| *v /= zero)),
+        None => values /= zero,
+    }
     Ok(Autocorrelation {
         values,
         dx: map.dx(),
@@ -413,6 +438,23 @@ mod tests {
             (-(lag(ix) * dx).hypot(lag(iy) * dy) / xi).exp()
         });
         Autocorrelation::from_periodic_lags(&periodic, dx, dy)
+    }
+
+    fn bits(values: &[f64]) -> Vec<u64> {
+        values.iter().map(|v| v.to_bits()).collect()
+    }
+
+    /// The normalisation divides every lag by lag 0, as `values / zero` does.
+    #[test]
+    fn normalisation_divides_every_lag_by_lag_zero() {
+        let values = Array2::from_shape_fn((7, 5), |(j, i)| 3.0 - (j * 5 + i) as f64 * 0.1);
+        let map = HeightMap::new(Array2::zeros((7, 5)), 1.0, 1.0).unwrap();
+        let acf = normalised(values.clone(), &map).unwrap();
+        let expected = &values / values[[0, 0]];
+        assert_eq!(
+            bits(acf.values().as_slice().unwrap()),
+            bits(expected.as_slice().unwrap())
+        );
     }
 
     /// A 1e6 m × 0.125 mm map at 64² (the spacings 10¹¹ apart) decays along y within the lag
