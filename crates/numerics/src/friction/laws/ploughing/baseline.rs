@@ -26,13 +26,7 @@ pub fn slope_baseline(
     periodic: bool,
 ) -> f64 {
     let (ny, nx) = bodies.dim();
-    let neighbours = |i: usize, n: usize| {
-        if periodic {
-            Some(((i + n - 1) % n, (i + 1) % n))
-        } else {
-            (i > 0 && i + 1 < n).then(|| (i - 1, i + 1))
-        }
-    };
+    let neighbours = |i: usize, n: usize| neighbours(i, n, periodic);
     let columns: Vec<(usize, usize, usize)> = (0..nx)
         .filter_map(|ix| neighbours(ix, nx).map(|(left, right)| (ix, left, right)))
         .collect();
@@ -60,6 +54,16 @@ pub fn slope_baseline(
     }
 }
 
+/// The central-difference neighbours `(i − 1, i + 1)` of index `i` of `n`: wrapped around on a
+/// periodic section, none at an open section's edges.
+fn neighbours(i: usize, n: usize, periodic: bool) -> Option<(usize, usize)> {
+    if periodic {
+        Some(((i + n - 1) % n, (i + 1) % n))
+    } else {
+        (i > 0 && i + 1 < n).then(|| (i - 1, i + 1))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use ndarray::Array2;
@@ -76,13 +80,7 @@ mod tests {
         periodic: bool,
     ) -> f64 {
         let (ny, nx) = bodies.dim();
-        let neighbours = |i: usize, n: usize| {
-            if periodic {
-                Some(((i + n - 1) % n, (i + 1) % n))
-            } else {
-                (i > 0 && i + 1 < n).then(|| (i - 1, i + 1))
-            }
-        };
+        let neighbours = |i: usize, n: usize| neighbours(i, n, periodic);
         let z = |iy: usize, ix: usize| bodies.height(side, (iy, ix));
         let (mut sum, mut count) = (0.0, 0usize);
         for iy in 0..ny {
