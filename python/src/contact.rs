@@ -213,7 +213,7 @@ fn set_maps(d: &Bound<'_, PyDict>, f: ContactFields) -> PyResult<()> {
 }
 
 /// The maps of every step before the final one, as a study's contact node derives them for
-/// its consumers (`ContactTask::step_maps`): the step's pressure as solved, the other maps from
+/// its consumers (`ContactTask::step_pressure`): the step's pressure as solved, the other maps from
 /// it and the step's approach by the solver's influence operator
 /// ([`fields_from_pressure`]).
 fn earlier_step_fields(

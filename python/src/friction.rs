@@ -223,9 +223,9 @@ impl SpotMaps<'_> {
         let maps = BodyMaps {
             composite_height: self.composite_height.as_array(),
             upper_height: self.upper_height.as_ref().map(|z| z.as_array()),
-            deformation_lower: self.deformation_lower.as_array(),
-            deformation_upper: self.deformation_upper.as_ref().map(|u| u.as_array()),
-            plastic_penetration: self.plastic_penetration.as_array(),
+            deformation_lower: self.deformation_lower.as_array().into(),
+            deformation_upper: self.deformation_upper.as_ref().map(|u| u.as_array().into()),
+            plastic_penetration: self.plastic_penetration.as_array().into(),
         };
         ContactBodies::new(maps, BodyHardness::of(pair)).map_err(|e| value_error("result", e))
     }
@@ -276,7 +276,7 @@ fn per_spot_friction<'py>(
     };
     let section = ContactSection {
         pressure: maps.pressure.as_array(),
-        gap: maps.gap.as_array(),
+        gap: maps.gap.as_array().into(),
         bodies: maps.bodies(&pair)?,
         spacing: (dx, dy),
         periodic,

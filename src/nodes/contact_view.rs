@@ -1,20 +1,22 @@
 //! What a contact node gives its consumers, in one place: the names under which the `contact`
 //! kind stores its maps and grid metrics (it writes them with these constants), the layout of
 //! the pressure of its earlier load steps, [`ContactView`], the typed view of the final step the
-//! per-summit and per-spot friction methods read, and [`StepMaps`], the maps of any load step.
+//! per-summit and per-spot friction methods read, and [`StepPressure`], an earlier load step.
 //!
 //! The cache keeps a contact's pressure maps only; its gap, deformations, plastic penetration
 //! and composite height are derived from them and the surfaces when a consumer needs them
-//! (`ContactTask::derive_arrays`, `ContactTask::step_maps`).
+//! (`ContactTask::derive_arrays`; an earlier step's maps point by point, [`StepPressure::view`]).
 
-use ndarray::{Array2, ArrayD, ArrayView2, Ix2};
+use ndarray::{Array2, ArrayD, ArrayView2, Axis, Ix2, Ix3};
+
+use crate::contact::{ContactMaterial, PointFields, PointMap, StepField};
 
 use crate::engine::artifact::{Artifact, ColumnData};
 use crate::engine::node::NodeError;
 use crate::engine::value::Value;
 
 /// The composite displacement of each load step before the final one, `[[step, iy, ix]]` (m),
-/// which the contact derives once for all its consumers (`ContactTask::step_maps` reads it).
+/// which the contact derives once for all its consumers ([`StepPressure::view`] reads it).
 pub(crate) use crate::vocabulary::arrays::STEP_DISPLACEMENTS;
 /// The final step's maps (pressure in Pa, gap, deformations, plastic penetration in m,
 /// `[[iy, ix]]`; no upper deformation against a rigid flat), the composite height z₁ + z₂ (m)
@@ -95,15 +97,15 @@ pub(crate) fn fill_pressure_of_contact_points(
     Ok(())
 }
 
-/// The final step's fields of a contact run with `fields: true` (or, from [`StepMaps::view`],
+/// The final step's fields of a contact run with `fields: true` (or, from [`StepPressure::view`],
 /// another step's), and its grid.
 #[derive(Debug, Clone)]
 pub struct ContactView<'a> {
     pub pressure: ArrayView2<'a, f64>,
-    pub gap: ArrayView2<'a, f64>,
-    pub deformation_lower: ArrayView2<'a, f64>,
-    pub deformation_upper: Option<ArrayView2<'a, f64>>,
-    pub plastic_penetration: ArrayView2<'a, f64>,
+    pub gap: PointMap<'a>,
+    pub deformation_lower: PointMap<'a>,
+    pub deformation_upper: Option<PointMap<'a>>,
+    pub plastic_penetration: PointMap<'a>,
     pub composite_height: ArrayView2<'a, f64>,
     /// The upper body's heights z₂ (outward, towards the lower body); `None` against a flat
     /// (the lower heights are then the composite height).
@@ -120,7 +122,7 @@ pub struct ContactView<'a> {
 impl<'a> ContactView<'a> {
     /// The view of a contact node's artifact; an error that says how to get the fields when the
     /// contact was run without them.
-    pub(crate) fn of(contact: &'a Artifact) -> Result<Self, NodeError> {
+    pub fn of(contact: &'a Artifact) -> Result<Self, NodeError> {
         let optional = |name: &str| {
             contact
                 .arrays
@@ -145,10 +147,10 @@ impl<'a> ContactView<'a> {
         };
         Ok(Self {
             pressure: required(PRESSURE)?,
-            gap: required(GAP)?,
-            deformation_lower: required(DEFORMATION_LOWER)?,
-            deformation_upper: optional(DEFORMATION_UPPER)?,
-            plastic_penetration: required(PLASTIC_PENETRATION)?,
+            gap: required(GAP)?.into(),
+            deformation_lower: required(DEFORMATION_LOWER)?.into(),
+            deformation_upper: optional(DEFORMATION_UPPER)?.map(PointMap::from),
+            plastic_penetration: required(PLASTIC_PENETRATION)?.into(),
             composite_height: required(COMPOSITE_HEIGHT)?,
             upper_height: optional(HEIGHT_UPPER)?,
             dx: metric(DX)?,
@@ -159,38 +161,74 @@ impl<'a> ContactView<'a> {
     }
 }
 
-/// The maps of one load step of a contact run with `fields: true`, derived from the step's
-/// pressure (`ContactTask::step_maps`): pressure (Pa), gap, deformations and plastic penetration
-/// (m), `[[iy, ix]]`, and the step's nominal pressure and contact area share. The composite
-/// height is the contact's, the same at every step ([`StepMaps::view`] takes it from the
-/// contact).
+/// Load step `step` before the final one of a contact run with `fields: true`, as its consumers
+/// read it (`ContactTask::step_pressure`): the step's pressure map (Pa, `[[iy, ix]]`), approach
+/// (m), nominal pressure (Pa) and contact area share. Its gap, deformations and plastic
+/// penetration are not stored: [`StepPressure::view`] derives them point by point
+/// ([`PointFields`]) from this pressure, the contact's composite height and the step's
+/// displacement the contact derived once for all its consumers ([`STEP_DISPLACEMENTS`]), equal
+/// bit for bit to the arrays `fields_from_displacement` would write.
 #[derive(Debug, Clone, PartialEq)]
-pub struct StepMaps {
+pub struct StepPressure {
+    /// The load step (0 for the first listed pressure).
+    pub step: usize,
     pub pressure: Array2<f64>,
-    pub gap: Array2<f64>,
-    pub deformation_lower: Array2<f64>,
-    pub deformation_upper: Option<Array2<f64>>,
-    pub plastic_penetration: Array2<f64>,
+    /// The step's approach (m).
+    pub approach: f64,
     /// The step's nominal pressure (Pa).
     pub nominal_pressure: f64,
     /// The step's share of the section in contact.
     pub area_fraction: f64,
+    /// The contact's material pair, which splits the displacement between the bodies.
+    pub material: ContactMaterial,
 }
 
-impl StepMaps {
-    /// The view the friction methods read, of this step: its maps with the contact's composite
-    /// height and grid spacings.
+impl StepPressure {
+    /// The view the friction methods read, of this step: its pressure, the maps derived from it,
+    /// the contact's composite height and grid spacings.
     pub fn view<'a>(&'a self, contact: &'a Artifact) -> Result<ContactView<'a>, NodeError> {
         let last = ContactView::of(contact)?;
+        let displacement = earlier_displacement(contact, self.step)?;
+        let fields = PointFields::new(
+            last.composite_height,
+            self.pressure.view(),
+            displacement,
+            self.approach,
+            &self.material,
+        )
+        .map_err(|e| NodeError::new(format!("maps of load step {}: {e}", self.step)))?;
+        let derived = |field| PointMap::Derived(fields, field);
         Ok(ContactView {
             pressure: self.pressure.view(),
-            gap: self.gap.view(),
-            deformation_lower: self.deformation_lower.view(),
-            deformation_upper: self.deformation_upper.as_ref().map(|d| d.view()),
-            plastic_penetration: self.plastic_penetration.view(),
+            gap: derived(StepField::Gap),
+            deformation_lower: derived(StepField::DeformationFirst),
+            deformation_upper: Some(derived(StepField::DeformationSecond)),
+            plastic_penetration: derived(StepField::PlasticPenetration),
             nominal_pressure: self.nominal_pressure,
             area_fraction: self.area_fraction,
             ..last
         })
     }
+}
+
+/// The displacement of earlier load step `step` among the contact's [`STEP_DISPLACEMENTS`].
+fn earlier_displacement(contact: &Artifact, step: usize) -> Result<ArrayView2<'_, f64>, NodeError> {
+    let all = contact
+        .arrays
+        .get(STEP_DISPLACEMENTS)
+        .ok_or_else(|| {
+            NodeError::new(format!(
+                "the contact node holds no '{STEP_DISPLACEMENTS}' array: run it with `fields: true`"
+            ))
+        })?
+        .view()
+        .into_dimensionality::<Ix3>()
+        .map_err(|e| NodeError::new(format!("contact array {STEP_DISPLACEMENTS}: {e}")))?;
+    if step >= all.len_of(Axis(0)) {
+        return Err(NodeError::new(format!(
+            "the contact holds the displacements of {} earlier load steps, not of step {step}",
+            all.len_of(Axis(0))
+        )));
+    }
+    Ok(all.index_axis_move(Axis(0), step))
 }

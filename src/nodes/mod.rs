@@ -32,7 +32,7 @@ fn thread_scratch_bytes_per_point() -> u64 {
 }
 
 pub use contact::{final_step_metrics, ContactSpec, ContactTask, CONTACT_KIND_VERSION};
-pub use contact_view::{ContactView, StepMaps};
+pub use contact_view::{ContactView, StepPressure};
 pub use friction::{
     beyond_fit_field, coefficient_fields, friction_models_markdown, share, FrictionSpec,
     FrictionTask, DEFAULT_ADHESION_ENERGY, DEFAULT_EQUILIBRIUM_DISTANCE, FRICTION_KIND_VERSION,

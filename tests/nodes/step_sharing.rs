@@ -115,29 +115,47 @@ fn the_contact_convolves_its_earlier_steps_once_and_every_consumer_reads_them() 
     let storage = plan.nodes[index(&plan, "c")].task.array_storage();
     assert!(!storage.stores("step_displacements"));
 
-    // The maps a consumer reads equal the unshared path's, bit for bit, with the arrays of the
-    // step before reused.
+    // The maps a consumer reads, point by point, equal the unshared path's arrays, bit for bit,
+    // with the pressure array of the step before reused.
     let mut previous = None;
     for step in 0..2 {
-        let maps = task.step_maps(contact, step, previous.take()).unwrap();
+        let pressure = task.step_pressure(contact, step, previous.take()).unwrap();
+        let view = pressure.view(contact).unwrap();
         let alone = unshared(contact, step);
-        assert_eq!(Some(&maps.pressure), alone.pressure.as_ref(), "step {step}");
-        assert_eq!(Some(&maps.gap), alone.gap.as_ref(), "step {step}");
         assert_eq!(
-            Some(&maps.deformation_lower),
-            alone.deformation_first.as_ref(),
+            Some(&pressure.pressure),
+            alone.pressure.as_ref(),
             "step {step}"
         );
-        assert_eq!(
-            maps.deformation_upper, alone.deformation_second,
-            "step {step}"
-        );
-        assert_eq!(
-            Some(&maps.plastic_penetration),
-            alone.plastic_penetration.as_ref(),
-            "step {step}"
-        );
-        previous = Some(maps);
+        for (name, read, stored) in [
+            ("gap", view.gap, &alone.gap),
+            (
+                "deformation_lower",
+                view.deformation_lower,
+                &alone.deformation_first,
+            ),
+            (
+                "deformation_upper",
+                view.deformation_upper.unwrap(),
+                &alone.deformation_second,
+            ),
+            (
+                "plastic_penetration",
+                view.plastic_penetration,
+                &alone.plastic_penetration,
+            ),
+        ] {
+            let stored = stored.as_ref().unwrap();
+            assert_eq!(read.dim(), stored.dim(), "step {step} {name}");
+            for (at, &value) in stored.indexed_iter() {
+                assert_eq!(
+                    read.at(at).to_bits(),
+                    value.to_bits(),
+                    "step {step} {name} {at:?}"
+                );
+            }
+        }
+        previous = Some(pressure);
     }
 
     // The consumers read the contact's displacements rather than convolving the steps

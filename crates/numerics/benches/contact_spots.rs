@@ -69,9 +69,9 @@ fn per_spot_model(z: &Array2<f64>, p: &Array2<f64>, gap: &Array2<f64>, dx: f64) 
     let maps = BodyMaps {
         composite_height: z.view(),
         upper_height: None,
-        deformation_lower: zero.view(),
+        deformation_lower: zero.view().into(),
         deformation_upper: None,
-        plastic_penetration: zero.view(),
+        plastic_penetration: zero.view().into(),
     };
     let hardness = BodyHardness {
         lower: 1.96e9,
@@ -79,7 +79,7 @@ fn per_spot_model(z: &Array2<f64>, p: &Array2<f64>, gap: &Array2<f64>, dx: f64) 
     };
     let section = ContactSection {
         pressure: p.view(),
-        gap: gap.view(),
+        gap: gap.view().into(),
         bodies: ContactBodies::new(maps, hardness).ok()?,
         spacing: (dx, dx),
         periodic: true,

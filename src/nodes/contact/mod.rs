@@ -5,7 +5,7 @@
 //! pressure, gap, deformation and plastic-penetration maps, the composite height z₁ + z₂ the
 //! contact was solved on and the upper body's heights z₂ (with an upper surface) are arrays for
 //! its consumers (the per-summit and per-spot `friction` methods read them), and every step's
-//! maps can be derived ([`ContactTask::step_maps`]).
+//! maps can be derived (the earlier steps' from [`ContactTask::step_pressure`]).
 //!
 //! The cache keeps only the pressure maps (the final step's whole, the earlier steps' contact
 //! points, `contact_view::contact_points`); the heights are the surfaces' and the other maps follow from a step's pressure, its

@@ -4,21 +4,18 @@
 //! The expensive part of a step's maps, the convolution `u = K p` of its pressure, is done once
 //! per contact for all its consumers: [`ContactTask::earlier_displacements`] convolves every
 //! earlier step's pressure with one operator when the contact is computed or read for its
-//! dependants (the artifact then holds them as [`STEP_DISPLACEMENTS`] until its last dependant
-//! is done), and [`ContactTask::step_maps`] only assembles a step's maps from it, into the
-//! arrays of the step read before.
+//! dependants (the artifact then holds them as [`STEP_DISPLACEMENTS`](crate::nodes::contact_view::STEP_DISPLACEMENTS) until its last dependant
+//! is done), and [`ContactTask::step_pressure`] only reads a step's pressure, into the array of
+//! the step read before; its other maps are derived from the two when they are read
+//! (`StepPressure::view`).
 
-use ndarray::{Array2, Array3, ArrayD, ArrayView2, Axis, Ix2, Ix3};
+use ndarray::{Array2, Array3, ArrayD, ArrayView2, Ix2};
 
 use super::super::contact_view::{
-    fill_pressure_of_contact_points, step_pressure_name, StepMaps, COMPOSITE_HEIGHT, PRESSURE,
-    STEP_DISPLACEMENTS,
+    fill_pressure_of_contact_points, step_pressure_name, StepPressure, COMPOSITE_HEIGHT,
 };
-use super::{ContactTask, DERIVED_FIELDS};
-use crate::contact::{
-    fields_from_displacement, ContactError, ContactFields, ContactSolver, DisplacementOperator,
-    LoadCurve,
-};
+use super::ContactTask;
+use crate::contact::{ContactError, ContactSolver, DisplacementOperator, LoadCurve};
 use crate::engine::artifact::{Artifact, ColumnData};
 use crate::engine::node::NodeError;
 use crate::engine::value::Value;
@@ -26,71 +23,48 @@ use crate::vocabulary::metrics::{APPROACH, AREA_FRACTION, DX, DY, NOMINAL_PRESSU
 use crate::vocabulary::tables;
 
 impl ContactTask {
-    /// The maps of load step `step` (0 for the first listed pressure) of this contact, whose
-    /// artifact `contact` (computed, or cached with its derived arrays, as a consumer receives
-    /// it) holds the step's pressure: the other maps from it, the step's approach and the
-    /// composite height ([`fields_from_displacement`]), with the step's displacement `u = K p`
-    /// the contact derived once for all its consumers ([`Self::earlier_displacements`]; the
-    /// final step's is convolved here). The arrays of `reuse` (the maps of another step of this
-    /// contact) are overwritten instead of allocating new ones. An error when the contact kept
-    /// no fields or has no such step.
-    pub fn step_maps(
+    /// Load step `step` (0 for the first listed pressure) before the final one of this contact,
+    /// whose artifact `contact` (computed, or cached with its derived arrays, as a consumer
+    /// receives it) holds the step's pressure: its pressure map (into the array of `reuse`, the
+    /// step read before, instead of a new one), approach, nominal pressure and contact area
+    /// share; [`StepPressure::view`] derives the other maps from it. The final step's maps are
+    /// the contact's own (`ContactView::of`). An error when the contact kept no fields or has no
+    /// such earlier step.
+    pub fn step_pressure(
         &self,
         contact: &Artifact,
         step: usize,
-        reuse: Option<StepMaps>,
-    ) -> Result<StepMaps, NodeError> {
+        reuse: Option<StepPressure>,
+    ) -> Result<StepPressure, NodeError> {
         let (approach, nominal_pressure, area_fraction, steps) = step_values(contact, step)?;
-        let composite = array2(contact, COMPOSITE_HEIGHT)?;
-        let (mut pressure, mut fields) = reused(reuse, composite.dim());
-        let final_step = step + 1 == steps;
-        if final_step {
-            pressure.assign(&array2(contact, PRESSURE)?);
-        } else {
-            let name = step_pressure_name(step);
-            let points = contact.arrays.get(&name).ok_or_else(|| no_fields(&name))?;
-            fill_pressure_of_contact_points(points, &mut pressure)?;
+        if step + 1 >= steps {
+            return Err(NodeError::new(format!(
+                "load step {step} is not one before the final step {}: its maps are the \
+                 contact's own",
+                steps - 1
+            )));
         }
-        let failed = |e: ContactError| NodeError::new(format!("maps of load step {step}: {e}"));
-        let convolved;
-        let displacement = if final_step {
-            let mut u = Array2::zeros(composite.dim());
-            let slice = u
-                .as_slice_mut()
-                .unwrap_or_else(|| unreachable!("a new array"));
-            self.displacement_operator(contact, composite.dim())?
-                .apply(pressure.view(), slice)
-                .map_err(failed)?;
-            convolved = u;
-            convolved.view()
-        } else {
-            earlier_displacement(contact, step)?
+        let shape = array2(contact, COMPOSITE_HEIGHT)?.dim();
+        let mut pressure = match reuse {
+            Some(earlier) if earlier.pressure.dim() == shape => earlier.pressure,
+            _ => Array2::zeros(shape),
         };
-        fields_from_displacement(
-            composite,
-            pressure.view(),
-            displacement,
-            approach,
-            &self.material,
-            DERIVED_FIELDS,
-            &mut fields,
-        )
-        .map_err(failed)?;
-        let missing = || NodeError::new(format!("maps of load step {step}: a field is missing"));
-        Ok(StepMaps {
-            gap: fields.gap.ok_or_else(missing)?,
-            deformation_lower: fields.deformation_first.ok_or_else(missing)?,
-            deformation_upper: fields.deformation_second,
-            plastic_penetration: fields.plastic_penetration.ok_or_else(missing)?,
+        let name = step_pressure_name(step);
+        let points = contact.arrays.get(&name).ok_or_else(|| no_fields(&name))?;
+        fill_pressure_of_contact_points(points, &mut pressure)?;
+        Ok(StepPressure {
+            step,
             pressure,
+            approach,
             nominal_pressure,
             area_fraction,
+            material: self.material,
         })
     }
 
     /// The composite displacement `u = K p` (m) of every load step before the final one, from
     /// the steps' pressure in `contact` (this contact's artifact, with the final step's metrics
-    /// and every earlier step's pressure) on its grid `shape = (ny, nx)`, by one operator for all steps: the [`STEP_DISPLACEMENTS`]
+    /// and every earlier step's pressure) on its grid `shape = (ny, nx)`, by one operator for all steps: the [`STEP_DISPLACEMENTS`](crate::nodes::contact_view::STEP_DISPLACEMENTS)
     /// array, `[[step, iy, ix]]`, which every consumer of the contact reads instead of
     /// convolving the steps itself. `None` without fields or earlier steps.
     pub(super) fn earlier_displacements(
@@ -226,42 +200,6 @@ fn step_values(contact: &Artifact, step: usize) -> Result<(f64, f64, f64, usize)
         column(AREA_FRACTION)?,
         curve.rows(),
     ))
-}
-
-/// The pressure map and the fields of `reuse` (maps of another step on the grid `shape`) to be
-/// overwritten, or new ones.
-fn reused(reuse: Option<StepMaps>, shape: (usize, usize)) -> (Array2<f64>, ContactFields) {
-    match reuse {
-        Some(maps) if maps.pressure.dim() == shape => (
-            maps.pressure,
-            ContactFields {
-                pressure: None,
-                gap: Some(maps.gap),
-                deformation_first: Some(maps.deformation_lower),
-                deformation_second: maps.deformation_upper,
-                plastic_penetration: Some(maps.plastic_penetration),
-            },
-        ),
-        _ => (Array2::zeros(shape), ContactFields::default()),
-    }
-}
-
-/// The displacement of earlier load step `step` among the contact's [`STEP_DISPLACEMENTS`].
-fn earlier_displacement(contact: &Artifact, step: usize) -> Result<ArrayView2<'_, f64>, NodeError> {
-    let all = contact
-        .arrays
-        .get(STEP_DISPLACEMENTS)
-        .ok_or_else(|| no_fields(STEP_DISPLACEMENTS))?
-        .view()
-        .into_dimensionality::<Ix3>()
-        .map_err(|e| NodeError::new(format!("contact array {STEP_DISPLACEMENTS}: {e}")))?;
-    if step >= all.len_of(Axis(0)) {
-        return Err(NodeError::new(format!(
-            "the contact holds the displacements of {} earlier load steps, not of step {step}",
-            all.len_of(Axis(0))
-        )));
-    }
-    Ok(all.index_axis_move(Axis(0), step))
 }
 
 /// The map called `name` of `artifact`.

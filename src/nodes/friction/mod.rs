@@ -223,7 +223,7 @@ pub(crate) enum MethodSetup {
 }
 
 /// The upstream contact a per-summit or per-spot node reads: its input index and its task,
-/// which derives the maps of the contact's earlier load steps (`ContactTask::step_maps`).
+/// which reads the contact's earlier load steps (`ContactTask::step_pressure`).
 #[derive(Debug, Clone)]
 pub(crate) struct ContactInput {
     pub index: usize,

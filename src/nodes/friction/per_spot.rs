@@ -14,10 +14,10 @@
 //! * **Coefficient**: μ_s = Σ Q_i/(Σ P_i − F_a) of the section; forces are scaled to
 //!   `nominal_area` like the per-summit method (μ_s is invariant under that scaling).
 //! * **Load steps**: every step of the contact (`friction_curve`, one row each); the earlier
-//!   steps' maps are assembled from their stored pressure and the displacement the contact
-//!   convolved once for all its consumers (`ContactTask::step_maps`), into the same arrays at
-//!   every step; the final step's are read as the contact stores them. The row and the spots
-//!   table are the final step's.
+//!   steps' maps are read point by point from their stored pressure (in one array reused at
+//!   every step) and the displacement the contact convolved once for all its consumers
+//!   (`ContactTask::step_pressure`, `StepPressure::view`); the final step's are read as the
+//!   contact stores them. The row and the spots table are the final step's.
 //! * **Trust**: the load shares beyond the law's fit, without a radius, on merged spots under a
 //!   radius-based law, on one-pixel spots, the adhesion share F_a/F_n, spot-area and local-μ
 //!   quantiles over the spots (the validity rules flag the shares above their bounds).
@@ -79,7 +79,7 @@ fn contact_section<'a>(
 }
 
 /// The metrics at each load step of the contact (the earlier steps' maps derived from their
-/// pressure, `ContactTask::step_maps`; the final step's read as stored) and the spots table of
+/// pressure, `StepPressure::view`; the final step's read as stored) and the spots table of
 /// the final step.
 pub(super) fn compute(
     task: &FrictionTask,
@@ -94,7 +94,7 @@ pub(super) fn compute(
     for step in 0..n - 1 {
         let step_maps = contact
             .task
-            .step_maps(artifact, step, maps.take())
+            .step_pressure(artifact, step, maps.take())
             .map_err(|e| at_step(e, step, n))?;
         let row = step_maps
             .view(artifact)

@@ -20,16 +20,16 @@
 //!   μ_s is invariant under that scaling and is the whole-surface estimate.
 //! * **Area**: `real_area`/`area_fraction` are the contact node's (points with p > 0), scaled to A_n.
 //! * **Load steps**: every step of the contact (`friction_curve`, one row each) on the same
-//!   summits; the earlier steps' maps are assembled from their stored pressure and the
-//!   displacement the contact convolved once for all its consumers (`ContactTask::step_maps`),
-//!   into the same arrays at every step; the final step's are read as the contact stores them.
+//!   summits; the earlier steps' maps are read point by point from their stored pressure (in
+//!   one array reused at every step) and the displacement the contact convolved once for all
+//!   its consumers (`StepPressure::view`); the final step's are read as the contact stores them.
 //!   The row and the summits table are the final step's.
 //! * **ψ**: the plasticity index of the identified summits, (2E/(πKH))·√(σ_s/R̄) with σ_s the std
 //!   of their heights and R̄ their mean radius.
 
 use std::collections::BTreeMap;
 
-use ndarray::ArrayView2;
+use crate::contact::PointMap;
 
 use crate::engine::artifact::{Artifact, Table};
 use crate::engine::node::NodeError;
@@ -51,17 +51,14 @@ use crate::nodes::contact_view::{step_nominal_pressures, ContactView};
 
 /// The interference ω (m) of the summit at (iy, ix); see the module docs.
 fn interference(fields: &ContactView, iy: usize, ix: usize) -> Result<f64, NodeError> {
-    let at = |a: &ArrayView2<f64>| {
-        a.get((iy, ix))
-            .copied()
-            .ok_or_else(|| NodeError::new("a summit lies outside the contact fields"))
-    };
+    let outside = || NodeError::new("a summit lies outside the contact fields");
+    let at = |a: &PointMap| a.get((iy, ix)).ok_or_else(outside);
     let upper = match &fields.deformation_upper {
         Some(u) => at(u)?,
         None => 0.0,
     };
     Ok(summit_interference(
-        at(&fields.pressure)?,
+        fields.pressure.get((iy, ix)).copied().ok_or_else(outside)?,
         at(&fields.deformation_lower)? + upper,
         at(&fields.plastic_penetration)?,
         at(&fields.gap)?,
@@ -78,7 +75,7 @@ fn state_name(state: DeformationState) -> &'static str {
 }
 
 /// The metrics at each load step of the contact (the earlier steps' maps derived from their
-/// pressure, `ContactTask::step_maps`; the final step's read as stored) on the summits of the
+/// pressure, `StepPressure::view`; the final step's read as stored) on the summits of the
 /// composite height (the same at every step), and the summits table of the final step.
 pub(super) fn compute(
     task: &FrictionTask,
@@ -107,7 +104,7 @@ pub(super) fn compute(
     for step in 0..n - 1 {
         let m = contact
             .task
-            .step_maps(artifact, step, step_maps.take())
+            .step_pressure(artifact, step, step_maps.take())
             .map_err(|e| at_step(e, step, n))?;
         let row = m
             .view(artifact)

@@ -23,6 +23,7 @@ use super::influence::{Boundary, InfluenceOperator};
 use super::load_curve::ContactFields;
 use super::material::ContactMaterial;
 use super::options::FieldRequest;
+use super::point_fields::{deformation, gap, plastic, PointFields};
 use super::problem::ContactProblem;
 
 /// Points per parallel chunk of the field passes (each value is computed alone, so the fields do
@@ -98,9 +99,9 @@ impl StepSolution {
             .then(|| new_grid(shape, |i| plastic(p[i], g[i], plim)));
         let deformation_second = request
             .deformation
-            .then(|| new_grid(shape, |i| u[i] * (1.0 - share)));
+            .then(|| new_grid(shape, |i| deformation(u[i], 1.0 - share)));
         let deformation_first = request.deformation.then(|| {
-            u.par_iter_mut().for_each(|v| *v *= share);
+            u.par_iter_mut().for_each(|v| *v = deformation(*v, share));
             grid(u)
         });
         ContactFields {
@@ -110,16 +111,6 @@ impl StepSolution {
             deformation_second,
             plastic_penetration,
         }
-    }
-}
-
-/// The plastic penetration of a point of pressure `p` and gap `g`: `max(0, −g)` where `p = p_lim`
-/// (the pressure reaches the cap), 0 elsewhere.
-fn plastic(p: f64, g: f64, plim: f64) -> f64 {
-    if p >= plim {
-        (-g).max(0.0)
-    } else {
-        0.0
     }
 }
 
@@ -141,13 +132,13 @@ fn write_fields(
         &mut fields.deformation_first,
         request.deformation,
         shape,
-        |i| u[i] * share,
+        |i| deformation(u[i], share),
     );
     fill(
         &mut fields.deformation_second,
         request.deformation,
         shape,
-        |i| u[i] * (1.0 - share),
+        |i| deformation(u[i], 1.0 - share),
     );
     fill(
         &mut fields.plastic_penetration,
@@ -321,26 +312,15 @@ pub fn fields_from_displacement(
     request: FieldRequest,
     fields: &mut ContactFields,
 ) -> Result<(), ContactError> {
+    let top = PointFields::new(composite_height, pressure, displacement, approach, material)?.top();
     let shape = composite_height.dim();
-    for got in [pressure.dim(), displacement.dim()] {
-        if got != shape {
-            return Err(ContactError::FieldShape {
-                expected: shape,
-                got,
-            });
-        }
-    }
-    let top = composite_height
-        .iter()
-        .copied()
-        .fold(f64::NEG_INFINITY, f64::max);
     let (z, p, u) = (
         composite_height.as_standard_layout(),
         pressure.as_standard_layout(),
         displacement.as_standard_layout(),
     );
     let (z, p, u) = (values(&z), values(&p), values(&u));
-    let gap = |i: usize| (top - z[i]) + u[i] - approach;
+    let gap = |i: usize| gap(top, z[i], u[i], approach);
     write_fields(fields, shape, (p, gap, u), material, request);
     Ok(())
 }

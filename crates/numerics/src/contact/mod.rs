@@ -19,6 +19,7 @@ mod load_curve;
 mod material;
 mod multilevel;
 mod options;
+mod point_fields;
 mod problem;
 mod restricted_matrix;
 mod selection;
@@ -41,6 +42,7 @@ pub use options::{
     BadOption, FieldRequest, Residuals, SolvePath, SolveStrategy, SolverOptions, Termination,
     MAX_TOLERANCE, MIN_TOLERANCE,
 };
+pub use point_fields::{PointFields, PointMap, StepField};
 pub use problem::ContactProblem;
 pub use solver::ContactSolver;
 pub use work::Work;

@@ -33,6 +33,7 @@
 use ndarray::ArrayView2;
 
 use super::error::FrictionError;
+use crate::contact::PointMap;
 use crate::materials::{MaterialPair, Side};
 
 /// The hardness of each body (Pa); `+∞` for a rigid body or one without a hardness (it does
@@ -124,7 +125,9 @@ pub fn motion(side: Side, sliding_direction: f64) -> f64 {
     }
 }
 
-/// The maps of a solved contact that the bodies' surfaces follow from, `[[iy, ix]]` (m).
+/// The maps of a solved contact that the bodies' surfaces follow from, `[[iy, ix]]` (m): the
+/// heights as arrays, the deformations stored or derived from the step's displacement
+/// ([`PointMap`]).
 #[derive(Debug, Clone, Copy)]
 pub struct BodyMaps<'a> {
     /// z₁ + z₂ (the lower heights against a flat).
@@ -132,11 +135,11 @@ pub struct BodyMaps<'a> {
     /// z₂; `None`: the counter-body is a flat.
     pub upper_height: Option<ArrayView2<'a, f64>>,
     /// u₁.
-    pub deformation_lower: ArrayView2<'a, f64>,
+    pub deformation_lower: PointMap<'a>,
     /// u₂; `None`: a rigid counter-body.
-    pub deformation_upper: Option<ArrayView2<'a, f64>>,
+    pub deformation_upper: Option<PointMap<'a>>,
     /// u_pl (0 where the pressure is below the flow pressure).
-    pub plastic_penetration: ArrayView2<'a, f64>,
+    pub plastic_penetration: PointMap<'a>,
 }
 
 /// The two bodies of a solved contact (see the module docs).
@@ -153,13 +156,13 @@ impl<'a> ContactBodies<'a> {
     pub fn new(maps: BodyMaps<'a>, hardness: BodyHardness) -> Result<Self, FrictionError> {
         let shape = maps.composite_height.dim();
         let named = [
-            ("upper_height", maps.upper_height),
-            ("deformation_lower", Some(maps.deformation_lower)),
-            ("deformation_upper", maps.deformation_upper),
-            ("plastic_penetration", Some(maps.plastic_penetration)),
+            ("upper_height", maps.upper_height.map(|z| z.dim())),
+            ("deformation_lower", Some(maps.deformation_lower.dim())),
+            ("deformation_upper", maps.deformation_upper.map(|u| u.dim())),
+            ("plastic_penetration", Some(maps.plastic_penetration.dim())),
         ];
-        for (name, map) in named {
-            if let Some(found) = map.map(|m| m.dim()).filter(|&d| d != shape) {
+        for (name, dim) in named {
+            if let Some(found) = dim.filter(|&d| d != shape) {
                 return Err(FrictionError::ShapeMismatch {
                     name,
                     expected: shape,
@@ -215,12 +218,12 @@ impl<'a> ContactBodies<'a> {
     /// The deformed outward surface w_b = z_b − u_b − s_b u_pl of `side` at `(iy, ix)`.
     pub fn deformed(&self, side: Side, at: (usize, usize)) -> f64 {
         let (elastic, share) = match side {
-            Side::Lower => (self.maps.deformation_lower[at], self.lower_plastic_share),
+            Side::Lower => (self.maps.deformation_lower.at(at), self.lower_plastic_share),
             Side::Upper => (
-                self.maps.deformation_upper.map_or(0.0, |u| u[at]),
+                self.maps.deformation_upper.map_or(0.0, |u| u.at(at)),
                 1.0 - self.lower_plastic_share,
             ),
         };
-        self.height(side, at) - elastic - share * self.maps.plastic_penetration[at]
+        self.height(side, at) - elastic - share * self.maps.plastic_penetration.at(at)
     }
 }

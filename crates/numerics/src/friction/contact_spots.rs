@@ -44,6 +44,7 @@ use rayon::prelude::*;
 use super::error::{require_non_negative, require_positive, FrictionError};
 use super::material::AdhesionParameters;
 use super::paraboloid_fit::NormalEquations;
+use crate::contact::PointMap;
 
 /// Which neighbours join two contact points into one spot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -551,13 +552,14 @@ pub(crate) fn step(i: usize, s: isize, n: usize, periodic: bool) -> Option<usize
 ///
 /// Errors: shapes differ, `dx`, `dy`, `ε` not finite and > 0, `Δγ` not finite and ≥ 0, a NaN gap
 /// out of contact.
-pub fn adhesion_from_gap(
-    gap: ArrayView2<f64>,
+pub fn adhesion_from_gap<'a>(
+    gap: impl Into<PointMap<'a>>,
     pressure: ArrayView2<f64>,
     dx: f64,
     dy: f64,
     adhesion: AdhesionParameters,
 ) -> Result<f64, FrictionError> {
+    let gap = gap.into();
     check_shape("gap", pressure.dim(), gap.dim())?;
     let area = require_positive("dx", dx)? * require_positive("dy", dy)?;
     let energy = require_non_negative("adhesion_energy", adhesion.energy)?;
@@ -565,13 +567,14 @@ pub fn adhesion_from_gap(
     if energy == 0.0 {
         return Ok(0.0);
     }
-    let row_sums: Vec<f64> = (0..gap.nrows())
+    let row_sums: Vec<f64> = (0..pressure.nrows())
         .into_par_iter()
         .map(|iy| {
-            let pairs = gap.row(iy).into_iter().zip(pressure.row(iy));
-            pairs
-                .filter(|&(_, &p)| !in_contact(p))
-                .map(|(&g, _)| {
+            let row = pressure.row(iy);
+            (0..row.len())
+                .filter(|&ix| !in_contact(row[ix]))
+                .map(|ix| {
+                    let g = gap.at((iy, ix));
                     let r = eps / (eps + if g < 0.0 { 0.0 } else { g });
                     let r3 = r * r * r;
                     r3 - r3 * r3 * r3

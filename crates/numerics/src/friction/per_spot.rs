@@ -41,6 +41,7 @@ use super::laws::ploughing::baseline::slope_baseline;
 use super::laws::ploughing::front::front_geometry;
 use super::laws::spot::{FrontGeometry, SlidingDirection, SpotFriction, SpotGeometry, SpotLoad};
 use super::material::AdhesionParameters;
+use crate::contact::PointMap;
 use crate::materials::Side;
 
 /// A solved contact as per-spot friction reads it (`[[iy, ix]]` maps of one grid).
@@ -49,7 +50,7 @@ pub struct ContactSection<'a> {
     /// Pressure p (Pa).
     pub pressure: ArrayView2<'a, f64>,
     /// Gap after loading g (m), for the adhesion of the points out of contact.
-    pub gap: ArrayView2<'a, f64>,
+    pub gap: PointMap<'a>,
     /// The two bodies: heights, deformations, hardness.
     pub bodies: ContactBodies<'a>,
     /// Grid spacings (dx, dy) (m).

@@ -99,13 +99,13 @@ impl Solved {
         let maps = BodyMaps {
             composite_height: composite.view(),
             upper_height: Some(self.upper.view()),
-            deformation_lower: self.deformation.0.view(),
-            deformation_upper: Some(self.deformation.1.view()),
-            plastic_penetration: self.plastic.view(),
+            deformation_lower: self.deformation.0.view().into(),
+            deformation_upper: Some(self.deformation.1.view().into()),
+            plastic_penetration: self.plastic.view().into(),
         };
         let section = ContactSection {
             pressure: self.pressure.view(),
-            gap: self.gap.view(),
+            gap: self.gap.view().into(),
             bodies: ContactBodies::new(maps, BodyHardness::of(&self.pair)).unwrap(),
             spacing: (d, d),
             periodic: true,

@@ -80,13 +80,13 @@ impl Pair {
         let maps = BodyMaps {
             composite_height: composite.view(),
             upper_height: Some(self.upper.view()),
-            deformation_lower: zero.view(),
-            deformation_upper: Some(zero.view()),
-            plastic_penetration: zero.view(),
+            deformation_lower: zero.view().into(),
+            deformation_upper: Some(zero.view().into()),
+            plastic_penetration: zero.view().into(),
         };
         let section = ContactSection {
             pressure: pressure.view(),
-            gap: gap.view(),
+            gap: gap.view().into(),
             bodies: ContactBodies::new(maps, self.hardness).unwrap(),
             spacing,
             periodic: self.periodic,

@@ -122,9 +122,9 @@ mod tests {
                 let maps = BodyMaps {
                     composite_height: composite.view(),
                     upper_height: upper,
-                    deformation_lower: zeros.view(),
+                    deformation_lower: zeros.view().into(),
                     deformation_upper: None,
-                    plastic_penetration: zeros.view(),
+                    plastic_penetration: zeros.view().into(),
                 };
                 let bodies = ContactBodies::new(
                     maps,
