@@ -11,7 +11,8 @@
 //!
 //! Each line is `stage  wall_s  cpu_s` (CPU of the whole process over the stage, every thread,
 //! from `/proc/self/stat` at 10 ms resolution; on a busy machine the steadier figure); a load
-//! step's line adds its CG iterations, coarse iterations and free-set iterations.
+//! step's line adds its CG iterations, coarse iterations, free-set iterations and 2-D FFTs
+//! (forward or inverse, each counted once).
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -124,8 +125,11 @@ fn run(n: usize) -> Result<(), String> {
         clock.stage(
             &format!("load step {i}"),
             &format!(
-                "iterations {} coarse {} free-set {}",
-                step.iterations, step.coarse_iterations, step.free_set_iterations
+                "iterations {} coarse {} free-set {} transforms {}",
+                step.iterations,
+                step.coarse_iterations,
+                step.free_set_iterations,
+                step.fft_transforms
             ),
         );
         if i + 1 < PRESSURES.len() {

@@ -56,8 +56,11 @@ pub(crate) use crate::vocabulary::tables::CONTACTS as TABLE;
 /// Implementation version of the `contact` kind; bump whenever its numerics change (27: the
 /// cache keeps the pressure of every load step and derives the other maps; 28: the upper body's
 /// heights are an array of the fields, the values are those of 27; 29: single-precision
-/// transforms with a double-precision polish, values within the solver's tolerance of 28's).
-pub const CONTACT_KIND_VERSION: u32 = 29;
+/// transforms with a double-precision polish, values within the solver's tolerance of 28's; 30:
+/// the same also where a kernel has round-off values below `f32`'s range, as the padded kernel
+/// of a 3512² grid has, which had kept such contacts in double precision: values within the
+/// solver's tolerance of 29's there, and the same elsewhere).
+pub const CONTACT_KIND_VERSION: u32 = 30;
 
 /// The maps a contact's cache entry leaves out and [`ContactTask::derive_arrays`] derives (the
 /// earlier steps' displacements only for its consumers, never stored).

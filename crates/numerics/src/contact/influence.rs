@@ -461,6 +461,16 @@ mod tests {
         }
     }
 
+    /// The measured size of the ground-validation study (3512² points of 0.556 µm, S235JR on
+    /// S235JR): its padded kernel has round-off values below `f32`'s range, negligible beside
+    /// its largest, and the operator still has single-precision transforms (`transforms.rs`).
+    #[test]
+    fn the_measured_grid_has_single_precision_transforms() {
+        let (n, dx, e_star) = (3512, 1.953e-3 / 3512.0, 1.1538e11);
+        let op = InfluenceOperator::new(n, n, dx, dx, e_star, Boundary::Periodic, false).unwrap();
+        assert!(op.has_single());
+    }
+
     #[test]
     fn preconditioner_inverts_the_periodic_operator() {
         // `M K p = p` for a zero-mean pressure on a periodic grid: `M̂ = 1/K̂` away from q = 0.
