@@ -30,8 +30,8 @@ use crate::engine::value::Field;
 use crate::friction::contact_spots::{Connectivity, ContactSpot};
 use crate::friction::per_summit::{load_weighted_quantile, quantile};
 use crate::friction::{
-    per_spot_friction, BodyHardness, BodyMaps, ContactBodies, ContactSection, PerSpotResult,
-    SectionFriction, SpotFriction,
+    per_spot_friction_with_baseline, BodyHardness, BodyMaps, ContactBodies, ContactSection,
+    PerSpotResult, SectionFriction, SpotFriction,
 };
 use crate::units::Dimension;
 use crate::vocabulary::{self, metrics as names, spot_columns};
@@ -91,21 +91,24 @@ pub(super) fn compute(
     let n = step_nominal_pressures(artifact)?.len();
     let mut rows = Vec::with_capacity(n);
     let mut maps = None;
+    // The slope baseline of the undeformed heights, the same at every step: computed once.
+    let mut baseline = None;
     for step in 0..n - 1 {
         let step_maps = contact
             .task
             .step_pressure(artifact, step, maps.take())
             .map_err(|e| at_step(e, step, n))?;
-        let row = step_maps
+        let (metrics, found) = step_maps
             .view(artifact)
-            .and_then(|view| step_row(task, &view, section))
+            .and_then(|view| step_row(task, &view, section, baseline))
             .map_err(|e| at_step(e, step, n))?;
-        rows.push(row.0);
+        rows.push(metrics);
+        baseline = found.geometry.map(|g| g.slope_baseline);
         maps = Some(step_maps);
     }
     drop(maps);
     let fields = ContactView::of(artifact)?;
-    let (metrics, found) = step_row(task, &fields, section)?;
+    let (metrics, found) = step_row(task, &fields, section, baseline)?;
     rows.push(metrics);
     if section.spots_table {
         let mut table = spots_table(&found.spots, &found.result, (fields.dx, fields.dy));
@@ -117,14 +120,16 @@ pub(super) fn compute(
     Ok(rows)
 }
 
-/// The metrics of the section `fields` (one load step) and what the numerics found there.
+/// The metrics of the section `fields` (one load step) and what the numerics found there, with
+/// the slope baseline of an earlier step of the same contact (`None`: computed here).
 fn step_row(
     task: &FrictionTask,
     fields: &ContactView<'_>,
     section: &Section,
+    slope_baseline: Option<f64>,
 ) -> Result<(Vec<Field>, SectionFriction), NodeError> {
     let found = contact_section(task, fields, section)
-        .and_then(|s| per_spot_friction(&s, task.law.as_ref()))
+        .and_then(|s| per_spot_friction_with_baseline(&s, task.law.as_ref(), slope_baseline))
         .map_err(|e| NodeError::new(format!("per-spot friction: {e}")))?;
     let SectionFriction {
         spots,

@@ -73,7 +73,8 @@ pub use laws::{
 pub use material::{AdhesionParameters, CriticalValues, Material, TABOR_FACTOR};
 pub use net_load_grid::{net_load, GridEvaluations, NetLoadGrid};
 pub use per_spot::{
-    per_spot_friction, sum_spots, ContactSection, PerSpotResult, SectionFriction, SectionGeometry,
+    per_spot_friction, per_spot_friction_with_baseline, sum_spots, ContactSection, PerSpotResult,
+    SectionFriction, SectionGeometry,
 };
 pub use per_summit::{
     per_summit_friction, summit_friction, summit_interference, PerSummitResult, SummitContact,

@@ -130,6 +130,19 @@ pub fn per_spot_friction(
     section: &ContactSection,
     law: &dyn FrictionLaw,
 ) -> Result<SectionFriction, FrictionError> {
+    per_spot_friction_with_baseline(section, law, None)
+}
+
+/// [`per_spot_friction`] given the slope baseline `known` of an earlier call on a section of the
+/// same undeformed heights, spacing and boundary under a law of the same sliding direction (an
+/// earlier load step of the same contact): the baseline depends on nothing else, so it is
+/// taken as it is instead of computed again, a pass over the grid per ploughing body. `None`
+/// computes it.
+pub fn per_spot_friction_with_baseline(
+    section: &ContactSection,
+    law: &dyn FrictionLaw,
+    known: Option<f64>,
+) -> Result<SectionFriction, FrictionError> {
     let (dx, dy) = section.spacing;
     let labels = label_spots(section.pressure, section.periodic, section.connectivity)?;
     let height = section.bodies.composite_height();
@@ -137,7 +150,7 @@ pub fn per_spot_friction(
     let adhesion = adhesion_from_gap(section.gap, section.pressure, dx, dy, section.adhesion)?;
     let geometry = law
         .sliding_direction()
-        .map(|direction| section_geometry(&labels, section, direction))
+        .map(|direction| section_geometry(&labels, section, direction, known))
         .transpose()?;
     let loads: Vec<SpotLoad> = spots.iter().map(SpotLoad::from).collect();
     let per_spot = geometry.as_ref().map(|g| g.spots.as_slice());
@@ -149,11 +162,13 @@ pub fn per_spot_friction(
     })
 }
 
-/// The fronts of the ploughing bodies of every spot and the slope baseline along `direction`.
+/// The fronts of the ploughing bodies of every spot and the slope baseline along `direction`
+/// (`known`, or computed).
 fn section_geometry(
     labels: &SpotLabels,
     section: &ContactSection,
     direction: SlidingDirection,
+    known: Option<f64>,
 ) -> Result<SectionGeometry, FrictionError> {
     let ploughing = section.bodies.hardness().ploughing();
     let mut fronts: [Option<(f64, Vec<Option<FrontGeometry>>)>; 2] = [None, None];
@@ -166,14 +181,16 @@ fn section_geometry(
             Side::Upper => 1,
         };
         fronts[slot] = Some((share, front));
-        baseline += share
-            * slope_baseline(
-                &section.bodies,
-                side,
-                direction,
-                section.spacing,
-                section.periodic,
-            );
+        if known.is_none() {
+            baseline += share
+                * slope_baseline(
+                    &section.bodies,
+                    side,
+                    direction,
+                    section.spacing,
+                    section.periodic,
+                );
+        }
     }
     let spots = (0..labels.count())
         .map(|id| SpotGeometry {
@@ -185,7 +202,7 @@ fn section_geometry(
     Ok(SectionGeometry {
         ploughing,
         spots,
-        slope_baseline: baseline,
+        slope_baseline: known.unwrap_or(baseline),
     })
 }
 

@@ -10,8 +10,8 @@ use asperity_numerics::contact::{
     SolverOptions,
 };
 use asperity_numerics::friction::{
-    find_law, per_spot_friction, AdhesionParameters, BodyHardness, BodyMaps, Connectivity,
-    ContactBodies, ContactSection, FrictionLaw, LawInputs, Material, SectionFriction,
+    find_law, per_spot_friction_with_baseline, AdhesionParameters, BodyHardness, BodyMaps,
+    Connectivity, ContactBodies, ContactSection, FrictionLaw, LawInputs, Material, SectionFriction,
 };
 use asperity_numerics::materials::{find_material, BodyMaterial, MaterialPair};
 use asperity_numerics::surface::synthetic::{generate_synthetic_surface, SyntheticSurfaceSpec};
@@ -94,6 +94,12 @@ impl Solved {
     }
 
     fn friction(&self, law: &dyn FrictionLaw) -> SectionFriction {
+        self.friction_with_baseline(law, None)
+    }
+
+    /// [`per_spot_friction_with_baseline`] of this contact: the slope baseline `known`, or
+    /// computed.
+    fn friction_with_baseline(&self, law: &dyn FrictionLaw, known: Option<f64>) -> SectionFriction {
         let d = SIDE / N as f64;
         let composite = &self.lower + &self.upper;
         let maps = BodyMaps {
@@ -112,7 +118,7 @@ impl Solved {
             connectivity: Connectivity::Four,
             adhesion: AdhesionParameters::new(0.5, 0.158e-9).unwrap(),
         };
-        per_spot_friction(&section, law).unwrap()
+        per_spot_friction_with_baseline(&section, law, known).unwrap()
     }
 }
 
@@ -201,4 +207,29 @@ fn the_harder_body_ploughs_the_softer() {
     let (flat_ploughs, by) = deformation(&soft_rough);
     assert_eq!(by, "upper");
     assert!(flat_ploughs < 0.02 * ploughs, "{flat_ploughs} vs {ploughs}");
+}
+
+/// A slope baseline given from an earlier load step is taken as it is, and nothing else of the
+/// section depends on it: given the value `per_spot_friction` computes, the result is the same.
+#[test]
+fn a_known_slope_baseline_is_taken_and_changes_nothing_else() {
+    let solved = Solved::new(rough(31, 0.4e-6), rough(32, 0.3e-6), ("s235jr", "s235jr"));
+    let law = pair_ploughing(&solved, "groove", 1.0);
+    let computed = solved.friction(law.as_ref());
+    let baseline = computed.geometry.as_ref().unwrap().slope_baseline;
+    assert!(baseline > 0.0);
+    assert_eq!(
+        solved.friction_with_baseline(law.as_ref(), Some(baseline)),
+        computed
+    );
+    let other = solved.friction_with_baseline(law.as_ref(), Some(0.25));
+    assert_eq!(other.geometry.as_ref().unwrap().slope_baseline, 0.25);
+    assert_eq!(
+        (&other.spots, &other.result),
+        (&computed.spots, &computed.result)
+    );
+    assert_eq!(
+        other.geometry.as_ref().unwrap().spots,
+        computed.geometry.as_ref().unwrap().spots
+    );
 }
