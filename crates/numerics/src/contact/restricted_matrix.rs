@@ -30,8 +30,9 @@ impl RestrictedMatrix {
         let kept = positions_in(&points, &self.points);
         let coords: Vec<(usize, usize)> = points.iter().map(|&i| (i % nx, i / nx)).collect();
         let (m, m_old) = (points.len(), self.points.len());
+        // Every value is written below: the spare's old values are not cleared first, only a
+        // grown tail is zero-filled by `resize`.
         let mut values = std::mem::take(&mut self.spare);
-        values.clear();
         values.resize(m * m, 0.0);
         let old = &self.values;
         values
