@@ -10,7 +10,6 @@
 use ndarray::{Array2, ArrayD, ArrayView2, Axis, Ix2, Ix3};
 
 use crate::contact::{ContactMaterial, PointFields, PointMap, StepField};
-
 use crate::engine::artifact::{Artifact, ColumnData};
 use crate::engine::node::NodeError;
 use crate::engine::value::Value;

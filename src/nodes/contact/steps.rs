@@ -4,10 +4,12 @@
 //! The expensive part of a step's maps, the convolution `u = K p` of its pressure, is done once
 //! per contact for all its consumers: [`ContactTask::earlier_displacements`] convolves every
 //! earlier step's pressure with one operator when the contact is computed or read for its
-//! dependants (the artifact then holds them as [`STEP_DISPLACEMENTS`](crate::nodes::contact_view::STEP_DISPLACEMENTS) until its last dependant
-//! is done), and [`ContactTask::step_pressure`] only reads a step's pressure, into the array of
-//! the step read before; its other maps are derived from the two when they are read
+//! dependants (the artifact then holds them as [`STEP_DISPLACEMENTS`] until its last dependant is
+//! done), and [`ContactTask::step_pressure`] only reads a step's pressure, into the array of the
+//! step read before; its other maps are derived from the two when they are read
 //! (`StepPressure::view`).
+//!
+//! [`STEP_DISPLACEMENTS`]: crate::nodes::contact_view::STEP_DISPLACEMENTS
 
 use ndarray::{Array2, Array3, ArrayD, ArrayView2, Ix2};
 
@@ -64,9 +66,10 @@ impl ContactTask {
 
     /// The composite displacement `u = K p` (m) of every load step before the final one, from
     /// the steps' pressure in `contact` (this contact's artifact, with the final step's metrics
-    /// and every earlier step's pressure) on its grid `shape = (ny, nx)`, by one operator for all steps: the [`STEP_DISPLACEMENTS`](crate::nodes::contact_view::STEP_DISPLACEMENTS)
-    /// array, `[[step, iy, ix]]`, which every consumer of the contact reads instead of
-    /// convolving the steps itself. `None` without fields or earlier steps.
+    /// and every earlier step's pressure) on its grid `shape = (ny, nx)`, by one operator for all
+    /// steps: the [`STEP_DISPLACEMENTS`](crate::nodes::contact_view::STEP_DISPLACEMENTS) array,
+    /// `[[step, iy, ix]]`, which every consumer of the contact reads instead of convolving the
+    /// steps itself. `None` without fields or earlier steps.
     pub(super) fn earlier_displacements(
         &self,
         contact: &Artifact,

@@ -10,11 +10,10 @@ const BYTES_PER_MAP_POINT: u64 = 3 * 8;
 /// The result rows and the law's tables, whatever the grid.
 const FIXED_BYTES: u64 = 1 << 20;
 
-/// Peak bytes per point for the earlier load steps: a measured upper bound, 12 f64 per point,
-/// from when their five maps were assembled into arrays (it also covered an influence operator
-/// and its transform buffers). They now hold one pressure array (`ContactTask::step_pressure`;
-/// the other maps are read point by point, `StepPressure::view`), so the bound is loose; a
-/// lower one waits for a measurement (docs/robustness.md, "Memory").
+/// Peak bytes per point for the earlier load steps: 12 f64 per point, a measured upper bound
+/// that also covers an influence operator and its transform buffers. A node holds one pressure
+/// array of them (`ContactTask::step_pressure`; the other maps are read point by point,
+/// `StepPressure::view`), so the bound is loose (docs/robustness.md, "Memory").
 const BYTES_PER_STEP_MAP_POINT: u64 = 12 * 8;
 
 /// Peak bytes of the earlier load steps' maps whatever the grid (measured with the bound above).

@@ -90,23 +90,23 @@ pub(super) fn compute(
 ) -> Result<Vec<Vec<Field>>, NodeError> {
     let n = step_nominal_pressures(artifact)?.len();
     let mut rows = Vec::with_capacity(n);
-    let mut maps = None;
+    let mut previous = None;
     // The slope baseline of the undeformed heights, the same at every step: computed once.
     let mut baseline = None;
     for step in 0..n - 1 {
-        let step_maps = contact
+        let earlier = contact
             .task
-            .step_pressure(artifact, step, maps.take())
+            .step_pressure(artifact, step, previous.take())
             .map_err(|e| at_step(e, step, n))?;
-        let (metrics, found) = step_maps
+        let (metrics, found) = earlier
             .view(artifact)
             .and_then(|view| step_row(task, &view, section, baseline))
             .map_err(|e| at_step(e, step, n))?;
         rows.push(metrics);
         baseline = found.geometry.map(|g| g.slope_baseline);
-        maps = Some(step_maps);
+        previous = Some(earlier);
     }
-    drop(maps);
+    drop(previous);
     let fields = ContactView::of(artifact)?;
     let (metrics, found) = step_row(task, &fields, section, baseline)?;
     rows.push(metrics);

@@ -100,20 +100,20 @@ pub(super) fn compute(
     };
     let n = step_nominal_pressures(artifact)?.len();
     let mut rows = Vec::with_capacity(n);
-    let mut step_maps = None;
+    let mut previous = None;
     for step in 0..n - 1 {
-        let m = contact
+        let earlier = contact
             .task
-            .step_pressure(artifact, step, step_maps.take())
+            .step_pressure(artifact, step, previous.take())
             .map_err(|e| at_step(e, step, n))?;
-        let row = m
+        let row = earlier
             .view(artifact)
             .and_then(|view| step_row(task, &view, &on))
             .map_err(|e| at_step(e, step, n))?;
         rows.push(row.0);
-        step_maps = Some(m);
+        previous = Some(earlier);
     }
-    drop(step_maps);
+    drop(previous);
     let (metrics, contacts, result) = step_row(task, &maps, &on)?;
     rows.push(metrics);
     if summits_table {

@@ -51,8 +51,8 @@ const SINGLE_RANGE: (f64, f64) = (7.888609052210118e-31, 1.2676506002282294e30);
 /// this fraction, `2^−27`, of the kernel's largest magnitude: an eighth of `f32`'s unit round-off
 /// (`2^−24`), so dropping it changes a convolved value by less than the single-precision
 /// transforms' own round-off, and every convergence is judged in double precision anyway. Such
-/// values are round-off of a kernel's own transforms: the padded kernel of a 3512² grid has five
-/// values below the range, the largest `1.2e−9` of the kernel's largest.
+/// values are round-off of a kernel's own transforms, as a padded kernel has (docs/contact-solver-
+/// design.md, "Mixed precision").
 const NEGLIGIBLE_SHARE: f64 = 7.450580596923828e-9;
 
 /// `kernel` rounded to `f32` (values below [`SINGLE_RANGE`] that are negligible, see
