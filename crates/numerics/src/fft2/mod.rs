@@ -175,7 +175,7 @@ impl RealFft2d {
         self.check_len("spectrum", spectrum.len(), self.spectrum_len())?;
         self.check_len("output", output.len(), self.nx * self.ny)?;
         let (ny, nxc) = (self.ny, self.nxc);
-        self.cols
+        self.column_buffer()
             .par_chunks_mut(ny * TILE)
             .enumerate()
             .for_each(|(t, tile)| {
@@ -248,7 +248,7 @@ impl<T: Real> RealFft2d<T> {
             col_inverse,
             padded,
             rows: Vec::new(),
-            cols: vec![zero; nxc * ny],
+            cols: Vec::new(),
             column_energy: vec![0.0; nxc],
             row_values: vec![0.0; ny],
             chunks,
@@ -259,6 +259,23 @@ impl<T: Real> RealFft2d<T> {
     /// Grid size `(nx, ny)`.
     pub fn shape(&self) -> (usize, usize) {
         (self.nx, self.ny)
+    }
+
+    /// Gives back the row and column buffers (`2 · (nx/2 + 1) · ny` complex values, the bulk
+    /// of a plan's memory) until the next transform allocates them again, for a plan kept idle
+    /// beside another of the same grid. A forward transform kept for a `finish_*` is dropped
+    /// with them: finishing it is then an error.
+    pub fn release_buffers(&mut self) {
+        self.rows = Vec::new();
+        self.cols = Vec::new();
+    }
+
+    /// The column buffer, allocated (zeroed) where it was not.
+    fn column_buffer(&mut self) -> &mut [Complex<T>] {
+        if self.cols.is_empty() {
+            self.cols = vec![Complex::new(T::zero(), T::zero()); self.nxc * self.ny];
+        }
+        &mut self.cols
     }
 
     /// Number of complex spectrum values `(nx/2 + 1) · ny`, in the transposed layout `[kx][ky]`;
@@ -292,7 +309,7 @@ impl<T: Real> RealFft2d<T> {
         output: &mut [f64],
     ) -> Result<(), FftFailure> {
         self.check_inverse(spectrum, output)?;
-        self.cols.copy_from_slice(spectrum);
+        self.column_buffer().copy_from_slice(spectrum);
         self.inverse_of_cols(output)
     }
 
@@ -304,7 +321,8 @@ impl<T: Real> RealFft2d<T> {
         output: &mut [f64],
     ) -> Result<(), FftFailure> {
         self.check_inverse(spectrum, output)?;
-        transpose_all(spectrum, self.ny, self.nxc, &mut self.cols);
+        let (ny, nxc) = (self.ny, self.nxc);
+        transpose_all(spectrum, ny, nxc, self.column_buffer());
         self.inverse_of_cols(output)
     }
 
@@ -485,6 +503,11 @@ impl<T: Real> RealFft2d<T> {
         rows: usize,
         sink: Option<&S>,
     ) -> Result<(), FftFailure> {
+        if self.rows.is_empty() {
+            return Err(FftFailure::new(
+                "no forward transform to finish: the plan's buffers were released after it",
+            ));
+        }
         self.columns(ColumnPass::Kernel(kernel), rows);
         self.rows_inverse(output, cols, rows, sink)
     }

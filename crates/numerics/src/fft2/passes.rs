@@ -68,6 +68,7 @@ impl<T: Real> RealFft2d<T> {
     /// Column pass over the column buffer; a forward transform reads the first `rows` row
     /// spectra of the row buffer (the rows below are zero).
     pub(super) fn columns(&mut self, pass: ColumnPass<'_, T>, rows: usize) {
+        self.column_buffer();
         let (kernel, energy_only) = match pass {
             ColumnPass::Kernel(kernel) => (kernel, false),
             ColumnPass::Energy(kernel) => (kernel, true),

@@ -501,3 +501,33 @@ fn zero_column_tiles_are_skipped_exactly() {
     let bits = |a: &Array2<f64>| a.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&from_real), bits(&from_complex));
 }
+
+/// Buffers given back and allocated again give the bits of a plan that kept them, for the
+/// padded column pass (`ny` with a prime factor above 31) and the spectral one; a forward
+/// transform started before the release cannot be finished after it.
+#[test]
+fn released_buffers_give_the_same_bits_and_drop_a_started_transform() {
+    for (nx, ny) in [(12, 37), (16, 10)] {
+        let input = signal(nx, ny);
+        let stencil = even_stencil(nx, ny);
+        let mut kept = RealFft2d::for_convolution(nx, ny);
+        let kernel = kept
+            .convolution_kernel(spectral_kernel(&mut RealFft2d::new(nx, ny), &stencil))
+            .unwrap();
+        let mut released = RealFft2d::for_convolution(nx, ny);
+        let (mut a, mut b) = (vec![0.0; nx * ny], vec![0.0; nx * ny]);
+        for _ in 0..2 {
+            kept.convolve(&input, &kernel, &mut a, nx, ny).unwrap();
+            released.release_buffers();
+            released.convolve(&input, &kernel, &mut b, nx, ny).unwrap();
+            assert_eq!(
+                a.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                b.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                "{nx} × {ny}"
+            );
+        }
+        released.start_convolve(&input, &kernel, nx, ny).unwrap();
+        released.release_buffers();
+        assert!(released.finish_convolve(&kernel, &mut b, nx, ny).is_err());
+    }
+}
