@@ -11,9 +11,8 @@
 //!   below `δ` are scanned for entering points.
 //! * When `u` changed otherwise (a pending update `u ← u − τ w` with a `w` kept for the step),
 //!   the pass sweeps the whole grid.
-//! * Both read the initial gap of the points out of contact from `g0_out` (`g₀` there, `+∞` at
-//!   the contact points; kept current by the pressure update and the rebuild of the lists), one
-//!   stream of 8 bytes per point instead of `g₀` and `p`.
+//! * Both read which points are in contact from `in_contact` (kept current by the pressure
+//!   update and the rebuild of the lists), one byte per point beside `g₀` instead of `p`.
 
 use rayon::prelude::*;
 
@@ -25,24 +24,55 @@ use crate::fft2::{FftFailure, RowSource};
 /// dependent comparisons; eight break it and let the loop vectorise.
 const LANES: usize = 8;
 
+/// The rows of `g₀` and `in_contact` of a stretch of the grid.
+#[derive(Clone, Copy)]
+struct Initial<'a> {
+    g0: &'a [f64],
+    in_contact: &'a [bool],
+}
+
+impl<'a> Initial<'a> {
+    fn at(g0: &'a [f64], in_contact: &'a [bool], start: usize, len: usize) -> Self {
+        Self {
+            g0: &g0[start..][..len],
+            in_contact: &in_contact[start..][..len],
+        }
+    }
+
+    /// `g₀ + u − offset` at a point out of contact, `+∞` at a contact point.
+    fn gap(g0: f64, in_contact: bool, u: f64, offset: f64) -> f64 {
+        let v = g0 + u - offset;
+        if in_contact {
+            f64::INFINITY
+        } else {
+            v
+        }
+    }
+}
+
 /// `min_{p = 0} (g₀ + u − offset)` over a stretch of the grid (`+∞` if every point is in
-/// contact), from `g0_out` (`g₀` out of contact, `+∞` at contact points). The gaps are finite
-/// (the inputs are checked), so the branch-free `if v < m` selection is the minimum.
-fn out_of_contact_min(u: &[f64], g0_out: &[f64], offset: f64) -> f64 {
+/// contact). The gaps are finite (the inputs are checked), so the branch-free `if v < m`
+/// selection is the minimum.
+fn out_of_contact_min(u: &[f64], initial: Initial<'_>, offset: f64) -> f64 {
     let mut lanes = [f64::INFINITY; LANES];
-    let fold = |m: &mut f64, (&ui, &g0i): (&f64, &f64)| {
-        let v = g0i + ui - offset;
+    let fold = |m: &mut f64, ((&ui, &g0i), &c): ((&f64, &f64), &bool)| {
+        let v = Initial::gap(g0i, c, ui, offset);
         *m = if v < *m { v } else { *m };
     };
-    let (u_body, u_tail) = u.split_at(u.len() - u.len() % LANES);
-    let (g0_body, g0_tail) = g0_out.split_at(u_body.len());
-    for (u, g0) in u_body.chunks_exact(LANES).zip(g0_body.chunks_exact(LANES)) {
-        for (m, x) in lanes.iter_mut().zip(u.iter().zip(g0)) {
+    let body = u.len() - u.len() % LANES;
+    let (u_body, u_tail) = u.split_at(body);
+    let (g0_body, g0_tail) = initial.g0.split_at(body);
+    let (c_body, c_tail) = initial.in_contact.split_at(body);
+    for ((u, g0), c) in (u_body.chunks_exact(LANES))
+        .zip(g0_body.chunks_exact(LANES))
+        .zip(c_body.chunks_exact(LANES))
+    {
+        for (m, x) in lanes.iter_mut().zip(u.iter().zip(g0).zip(c)) {
             fold(m, x);
         }
     }
     let mut tail = f64::INFINITY;
-    for x in u_tail.iter().zip(g0_tail) {
+    for x in u_tail.iter().zip(g0_tail).zip(c_tail) {
         fold(&mut tail, x);
     }
     lanes.iter().fold(tail, |a, &b| a.min(b))
@@ -114,16 +144,16 @@ impl Workspace {
         op: &mut InfluenceOperator,
         offset: f64,
     ) -> Result<(), FftFailure> {
-        let (g0_out, p, nx) = (&self.g0_out, &self.p, self.nx);
+        let (g0, in_contact, p, nx) = (&self.g0, &self.in_contact, &self.p, self.nx);
         let sink = |r: usize, kp: &[f64], u: &mut [f64]| {
             debug_assert!(
-                (g0_out[r * nx..][..nx].iter())
+                (in_contact[r * nx..][..nx].iter())
                     .zip(&p[r * nx..][..nx])
-                    .all(|(&g, &pi)| (pi > 0.0) == (g == f64::INFINITY)),
-                "row {r}: g0_out does not mark the contact points"
+                    .all(|(&c, &pi)| (pi > 0.0) == c),
+                "row {r}: in_contact does not mark the contact points"
             );
             u.copy_from_slice(kp);
-            out_of_contact_min(u, &g0_out[r * nx..][..nx], offset)
+            out_of_contact_min(u, Initial::at(g0, in_contact, r * nx, nx), offset)
         };
         let minima = op.apply_rows_into(&contact_rows(&self.blocks, p), &mut self.u, &sink)?;
         self.row_min.copy_from_slice(minima);
@@ -149,10 +179,10 @@ impl Workspace {
         tau: f64,
         offset: f64,
     ) -> Result<(), FftFailure> {
-        let (g0_out, nx) = (&self.g0_out, self.nx);
+        let (g0, in_contact, nx) = (&self.g0, &self.in_contact, self.nx);
         let sink = |r: usize, kt: &[f64], u: &mut [f64]| {
             u.iter_mut().zip(kt).for_each(|(ui, &wi)| *ui -= tau * wi);
-            out_of_contact_min(u, &g0_out[r * nx..][..nx], offset)
+            out_of_contact_min(u, Initial::at(g0, in_contact, r * nx, nx), offset)
         };
         let minima = op.finish_apply_into(&mut self.u, &sink)?;
         self.row_min.copy_from_slice(minima);
@@ -177,21 +207,23 @@ impl Workspace {
         let row_minima = pending_step.is_none() && self.row_min_current;
         self.row_min_current &= pending_step.is_none();
         let (w, nx, n) = (&self.w, self.nx, self.g0.len());
-        let record_entering = |u: &[f64], g0_out: &[f64], block: &mut Block| {
+        let record_entering = |u: &[f64], initial: Initial<'_>, block: &mut Block| {
             block.entering.clear();
             if block.zero_min - delta < 0.0 {
-                for (l, (&ui, &g0i)) in u.iter().zip(g0_out).enumerate() {
-                    let v = g0i + ui - offset;
+                let points = u.iter().zip(initial.g0).zip(initial.in_contact);
+                for (l, ((&ui, &g0i), &c)) in points.enumerate() {
+                    let v = Initial::gap(g0i, c, ui, offset);
                     if v - delta < 0.0 {
                         block.entering.push((l as u32, v - delta));
                     }
                 }
             }
         };
-        let blocks = self
-            .u
-            .par_chunks_mut(BLOCK)
-            .zip(self.g0_out.par_chunks(BLOCK));
+        let (g0, in_contact) = (&self.g0, &self.in_contact);
+        let blocks = self.u.par_chunks_mut(BLOCK).enumerate().map(|(b, u)| {
+            let initial = Initial::at(g0, in_contact, b * BLOCK, u.len());
+            (u, initial)
+        });
         if row_minima {
             let mut below = false;
             for (b, block) in self.blocks.iter_mut().enumerate() {
@@ -206,17 +238,17 @@ impl Workspace {
                 blocks
                     .zip(self.blocks.par_iter_mut())
                     .filter(|(_, block)| block.zero_min - delta < 0.0)
-                    .for_each(|((u, g0_out), block)| record_entering(u, g0_out, block));
+                    .for_each(|((u, initial), block)| record_entering(u, initial, block));
             }
         } else {
             blocks.zip(self.blocks.par_iter_mut()).enumerate().for_each(
-                |(b, ((u, g0_out), block))| {
+                |(b, ((u, initial), block))| {
                     if let Some(tau) = pending_step {
                         let w = &w[b * BLOCK..][..u.len()];
                         u.iter_mut().zip(w).for_each(|(ui, &wi)| *ui -= tau * wi);
                     }
-                    block.zero_min = out_of_contact_min(u, g0_out, offset);
-                    record_entering(u, g0_out, block);
+                    block.zero_min = out_of_contact_min(u, initial, offset);
+                    record_entering(u, initial, block);
                 },
             );
         }
@@ -229,7 +261,16 @@ impl Workspace {
     /// `g ← g₀ + u` at the points out of contact and `+∞` at the contact points (`g` as scratch
     /// during a solve: the load restoration ranks the points out of contact by it).
     pub(in crate::contact) fn write_out_of_contact_gap(&mut self) {
-        sum_into(&mut self.g, &self.g0_out, &self.u, 0.0);
+        let (g0, in_contact, u) = (&self.g0, &self.in_contact, &self.u);
+        self.g.par_chunks_mut(BLOCK).enumerate().for_each(|(b, g)| {
+            let initial = Initial::at(g0, in_contact, b * BLOCK, g.len());
+            let points = (initial.g0.iter())
+                .zip(initial.in_contact)
+                .zip(&u[b * BLOCK..]);
+            for (gi, ((&g0i, &c), &ui)) in g.iter_mut().zip(points) {
+                *gi = Initial::gap(g0i, c, ui, 0.0);
+            }
+        });
     }
 
     /// `g ← g₀ + u − approach` everywhere (the gap returned with a solve).

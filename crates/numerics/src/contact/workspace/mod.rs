@@ -84,8 +84,7 @@ impl Block {
 struct Settled<'a> {
     p: &'a mut [f64],
     t: &'a [f64],
-    g0: &'a [f64],
-    g0_out: &'a mut [f64],
+    in_contact: &'a mut [bool],
     merged: &'a mut Vec<u32>,
     dropped: &'a mut Vec<u32>,
     free: FreeStats,
@@ -97,11 +96,7 @@ impl Settled<'_> {
     /// left with `p > 0` joins the new contact list, one at 0 is recorded as dropped.
     fn set(&mut self, l: usize, new: f64, linear: f64, plim: f64) {
         let clamped = new.clamp(0.0, plim);
-        match (self.p[l] > 0.0, clamped > 0.0) {
-            (false, true) => self.g0_out[l] = f64::INFINITY,
-            (true, false) => self.g0_out[l] = self.g0[l],
-            _ => {}
-        }
+        self.in_contact[l] = clamped > 0.0;
         self.p[l] = clamped;
         if clamped != linear {
             self.corrected += 1.0;
@@ -171,9 +166,9 @@ fn is_free(p: f64, flow_pressure: f64) -> bool {
 pub(crate) struct Workspace {
     /// Initial gap `g₀` in m, shared with the problem's gap (read only: not a copy of it).
     pub g0: Arc<Vec<f64>>,
-    /// `g₀` at the points out of contact (`p = 0`), `+∞` at the contact points: the dense passes
-    /// over the points out of contact read this one array instead of `g₀` and `p`.
-    g0_out: Vec<f64>,
+    /// `p > 0`, one byte per point: the dense passes over the points out of contact read it
+    /// beside `g₀` instead of `p`.
+    in_contact: Vec<bool>,
     /// Pressure in Pa.
     pub p: Vec<f64>,
     /// Composite elastic displacement `u = K p` in m.
@@ -216,7 +211,7 @@ impl Workspace {
         let nx = nx.max(1);
         let blocks = n.div_ceil(BLOCK).max(1);
         Self {
-            g0_out: g0.to_vec(),
+            in_contact: vec![false; n],
             g0,
             p: vec![0.0; n],
             u: vec![0.0; n],
@@ -237,28 +232,24 @@ impl Workspace {
         self.p.len()
     }
 
-    /// Rebuilds the contact lists and `g0_out` from `p` (after `p` was set or shifted outside the
+    /// Rebuilds the contact lists and `in_contact` from `p` (after `p` was set or shifted outside the
     /// CG step); points out of contact with a direction left are recorded to be cleared at the
     /// next conjugation.
     pub(super) fn rebuild_contact(&mut self) {
         self.row_min_current = false;
         self.blocks
             .par_iter_mut()
-            .zip(self.g0_out.par_chunks_mut(BLOCK))
-            .zip(self.g0.par_chunks(BLOCK))
+            .zip(self.in_contact.par_chunks_mut(BLOCK))
             .zip(self.p.par_chunks(BLOCK))
             .zip(self.t.par_chunks(BLOCK))
-            .for_each(|((((block, g0_out), g0), p), t)| {
+            .for_each(|(((block, in_contact), p), t)| {
                 block.contact.clear();
                 block.dropped.clear();
-                for (l, ((out, &g0i), (&pi, &ti))) in
-                    g0_out.iter_mut().zip(g0).zip(p.iter().zip(t)).enumerate()
-                {
+                for (l, (c, (&pi, &ti))) in in_contact.iter_mut().zip(p.iter().zip(t)).enumerate() {
+                    *c = pi > 0.0;
                     if pi > 0.0 {
-                        *out = f64::INFINITY;
                         block.contact.push(l as u32);
                     } else {
-                        *out = g0i;
                         if ti != 0.0 {
                             block.dropped.push(l as u32);
                         }
@@ -383,10 +374,10 @@ impl Workspace {
         self.p
             .par_chunks_mut(BLOCK)
             .zip(self.t.par_chunks(BLOCK))
-            .zip(self.g0_out.par_chunks_mut(BLOCK))
+            .zip(self.in_contact.par_chunks_mut(BLOCK))
             .zip(self.blocks.par_iter_mut())
             .enumerate()
-            .for_each(|(b, (((p, t), g0_out), block))| {
+            .for_each(|(b, (((p, t), in_contact), block))| {
                 let base = b * BLOCK;
                 let Block {
                     contact,
@@ -399,8 +390,7 @@ impl Workspace {
                 let mut settled = Settled {
                     p,
                     t,
-                    g0: &g0[base..][..g0_out.len()],
-                    g0_out,
+                    in_contact,
                     merged,
                     dropped,
                     free: FreeStats::EMPTY,
