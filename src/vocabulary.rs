@@ -55,14 +55,6 @@ pub mod arrays {
     pub const HEIGHTS: &str = "heights";
     /// Contact pressure p (Pa) of the final step.
     pub const PRESSURE: &str = "pressure";
-    /// Gap g (m) after deformation.
-    pub const GAP: &str = "gap";
-    /// Elastic deformation of the lower body (m).
-    pub const DEFORMATION_LOWER: &str = "deformation_lower";
-    /// Elastic deformation of the upper body (m).
-    pub const DEFORMATION_UPPER: &str = "deformation_upper";
-    /// Plastic penetration (m) where the pressure is saturated.
-    pub const PLASTIC_PENETRATION: &str = "plastic_penetration";
     /// The composite height z₁ + z₂ (m) the contact was solved on.
     pub const COMPOSITE_HEIGHT: &str = "composite_height";
     /// Prefix of the contact pressure of a load step before the final one (`pressure_step_0`,
@@ -71,6 +63,11 @@ pub mod arrays {
     /// The upper body's heights z₂ (m, outward towards the lower body) the contact was solved
     /// with; only with an upper surface.
     pub const HEIGHT_UPPER: &str = "height_upper";
+    /// The composite elastic displacement u = u₁ + u₂ = K p (m) of the final load step: kept
+    /// for a contact's consumers, which derive its gap, deformations and plastic penetration
+    /// from it point by point; derived from the pressure when a contact is read from the cache,
+    /// never stored there.
+    pub const DISPLACEMENT: &str = "displacement";
     /// The composite elastic displacement u = u₁ + u₂ (m) of every load step before the final
     /// one, `[[step, iy, ix]]`: derived from the steps' pressure when a contact is computed or
     /// read for its consumers, never stored in the cache.

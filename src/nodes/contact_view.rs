@@ -3,9 +3,10 @@
 //! the pressure of its earlier load steps, [`ContactView`], the typed view of the final step the
 //! per-summit and per-spot friction methods read, and [`StepPressure`], an earlier load step.
 //!
-//! The cache keeps a contact's pressure maps only; its gap, deformations, plastic penetration
-//! and composite height are derived from them and the surfaces when a consumer needs them
-//! (`ContactTask::derive_arrays`; an earlier step's maps point by point, [`StepPressure::view`]).
+//! The cache keeps a contact's pressure maps only; its displacements and composite height are
+//! derived from them and the surfaces when a consumer needs them (`ContactTask::derive_arrays`),
+//! and the gap, deformations and plastic penetration of every step point by point from those
+//! ([`ContactView::of`], [`StepPressure::view`]).
 
 use ndarray::{Array2, ArrayD, ArrayView2, Axis, Ix2, Ix3};
 
@@ -17,14 +18,13 @@ use crate::engine::value::Value;
 /// The composite displacement of each load step before the final one, `[[step, iy, ix]]` (m),
 /// which the contact derives once for all its consumers ([`StepPressure::view`] reads it).
 pub(crate) use crate::vocabulary::arrays::STEP_DISPLACEMENTS;
-/// The final step's maps (pressure in Pa, gap, deformations, plastic penetration in m,
-/// `[[iy, ix]]`; no upper deformation against a rigid flat), the composite height z₁ + z₂ (m)
-/// the contact was solved on (the lower heights against a flat) and the upper body's heights z₂
-/// (m; only with an upper surface).
+/// The final step's maps (pressure in Pa and composite displacement `u = K p` in m,
+/// `[[iy, ix]]`), the composite height z₁ + z₂ (m) the contact was solved on (the lower heights
+/// against a flat) and the upper body's heights z₂ (m; only with an upper surface).
 pub(crate) use crate::vocabulary::arrays::{
-    COMPOSITE_HEIGHT, DEFORMATION_LOWER, DEFORMATION_UPPER, GAP, HEIGHT_UPPER, PLASTIC_PENETRATION,
-    PRESSURE,
+    COMPOSITE_HEIGHT, DISPLACEMENT, HEIGHT_UPPER, PRESSURE,
 };
+use crate::vocabulary::metrics::APPROACH;
 /// Among the contact's metrics: grid spacings (m), the final nominal pressure (Pa) and the share
 /// of the section in contact (points with p > 0).
 pub(crate) use crate::vocabulary::metrics::{AREA_FRACTION, DX, DY, NOMINAL_PRESSURE};
@@ -119,9 +119,11 @@ pub struct ContactView<'a> {
 }
 
 impl<'a> ContactView<'a> {
-    /// The view of a contact node's artifact; an error that says how to get the fields when the
-    /// contact was run without them.
-    pub fn of(contact: &'a Artifact) -> Result<Self, NodeError> {
+    /// The view of the final step of a contact node's artifact, whose contact is one of
+    /// `material` (its gap, deformations and plastic penetration derived point by point from
+    /// the pressure, the displacement, the composite height and the approach, [`PointFields`]);
+    /// an error that says how to get the fields when the contact was run without them.
+    pub fn of(contact: &'a Artifact, material: &ContactMaterial) -> Result<Self, NodeError> {
         let optional = |name: &str| {
             contact
                 .arrays
@@ -144,13 +146,23 @@ impl<'a> ContactView<'a> {
             Some(Value::Float(v)) => Ok(*v),
             _ => Err(NodeError::new(format!("contact node: no {name}"))),
         };
+        let (pressure, composite_height) = (required(PRESSURE)?, required(COMPOSITE_HEIGHT)?);
+        let fields = PointFields::new(
+            composite_height,
+            pressure,
+            required(DISPLACEMENT)?,
+            metric(APPROACH)?,
+            material,
+        )
+        .map_err(|e| NodeError::new(format!("maps of the final load step: {e}")))?;
+        let derived = |field| PointMap::Derived(fields, field);
         Ok(Self {
-            pressure: required(PRESSURE)?,
-            gap: required(GAP)?.into(),
-            deformation_lower: required(DEFORMATION_LOWER)?.into(),
-            deformation_upper: optional(DEFORMATION_UPPER)?.map(PointMap::from),
-            plastic_penetration: required(PLASTIC_PENETRATION)?.into(),
-            composite_height: required(COMPOSITE_HEIGHT)?,
+            pressure,
+            gap: derived(StepField::Gap),
+            deformation_lower: derived(StepField::DeformationFirst),
+            deformation_upper: Some(derived(StepField::DeformationSecond)),
+            plastic_penetration: derived(StepField::PlasticPenetration),
+            composite_height,
             upper_height: optional(HEIGHT_UPPER)?,
             dx: metric(DX)?,
             dy: metric(DY)?,
@@ -186,7 +198,7 @@ impl StepPressure {
     /// The view the friction methods read, of this step: its pressure, the maps derived from it,
     /// the contact's composite height and grid spacings.
     pub fn view<'a>(&'a self, contact: &'a Artifact) -> Result<ContactView<'a>, NodeError> {
-        let last = ContactView::of(contact)?;
+        let last = ContactView::of(contact, &self.material)?;
         let displacement = earlier_displacement(contact, self.step)?;
         let fields = PointFields::new(
             last.composite_height,

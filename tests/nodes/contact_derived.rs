@@ -1,6 +1,8 @@
 //! The contact's maps derived from its pressure maps (what its cache entry keeps) equal the
-//! solver's: the final step's, as the engine derives them for a consumer of a cached contact,
-//! and every earlier step's, read point by point from `ContactTask::step_pressure`.
+//! solver's: the final step's displacement, as the engine derives it for a consumer of a cached
+//! contact, and every step's maps read point by point (the final step's from
+//! `ContactView::of`, an earlier step's from `ContactTask::step_pressure`) equal those of the
+//! contact stopped at that step.
 
 use asperity::contact::PointMap;
 use asperity::engine::artifact::Artifact;
@@ -103,6 +105,18 @@ fn derived_maps_equal_the_solvers_at_every_step() {
             lean.arrays.keys().collect::<Vec<_>>(),
             full.arrays.keys().collect::<Vec<_>>()
         );
+        assert_eq!(
+            full.arrays.keys().collect::<Vec<_>>(),
+            [
+                "composite_height",
+                "displacement",
+                "height_upper",
+                "pressure",
+                "pressure_step_0",
+                "pressure_step_1",
+                "step_displacements"
+            ]
+        );
         for (name, array) in &full.arrays {
             if name.starts_with("pressure_step_") {
                 continue;
@@ -116,9 +130,10 @@ fn derived_maps_equal_the_solvers_at_every_step() {
             assert!(d <= 1e-12, "periodic {periodic}, final {name}: {d:e}");
         }
 
-        // Every step: the maps of `c3` at step i against the solver's maps of the contact
-        // stopped there (the same warm-started steps, so the same solution); the earlier
-        // steps' derived point by point, the final step's the contact's own.
+        // Every step: the maps of `c3` at step i against those of the contact stopped there
+        // (the same warm-started steps, so the same solution; its maps from the solver's own
+        // displacement); the earlier steps' from their pressure and the displacement convolved
+        // for them, the final step's from the contact's own.
         let task = c3.task.as_any().downcast_ref::<ContactTask>().unwrap();
         let mut previous = None;
         for (step, stopped) in ["c1", "c2", "c3"].into_iter().enumerate() {
@@ -126,18 +141,29 @@ fn derived_maps_equal_the_solvers_at_every_step() {
                 (step < 2).then(|| task.step_pressure(&lean, step, previous.take()).unwrap());
             let view = match &earlier {
                 Some(pressure) => pressure.view(&lean).unwrap(),
-                None => ContactView::of(&lean).unwrap(),
+                None => ContactView::of(&lean, task.material()).unwrap(),
             };
             let solved = &artifacts[stopped];
-            let upper = view.deformation_upper.unwrap();
-            for (name, derived) in [
-                ("gap", view.gap),
-                ("deformation_lower", view.deformation_lower),
-                ("deformation_upper", upper),
-                ("plastic_penetration", view.plastic_penetration),
+            let own = ContactView::of(solved, task.material()).unwrap();
+            for (name, derived, reference) in [
+                ("gap", view.gap, own.gap),
+                (
+                    "deformation_lower",
+                    view.deformation_lower,
+                    own.deformation_lower,
+                ),
+                (
+                    "deformation_upper",
+                    view.deformation_upper.unwrap(),
+                    own.deformation_upper.unwrap(),
+                ),
+                (
+                    "plastic_penetration",
+                    view.plastic_penetration,
+                    own.plastic_penetration,
+                ),
             ] {
-                let derived = grid(&derived);
-                let d = relative_difference(map(&solved.arrays[name]), derived.view());
+                let d = relative_difference(grid(&reference).view(), grid(&derived).view());
                 assert!(d <= 1e-12, "periodic {periodic}, step {step} {name}: {d:e}");
             }
             let d = relative_difference(map(&solved.arrays["pressure"]), view.pressure);

@@ -2,30 +2,32 @@
 //! surfaces (`contact::ContactSolver`), load-stepped to the last nominal pressure (only the last
 //! one is solved when the study does not write the `contacts` table). Table `contacts` (the final
 //! step) and `contacts_load_curve` (one row per step); with `fields: true` the final step's
-//! pressure, gap, deformation and plastic-penetration maps, the composite height z₁ + z₂ the
-//! contact was solved on and the upper body's heights z₂ (with an upper surface) are arrays for
-//! its consumers (the per-summit and per-spot `friction` methods read them), and every step's
-//! maps can be derived (the earlier steps' from [`ContactTask::step_pressure`]).
+//! pressure and composite displacement `u = K p`, the composite height z₁ + z₂ the contact was
+//! solved on and the upper body's heights z₂ (with an upper surface) are arrays for its
+//! consumers (the per-summit and per-spot `friction` methods read them), which derive the gap,
+//! deformations and plastic penetration of every step point by point
+//! ([`super::contact_view::ContactView::of`]; the earlier steps' from
+//! [`ContactTask::step_pressure`]).
 //!
 //! The cache keeps only the pressure maps (the final step's whole, the earlier steps' contact
-//! points, `contact_view::contact_points`); the heights are the surfaces' and the other maps follow from a step's pressure, its
-//! approach and the surfaces by one convolution (`contact::fields_from_pressure`, the influence
-//! operator the solver used), which [`ContactTask::derive_arrays`] runs when a consumer reads a
-//! cached contact: equal to the solver's maps to round-off (1e-12 of each map's largest value,
-//! tested), at a few per cent of the solve's cost.
+//! points, `contact_view::contact_points`); the heights are the surfaces' and the displacements
+//! follow from a step's pressure by one convolution (`contact::DisplacementOperator`, the
+//! influence operator the solver used), which [`ContactTask::derive_arrays`] runs when a
+//! consumer reads a cached contact: equal to the solver's to round-off (1e-12 of its largest
+//! value, tested), at a few per cent of the solve's cost.
 
 use serde::Deserialize;
 
 use super::contact_view::{
-    contact_points, step_pressure_name, COMPOSITE_HEIGHT, DEFORMATION_LOWER, DEFORMATION_UPPER,
-    GAP, HEIGHT_UPPER, PLASTIC_PENETRATION, PRESSURE, STEP_DISPLACEMENTS,
+    contact_points, step_pressure_name, COMPOSITE_HEIGHT, DISPLACEMENT, HEIGHT_UPPER, PRESSURE,
+    STEP_DISPLACEMENTS,
 };
 use super::material_spec::MaterialSpec;
 use super::surface_view::SurfaceView;
 use super::validity;
 use crate::contact::{
-    fields_from_pressure, Boundary, ContactMaterial, ContactSolver, FieldRequest, SolverOptions,
-    MAX_TOLERANCE, MIN_TOLERANCE,
+    Boundary, ContactMaterial, ContactSolver, DisplacementOperator, SolverOptions, MAX_TOLERANCE,
+    MIN_TOLERANCE,
 };
 use crate::engine::artifact::Artifact;
 use crate::engine::node::{ArrayStorage, NodeError, NodeTask, UpstreamRef};
@@ -36,7 +38,7 @@ use crate::units::{format_number, Dimension, Pressure, Quantity};
 use crate::vocabulary::contact_parameters::{
     of_side, FIELDS, FLOW_PRESSURE, PERIODIC, TOLERANCE, YOUNGS_MODULUS,
 };
-use crate::vocabulary::metrics::{APPROACH, NOMINAL_PRESSURES, POISSON_RATIO};
+use crate::vocabulary::metrics::{NOMINAL_PRESSURES, POISSON_RATIO};
 use crate::vocabulary::{roles, tables};
 
 mod memory;
@@ -46,7 +48,7 @@ mod steps;
 
 use memory::memory_estimate;
 pub use results::final_step_metrics;
-use results::{load_curve_table, store_fields};
+use results::load_curve_table;
 use setup::StageClock;
 use steps::array2;
 
@@ -67,18 +69,9 @@ pub const CONTACT_KIND_VERSION: u32 = 30;
 const DERIVED_ARRAYS: &[&str] = &[
     COMPOSITE_HEIGHT,
     HEIGHT_UPPER,
-    GAP,
-    DEFORMATION_LOWER,
-    DEFORMATION_UPPER,
-    PLASTIC_PENETRATION,
+    DISPLACEMENT,
     STEP_DISPLACEMENTS,
 ];
-
-/// The fields derived from a step's pressure: all but the pressure itself.
-const DERIVED_FIELDS: FieldRequest = FieldRequest {
-    pressure: false,
-    ..FieldRequest::ALL
-};
 
 /// `contact: {...}`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -372,7 +365,7 @@ impl ContactTask {
     }
 
     /// The material pair and flow pressure the contact was solved with.
-    pub(crate) fn material(&self) -> &ContactMaterial {
+    pub fn material(&self) -> &ContactMaterial {
         &self.material
     }
 
@@ -427,24 +420,23 @@ impl NodeTask for ContactTask {
         inputs: &[&Artifact],
         artifact: &mut Artifact,
     ) -> Result<(), NodeError> {
-        let approach = match artifact.metric(APPROACH).map(|f| &f.value) {
-            Some(Value::Float(v)) => *v,
-            _ => return Err(NodeError::new("contact node: no approach")),
-        };
         let shape = array2(artifact, PRESSURE)?.dim();
         if let Some(u) = self.earlier_displacements(artifact, shape)? {
             artifact.arrays.insert(String::from(STEP_DISPLACEMENTS), u);
         }
         let setup = self.problem(inputs)?;
-        let fields = fields_from_pressure(
-            &setup.problem,
-            array2(artifact, PRESSURE)?,
-            approach,
-            DERIVED_FIELDS,
-        )
-        .map_err(|e| NodeError::new(format!("maps of the final load step: {e}")))?;
+        let pressure = array2(artifact, PRESSURE)?;
+        let mut displacement = ndarray::Array2::zeros(shape);
+        let slice = displacement
+            .as_slice_mut()
+            .ok_or_else(|| NodeError::new("the displacement is not one slice"))?;
+        DisplacementOperator::of_problem(&setup.problem)
+            .and_then(|mut operator| operator.apply(pressure, slice))
+            .map_err(|e| NodeError::new(format!("displacement of the final load step: {e}")))?;
         drop(setup);
-        store_fields(artifact, fields);
+        artifact
+            .arrays
+            .insert(String::from(DISPLACEMENT), displacement.into_dyn());
         self.store_heights(inputs, artifact)
     }
 
@@ -494,7 +486,11 @@ impl NodeTask for ContactTask {
                 artifact.arrays.insert(String::from(STEP_DISPLACEMENTS), u);
             }
             clock.stage("earlier steps' displacements");
-            store_fields(&mut artifact, solution.into_fields(FieldRequest::ALL));
+            let (pressure, displacement) = solution.into_pressure_and_displacement();
+            let arrays = [(PRESSURE, pressure), (DISPLACEMENT, displacement)];
+            for (name, array) in arrays {
+                artifact.arrays.insert(String::from(name), array.into_dyn());
+            }
             self.store_heights(inputs, &mut artifact)?;
             clock.stage("final step's maps and heights");
         }

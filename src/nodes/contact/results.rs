@@ -1,12 +1,9 @@
 //! What a contact writes: the row of its final load step, the load-curve table and the maps of
 //! the final step (under the names of `contact_view`).
 
-use super::super::contact_view::{
-    AREA_FRACTION, DEFORMATION_LOWER, DEFORMATION_UPPER, DX, DY, GAP, NOMINAL_PRESSURE,
-    PLASTIC_PENETRATION, PRESSURE,
-};
+use super::super::contact_view::{AREA_FRACTION, DX, DY, NOMINAL_PRESSURE};
 use crate::contact::{LoadCurve, LoadStep};
-use crate::engine::artifact::{Artifact, Table};
+use crate::engine::artifact::Table;
 use crate::engine::columns::STEP;
 use crate::engine::value::Field;
 use crate::units::Dimension;
@@ -111,20 +108,4 @@ pub(super) fn load_curve_table(curve: &LoadCurve) -> Table {
         column(|s| s.residuals.max()),
     );
     t
-}
-
-/// The final step's maps under the names of [`crate::nodes::contact_view`].
-pub(super) fn store_fields(artifact: &mut Artifact, f: crate::contact::ContactFields) {
-    let named = [
-        (PRESSURE, f.pressure),
-        (GAP, f.gap),
-        (DEFORMATION_LOWER, f.deformation_first),
-        (DEFORMATION_UPPER, f.deformation_second),
-        (PLASTIC_PENETRATION, f.plastic_penetration),
-    ];
-    for (name, array) in named {
-        if let Some(a) = array {
-            artifact.arrays.insert(name.to_string(), a.into_dyn());
-        }
-    }
 }

@@ -368,7 +368,8 @@ impl FrictionTask {
         if let MethodSetup::PerSummit { contact, .. } | MethodSetup::PerSpot { contact, .. } =
             &self.setup
         {
-            let (ny, nx) = ContactView::of(input(inputs, contact.index, roles::CONTACT)?)?
+            let artifact = input(inputs, contact.index, roles::CONTACT)?;
+            let (ny, nx) = ContactView::of(artifact, contact.task.material())?
                 .pressure
                 .dim();
             validity::cross::friction_grid(nx, ny).map_err(NodeError::new)?;

@@ -107,7 +107,7 @@ pub(super) fn compute(
         previous = Some(earlier);
     }
     drop(previous);
-    let fields = ContactView::of(artifact)?;
+    let fields = ContactView::of(artifact, contact.task.material())?;
     let (metrics, found) = step_row(task, &fields, section, baseline)?;
     rows.push(metrics);
     if section.spots_table {

@@ -86,7 +86,7 @@ pub(super) fn compute(
     summits_table: bool,
     tables: &mut BTreeMap<String, Table>,
 ) -> Result<Vec<Vec<Field>>, NodeError> {
-    let maps = ContactView::of(artifact)?;
+    let maps = ContactView::of(artifact, contact.task.material())?;
     let found = composite_summits(&maps, periodic)?;
     let summits: Vec<&Summit> = found
         .summits

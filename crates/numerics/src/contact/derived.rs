@@ -78,6 +78,17 @@ impl StepSolution {
         self.shape
     }
 
+    /// The pressure `p` (Pa) and the composite displacement `u = K p` (m) in their own arrays,
+    /// the gap released: every other field follows from them point by point
+    /// ([`super::PointFields`]).
+    pub fn into_pressure_and_displacement(self) -> (Array2<f64>, Array2<f64>) {
+        let grid = |values: Vec<f64>| {
+            Array2::from_shape_vec(self.shape, values)
+                .unwrap_or_else(|_| unreachable!("ny · nx values of the solver"))
+        };
+        (grid(self.p), grid(self.u))
+    }
+
     /// The requested fields, the pressure, gap and first body's deformation in the arrays of
     /// `p`, `g` and `u` (the deformation `u · c₁/(c₁ + c₂)` scaled in place).
     pub fn into_fields(self, request: FieldRequest) -> ContactFields {
