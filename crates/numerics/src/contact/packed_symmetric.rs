@@ -120,8 +120,7 @@ impl PackedSymmetric {
             }
             w[p - a] = sum + row[p] * tp;
         }
-        for p in b..self.order {
-            let tp = t[p];
+        for (p, &tp) in t.iter().enumerate().skip(b) {
             for (wq, v) in w.iter_mut().zip(&self.row(p)[a..b]) {
                 *wq += v * tp;
             }
