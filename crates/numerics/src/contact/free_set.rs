@@ -7,8 +7,8 @@
 //! `M = F ∪ {p = 0, g < 0} ∪ {p = p_lim, g > 0}` (`Workspace::moving_points`). With every other
 //! pressure held, their displacement on `M` is a constant of the problem, so the QP restricted to
 //! `M` — `min ½ p_Mᵀ K_MM p_M + p_Mᵀ (g₀ + u_rest − offset)_M` over `0 ≤ p ≤ p_lim`, with `Σ_M p`
-//! fixed under load control — is solved with the dense matrix `K_MM` (`restricted_matrix.rs`),
-//! whose product costs `|M|²` multiplications instead of an FFT pair.
+//! fixed under load control — is solved with the matrix `K_MM` (`restricted_matrix.rs`, a packed
+//! triangle), whose product costs `|M|²` multiplications instead of an FFT pair.
 //!
 //! Iteration (the CG of Polonsky & Keer 1999, Wear 231, on a face of the box, restarted whenever
 //! a point reaches a bound — an active-set CG): on the points of `M` not held at a bound,
@@ -33,8 +33,9 @@
 use super::influence::InfluenceOperator;
 use super::workspace::Workspace;
 
-/// The restricted matrix holds at most this many values per grid point (`|M|² ≤ 2 N`: at
-/// 3512² up to 4967 moving points, a 197 MB matrix, as much as two grid arrays).
+/// The restricted matrix has at most this many entries per grid point (`|M|² ≤ 2 N`: at 3512²
+/// up to 4967 moving points). It is stored as a packed triangle of `|M|(|M|+1)/2` values, at the
+/// cap 99 MB, as much as one grid array, and the buffer of the next matrix as much again.
 pub(super) const MAX_MATRIX_SHARE: f64 = 2.0;
 
 /// The moving points are iterated alone only when at most this share of them is not free (points

@@ -19,6 +19,7 @@ mod load_curve;
 mod material;
 mod multilevel;
 mod options;
+mod packed_symmetric;
 mod point_fields;
 mod problem;
 mod restricted_matrix;
@@ -42,6 +43,7 @@ pub use options::{
     BadOption, FieldRequest, Residuals, SolvePath, SolveStrategy, SolverOptions, Termination,
     MAX_TOLERANCE, MIN_TOLERANCE,
 };
+pub use packed_symmetric::PackedSymmetric;
 pub use point_fields::{PointFields, PointMap, StepField};
 pub use problem::ContactProblem;
 pub use solver::ContactSolver;

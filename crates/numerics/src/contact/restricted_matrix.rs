@@ -1,52 +1,50 @@
 //! The influence operator restricted to a set of grid points, kept from one use to the next.
 //!
 //! `K_ab = K(r_a − r_b)` for the points `a, b` of a set (`InfluenceOperator::coefficient_between`),
-//! a dense `m × m` matrix. Each coefficient is a read at an offset-dependent place of a table of
-//! the grid's size, so building the matrix from scratch costs about one cache miss per entry
-//! (`docs/contact-solver-design.md`). Consecutive sets of one
+//! an `m × m` matrix, symmetric bit for bit (the coefficient is read by the offset's magnitude), so
+//! it is stored as its packed lower triangle, `m(m+1)/2` values (`packed_symmetric.rs`), and its
+//! product is bit-identical to the dense row-major one. Each coefficient is a read at an
+//! offset-dependent place of a table of the grid's size, so building the matrix from scratch
+//! costs about one cache miss per entry (`docs/contact-solver-design.md`). Consecutive sets of one
 //! solve share most of their points, so the matrix of the last set is kept and its entries
 //! between points of both sets are copied; only the rows and columns of new points are read
 //! from the table. The values do not depend on what was kept: each entry is the same
-//! coefficient either way.
-
-use rayon::prelude::*;
+//! coefficient either way. The last matrix and the buffer of the next are both kept: at most
+//! `m(m+1)` values in all.
 
 use super::influence::InfluenceOperator;
+use super::packed_symmetric::PackedSymmetric;
 
 /// The last restricted matrix and the buffer of the next.
 #[derive(Debug, Default)]
 pub(crate) struct RestrictedMatrix {
     /// Flat grid indices, ascending.
     points: Vec<usize>,
-    /// Row-major `points.len()²` values in m/Pa.
-    values: Vec<f64>,
-    spare: Vec<f64>,
+    /// `K_ab` in m/Pa, `a` and `b` positions in `points`.
+    values: PackedSymmetric,
+    spare: PackedSymmetric,
 }
 
 impl RestrictedMatrix {
-    /// Makes this the matrix of `points` (flat indices, ascending) under `op`.
+    /// Makes this the matrix of `points` (flat indices, ascending) under `op`, rows in parallel.
     pub(crate) fn update(&mut self, op: &InfluenceOperator, points: Vec<usize>) {
         let nx = op.nx();
         let kept = positions_in(&points, &self.points);
         let coords: Vec<(usize, usize)> = points.iter().map(|&i| (i % nx, i / nx)).collect();
-        let (m, m_old) = (points.len(), self.points.len());
-        // Every value is written below: the spare's old values are not cleared first, only a
-        // grown tail is zero-filled by `resize`.
         let mut values = std::mem::take(&mut self.spare);
-        values.resize(m * m, 0.0);
         let old = &self.values;
-        values
-            .par_chunks_mut(m.max(1))
-            .zip(coords.par_iter().zip(&kept))
-            .for_each(|(row, (&a, &kept_a))| {
-                let old_row = kept_a.map(|i| &old[i * m_old..][..m_old]);
-                for ((value, &b), &kept_b) in row.iter_mut().zip(&coords).zip(&kept) {
-                    *value = match (old_row, kept_b) {
-                        (Some(old_row), Some(j)) => old_row[j],
-                        _ => op.coefficient_between(a, b),
-                    };
-                }
-            });
+        // Kept points keep their order, so `j ≤ i` gives old positions `kept_j ≤ kept_i`: the
+        // old entry is in the old row `kept_i`.
+        values.rebuild(points.len(), |i, row| {
+            let (a, kept_a) = (coords[i], kept[i]);
+            let old_row = kept_a.map(|k| old.row(k));
+            for ((value, &b), &kept_b) in row.iter_mut().zip(&coords).zip(&kept) {
+                *value = match (old_row, kept_b) {
+                    (Some(old_row), Some(j)) => old_row[j],
+                    _ => op.coefficient_between(a, b),
+                };
+            }
+        });
         self.spare = std::mem::replace(&mut self.values, values);
         self.points = points;
     }
@@ -56,13 +54,11 @@ impl RestrictedMatrix {
         &self.points
     }
 
-    /// `w = K t` for `t` on the points, rows in parallel (each row's sum in a fixed order, so
-    /// the result does not depend on the thread count).
+    /// `w = K t` for `t` on the points, each `w_i` bit-identical to the dense row-major product
+    /// `Σ_j K_ij t_j` in ascending `j` (`PackedSymmetric::multiply`), so the result does not
+    /// depend on the thread count.
     pub(crate) fn multiply(&self, t: &[f64], w: &mut [f64]) {
-        let m = t.len();
-        w.par_iter_mut()
-            .zip(self.values.par_chunks(m.max(1)))
-            .for_each(|(wi, row)| *wi = row.iter().zip(t).map(|(a, b)| a * b).sum());
+        self.values.multiply(t, w);
     }
 }
 
@@ -104,13 +100,44 @@ mod tests {
             let mut fresh = RestrictedMatrix::default();
             fresh.update(&op, set.to_vec());
             assert_eq!(kept.points(), set);
-            assert_eq!(kept.values, fresh.values);
+            let m = set.len();
+            assert_eq!(kept.values.order(), m);
+            for i in 0..m {
+                assert_eq!(bits(kept.values.row(i)), bits(fresh.values.row(i)));
+                for j in 0..m {
+                    let (a, b) = ((set[i] % 16, set[i] / 16), (set[j] % 16, set[j] / 16));
+                    assert_eq!(
+                        kept.values.get(i, j).to_bits(),
+                        op.coefficient_between(a, b).to_bits()
+                    );
+                }
+            }
             let t: Vec<f64> = (0..set.len()).map(|k| k as f64 - 1.5).collect();
             let (mut w_kept, mut w_fresh) = (vec![0.0; set.len()], vec![0.0; set.len()]);
             kept.multiply(&t, &mut w_kept);
             fresh.multiply(&t, &mut w_fresh);
-            assert_eq!(w_kept, w_fresh);
+            assert_eq!(bits(&w_kept), bits(&w_fresh));
         }
+    }
+
+    fn bits(values: &[f64]) -> Vec<u64> {
+        values.iter().map(|x| x.to_bits()).collect()
+    }
+
+    #[test]
+    fn both_buffers_hold_a_triangle() {
+        let op =
+            InfluenceOperator::new(16, 10, 1e-6, 1e-6, 1e11, Boundary::Periodic, false).unwrap();
+        let mut matrix = RestrictedMatrix::default();
+        matrix.update(&op, (0..40).collect());
+        matrix.update(&op, (20..120).collect());
+        assert_eq!(matrix.values.stored_len(), 100 * 101 / 2);
+        assert_eq!(matrix.values.capacity(), 100 * 101 / 2);
+        assert_eq!(matrix.spare.stored_len(), 40 * 41 / 2);
+        matrix.update(&op, (30..130).collect());
+        assert_eq!(matrix.values.stored_len(), 100 * 101 / 2);
+        assert_eq!(matrix.values.capacity(), 100 * 101 / 2);
+        assert_eq!(matrix.spare.stored_len(), 100 * 101 / 2);
     }
 
     #[test]
