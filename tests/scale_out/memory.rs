@@ -135,7 +135,7 @@ fn a_node_that_cannot_fit_the_budget_fails_naming_itself_its_estimate_and_the_fl
     assert_eq!(small.code, Some(2), "stderr: {}", small.stderr);
     for needed in [
         "failed: contact node 'contact'",
-        "needs about 50 MiB of memory",
+        "needs about 48 MiB of memory",
         "exceeds the run's budget of 85 MiB: raise `--memory-mib` to at least",
     ] {
         assert!(small.stderr.contains(needed), "stderr: {}", small.stderr);
