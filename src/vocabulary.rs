@@ -55,6 +55,15 @@ pub mod arrays {
     pub const HEIGHTS: &str = "heights";
     /// Contact pressure p (Pa) of the final step.
     pub const PRESSURE: &str = "pressure";
+    /// Gap g (m) after deformation (a step's map as the Python API returns it; a study's
+    /// consumers derive it point by point).
+    pub const GAP: &str = "gap";
+    /// Elastic deformation of the lower body (m; a step's map, as [`GAP`]).
+    pub const DEFORMATION_LOWER: &str = "deformation_lower";
+    /// Elastic deformation of the upper body (m; a step's map, as [`GAP`]).
+    pub const DEFORMATION_UPPER: &str = "deformation_upper";
+    /// Plastic penetration (m) where the pressure is saturated (a step's map, as [`GAP`]).
+    pub const PLASTIC_PENETRATION: &str = "plastic_penetration";
     /// The composite height z₁ + z₂ (m) the contact was solved on.
     pub const COMPOSITE_HEIGHT: &str = "composite_height";
     /// Prefix of the contact pressure of a load step before the final one (`pressure_step_0`,

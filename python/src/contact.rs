@@ -13,6 +13,7 @@ use asperity::materials::{find_material, BodyMaterial, MaterialPair};
 use asperity::nodes::final_step_metrics;
 use asperity::nodes::validity::cross::{contact_grid, contact_slope};
 use asperity::nodes::validity::{check_artifact, CONTACT};
+use asperity::vocabulary::arrays;
 use numpy::{IntoPyArray, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -198,11 +199,11 @@ fn step_dicts<'py>(
 fn set_maps(d: &Bound<'_, PyDict>, f: ContactFields) -> PyResult<()> {
     let py = d.py();
     let named = [
-        ("pressure", f.pressure),
-        ("gap", f.gap),
-        ("deformation_lower", f.deformation_first),
-        ("deformation_upper", f.deformation_second),
-        ("plastic_penetration", f.plastic_penetration),
+        (arrays::PRESSURE, f.pressure),
+        (arrays::GAP, f.gap),
+        (arrays::DEFORMATION_LOWER, f.deformation_first),
+        (arrays::DEFORMATION_UPPER, f.deformation_second),
+        (arrays::PLASTIC_PENETRATION, f.plastic_penetration),
     ];
     for (name, array) in named {
         if let Some(a) = array {
