@@ -267,9 +267,9 @@ impl InfluenceOperator {
     /// The precision of the transforms from now on (single precision only where
     /// [`Self::has_single`]; otherwise double). A `finish_*` still uses the precision of the
     /// `start_*` it finishes, which must come after the last switch: a switch gives back the
-    /// row and column buffers of the precision left (`RealFft2d::release_buffers`; at 3512²
-    /// 99 MB in `f32`, 197 MB in `f64`), so that one contact never holds both precisions'
-    /// buffers at once, and finishing a transform started before it is an error.
+    /// row and column buffers of the precision left (`RealFft2d::release_buffers`, the bulk of
+    /// a plan's memory), so that one contact never holds both precisions' buffers at once, and
+    /// finishing a transform started before it is an error.
     pub(crate) fn set_precision(&mut self, precision: Precision) {
         let precision = if self.single.is_some() {
             precision

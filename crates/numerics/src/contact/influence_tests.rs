@@ -3,6 +3,20 @@
 
 use super::*;
 
+/// The rows of the `nx`-wide row-major grid `values`, as a [`RowSource`].
+fn rows_of(values: &[f64], nx: usize) -> impl RowSource + '_ {
+    move |r: usize, row: &mut [f64]| {
+        row.copy_from_slice(&values[r * nx..][..nx]);
+        true
+    }
+}
+
+/// A [`RowSink`] that writes each output row as it comes.
+fn copy(_: usize, values: &[f64], out: &mut [f64]) -> f64 {
+    out.copy_from_slice(values);
+    0.0
+}
+
 #[test]
 fn pixel_influence_matches_numerical_integration() {
     // ∫∫ 1/(π r) over a 1 × 2 rectangle, midpoint rule with 400 × 800 cells, at points inside,
@@ -65,14 +79,7 @@ fn switching_precision_keeps_the_bits_and_drops_a_started_transform() {
     let operator =
         || InfluenceOperator::new(nx, ny, 1e-6, 1e-6, 1.1e11, Boundary::Periodic, false).unwrap();
     let p: Vec<f64> = (0..nx * ny).map(|i| ((i * 37) % 11) as f64 * 1e6).collect();
-    let fill = |r: usize, row: &mut [f64]| {
-        row.copy_from_slice(&p[r * nx..][..nx]);
-        true
-    };
-    let copy = |_: usize, values: &[f64], out: &mut [f64]| {
-        out.copy_from_slice(values);
-        0.0
-    };
+    let fill = rows_of(&p, nx);
     let apply = |op: &mut InfluenceOperator| {
         let mut u = vec![0.0; nx * ny];
         op.apply_rows_into(&fill, &mut u, &copy).unwrap();
@@ -109,14 +116,7 @@ fn preconditioner_inverts_the_periodic_operator() {
         .collect();
     let mut u = vec![0.0; nx * ny];
     op.apply(&p, &mut u).unwrap();
-    let fill = |r: usize, row: &mut [f64]| {
-        row.copy_from_slice(&u[r * nx..][..nx]);
-        true
-    };
-    let copy = |_: usize, values: &[f64], out: &mut [f64]| {
-        out.copy_from_slice(values);
-        0.0
-    };
+    let fill = rows_of(&u, nx);
     let mut back = vec![0.0; nx * ny];
     op.precondition_rows_into(&fill, &mut back, &copy).unwrap();
     let error = p
